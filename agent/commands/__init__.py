@@ -1,0 +1,5 @@
+"""Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
+
+from agent.commands import check
+
+COMMANDS = (check,)
