@@ -1,0 +1,264 @@
+"""The typed, immutable model that MURML utterances (and SiGML signs) parse into.
+
+An :class:`Utterance` is speech text cut into chunks at chunk borders, with named time
+tags between its words, and behaviours whose timing refers to those tags (an affiliate)
+or to the utterance clock (absolute timing). A gesture is either a communicative
+function resolved through a lexicon or a constraint tree over feature slots:
+``parallel``, ``sequence``, ``symmetrical`` and ``repetition`` nodes with ``static``
+and ``dynamic`` leaves (seed 004, section 3).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Union
+
+from mura.errors import SourceLocation
+from mura.values import Direction, Location, SlotValue
+
+#: Slots that a static or dynamic constraint may name; arm slots are realized by ``motor/``.
+ARM_SLOTS: tuple[str, ...] = ("HandShape", "PalmOrientation", "ExtFingerOrientation", "HandLocation")
+#: Slots kept in the model though no arm realizes them.
+OTHER_SLOTS: tuple[str, ...] = ("GazeDirection", "Neck", "HeadDirection", "FaceExpression", "Mouth", "Shoulders", "Torso")
+
+
+class Arm(Enum):
+    """Which arm a constraint belongs to."""
+
+    RIGHT = "right_arm"
+    LEFT = "left_arm"
+
+    @property
+    def other(self) -> Arm:
+        return Arm.LEFT if self is Arm.RIGHT else Arm.RIGHT
+
+    @property
+    def side(self) -> str:
+        """``"right"`` or ``"left"``, the prefix side of the arm's joints (``r_``, ``l_``)."""
+        return "right" if self is Arm.RIGHT else "left"
+
+
+@dataclass(frozen=True)
+class Symmetry:
+    """Mirror symmetry of the non-dominant hand (MURML ``Sym``, ``SymMS``, ``SymMST`` …).
+
+    ``planes`` holds the mirror planes: ``S`` sagittal (left–right), ``T`` transversal
+    (up–down), ``F`` frontal (front–back). Plain ``Sym`` names no plane; mura reads it as
+    the sagittal mirror, the symmetry of almost every two-handed gesture.
+    """
+
+    planes: frozenset[str]
+    name: str
+
+    @property
+    def mirrors_sagittal(self) -> bool:
+        return "S" in self.planes
+
+
+class SegmentKind(Enum):
+    """Guiding-stroke shapes of a dynamic constraint."""
+
+    LINEAR = "linear"
+    CURVE = "curve"
+    CIRCLE = "circle"
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One submovement of a dynamic constraint (MURML ``segment`` / ``dynamicElement``).
+
+    For ``HandLocation`` the fields describe a path: a start and an end location, or a
+    start, a direction and a distance (metres); curves add the normal of their plane, a
+    shape (``LeftC``, ``RightC``, ``LeftS``, ``RightS``), an extent (bulge relative to the
+    chord), roundness and skewedness in [-1, 1]. For other slots only ``start`` and ``end``
+    are used, as the values to move between.
+    """
+
+    kind: SegmentKind
+    start: SlotValue | None = None
+    end: SlotValue | None = None
+    direction: Direction | None = None
+    distance: float | None = None
+    normal: Direction | None = None
+    shape: str | None = None
+    extent: float | None = None
+    roundness: float | None = None
+    skewedness: float | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Static:
+    """A feature held for the stroke: ``slot`` keeps ``value``."""
+
+    slot: str
+    value: SlotValue
+    scope: Arm | str | None = None
+    mode: str | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Dynamic:
+    """A feature performing a significant submovement: ``slot`` follows ``segments``."""
+
+    slot: str
+    segments: tuple[Segment, ...]
+    scope: Arm | str | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Parallel:
+    """Constraints that hold at the same time."""
+
+    children: tuple[Constraint, ...]
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Sequence:
+    """Constraints that follow one another."""
+
+    children: tuple[Constraint, ...]
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Symmetrical:
+    """The dominant arm's constraints, mirrored onto the other arm.
+
+    ``center`` is the spec's optional symmetry center, kept as written (spec units).
+    """
+
+    child: Constraint
+    dominant: Arm
+    symmetry: Symmetry
+    center: tuple[float, ...] | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Repetition:
+    """A constraint performed ``count`` times in a row (``count`` ≥ 2)."""
+
+    child: Constraint
+    count: int = 2
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+Constraint = Union[Static, Dynamic, Parallel, Sequence, Symmetrical, Repetition]
+
+
+def iter_leaves(node: Constraint) -> Iterator[Static | Dynamic]:
+    """Every ``static`` and ``dynamic`` leaf of a constraint tree, in document order."""
+    if isinstance(node, (Static, Dynamic)):
+        yield node
+    elif isinstance(node, (Parallel, Sequence)):
+        for child in node.children:
+            yield from iter_leaves(child)
+    else:
+        yield from iter_leaves(node.child)
+
+
+@dataclass(frozen=True)
+class FunctionCall:
+    """A gesture asked for by its communicative function, resolved through the lexicon."""
+
+    name: str
+    params: Mapping[str, str]
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Gesture:
+    """A gesture: its constraint tree, and the function it was chosen for, if any."""
+
+    id: str | None
+    constraints: Constraint
+    function: FunctionCall | None = None
+    scope: str | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Affiliate:
+    """The words a behaviour belongs to, between two time tags."""
+
+    onset: str
+    end: str
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class AbsoluteTiming:
+    """A behaviour placed on the utterance clock, seconds."""
+
+    onset: float
+    end: float
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class BehaviorSpec:
+    """One behaviour of an utterance.
+
+    ``kind`` is the element that carried it (``gesture``, or another behaviour such as
+    ``facial`` kept for the timeline). ``chunk`` is the index of the chunk whose time tags
+    the affiliate names, None for absolute timing.
+    """
+
+    id: str
+    kind: str
+    timing: Affiliate | AbsoluteTiming | None
+    gesture: Gesture | None = None
+    chunk: int | None = None
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class TimeTag:
+    """A named point in the spoken text: between words, at a character offset of its chunk."""
+
+    id: str
+    chunk: int
+    offset: int
+    chunkborder: bool = False
+    where: SourceLocation | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class ChunkSpec:
+    """One intonational phrase of the utterance: its text and the time tags inside it.
+
+    A chunk-border tag closes the chunk it ends (its offset is the chunk's text length).
+    """
+
+    index: int
+    text: str
+    time_tags: tuple[TimeTag, ...]
+
+
+@dataclass(frozen=True)
+class Utterance:
+    """A whole multimodal utterance: chunks of speech and the behaviours that go with them."""
+
+    chunks: tuple[ChunkSpec, ...]
+    behaviors: tuple[BehaviorSpec, ...]
+    source: str = "<input>"
+
+    @property
+    def time_tags(self) -> Mapping[str, TimeTag]:
+        """Every time tag by id."""
+        return {tag.id: tag for chunk in self.chunks for tag in chunk.time_tags}
+
+    @property
+    def text(self) -> str:
+        """The whole spoken text, chunks joined by a space."""
+        return " ".join(chunk.text for chunk in self.chunks if chunk.text)
+
+    def behaviors_in_chunk(self, index: int) -> tuple[BehaviorSpec, ...]:
+        """Behaviours whose affiliate lies in chunk ``index``."""
+        return tuple(b for b in self.behaviors if b.chunk == index)
