@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
+import sys
 import threading
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -149,6 +150,17 @@ _LOCK = threading.Lock()
 _engine: _Engine | None = None
 
 
+def library_loaded() -> bool:
+    """True once this process has loaded and initialized espeak-ng for this backend."""
+    return _engine is not None
+
+
+def _pyttsx3_drives_espeak() -> bool:
+    """True when pyttsx3's espeak driver has initialized espeak-ng in this process."""
+    driver = sys.modules.get("pyttsx3.drivers.espeak")
+    return bool(driver and getattr(getattr(driver, "EspeakDriver", None), "_moduleInitialized", False))
+
+
 def _default_library() -> tuple[str, str | None]:
     """The wheel's library and data, else the system library with its own data."""
     try:
@@ -174,6 +186,8 @@ def _get_engine(library_path: str | None, data_path: str | None) -> _Engine:
         library_path, data_path = _default_library()
     if not Path(library_path).exists() and "/" in library_path:
         raise BackendUnavailable(f"espeak-ng library {library_path} does not exist")
+    if _engine is None and _pyttsx3_drives_espeak():
+        raise BackendUnavailable("pyttsx3's espeak driver already owns espeak-ng in this process")
     if _engine is not None:
         if _engine.library_path != library_path:
             raise BackendUnavailable(f"espeak-ng is already loaded from {_engine.library_path} in this process")
