@@ -1,0 +1,113 @@
+"""The stand-alone avatar page: one HTML file that plays a BVH with its speech and timeline.
+
+The page inlines the built viewer bundle (``viewer/dist/viewer.js``, made by ``make setup``),
+the BVH text and the timeline JSON, and refers to the WAV by a relative file name, so it
+works opened straight from the output folder (``file://``) and fetches nothing from the
+network. Query parameters the page honours: ``?t=SECONDS`` opens it paused at that time;
+``?live=1`` follows a server's event stream instead (see ``viewer/src/live.js``).
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+import tempfile
+from pathlib import Path
+from urllib.parse import quote
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+VIEWER_BUNDLE = REPO_ROOT / "viewer" / "dist" / "viewer.js"
+
+_SCRIPT_END = re.compile(r"</(script)", re.IGNORECASE)
+_JSON_UNSAFE = str.maketrans(
+    {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028", "\u2029": "\\u2029"}
+)
+
+
+class ViewerNotBuiltError(FileNotFoundError):
+    """The viewer bundle is missing: the web page has not been built (``make setup``)."""
+
+
+def write_html(
+    path: str | os.PathLike[str],
+    *,
+    name: str,
+    bvh_text: str,
+    timeline: dict,
+    wav_filename: str | None,
+) -> None:
+    """Write the avatar page for one performance to ``path``.
+
+    Args:
+        path: the HTML file to write, normally ``<out>/<name>.html``.
+        name: shown as the page's title.
+        bvh_text: the whole BVH file (lengths in centimetres, as ``agent.export.bvh`` writes).
+        timeline: the scheduler's timeline (chunks, behaviours, words, ...), JSON-serializable.
+        wav_filename: the speech audio, relative to the page's folder, or ``None`` for a
+            silent page (a wall clock then drives the animation).
+
+    Raises:
+        ViewerNotBuiltError: the viewer bundle has not been built.
+        ValueError: ``timeline`` is not a JSON object of finite numbers, or ``bvh_text``
+            does not look like BVH, or ``wav_filename`` is absolute.
+    """
+    page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename)
+    target = Path(path)
+    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+            stream.write(page)
+        os.replace(temporary, target)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None) -> str:
+    """The page :func:`write_html` writes, as a string."""
+    if not bvh_text.lstrip().startswith("HIERARCHY") or "\nMOTION" not in bvh_text:
+        raise ValueError("write_html: bvh_text is not a BVH file (expected HIERARCHY ... MOTION ...)")
+    if not isinstance(timeline, dict):
+        raise ValueError(f"write_html: timeline must be a dict (a JSON object), got {type(timeline).__name__}")
+    try:
+        timeline_json = json.dumps(timeline, allow_nan=False, separators=(",", ":"))
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"write_html: timeline is not JSON-serializable with finite numbers: {error}") from error
+    audio = ""
+    if wav_filename is not None:
+        if Path(wav_filename).is_absolute() or re.match(r"^[a-z][a-z0-9+.-]*:", wav_filename, re.IGNORECASE):
+            raise ValueError(f"write_html: wav_filename must be relative to the page, got {wav_filename!r}")
+        audio = f'<audio id="mura-audio" src="{html.escape(quote(wav_filename))}" preload="auto"></audio>'
+    title = html.escape(name)
+    return (
+        "<!doctype html>\n"
+        '<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
+        f"<title>mura — {title}</title>\n</head>\n<body>\n"
+        f'<div id="mura-app" data-name="{title}">{audio}</div>\n'
+        f'<script type="application/json" id="mura-bvh">{_script_json(json.dumps(bvh_text))}</script>\n'
+        f'<script type="application/json" id="mura-timeline">{_script_json(timeline_json)}</script>\n'
+        f"<script>\n{_script_code(_viewer_bundle())}\n</script>\n"
+        "</body>\n</html>\n"
+    )
+
+
+def _viewer_bundle() -> str:
+    if not VIEWER_BUNDLE.is_file():
+        raise ViewerNotBuiltError(
+            f"the avatar page needs the built viewer at {VIEWER_BUNDLE}; run `make setup` "
+            "(or `npm ci && npm run build` in viewer/) first"
+        )
+    return VIEWER_BUNDLE.read_text(encoding="utf-8")
+
+
+def _script_json(text: str) -> str:
+    """JSON that cannot end its ``<script>`` element early (``<``, ``>``, ``&`` as ``\\u`` escapes)."""
+    return text.translate(_JSON_UNSAFE)
+
+
+def _script_code(code: str) -> str:
+    """JavaScript safe inside ``<script>``: a ``</script`` in a string or regex becomes ``<\\/script``."""
+    return _SCRIPT_END.sub(r"<\\/\1", code)

@@ -1,0 +1,237 @@
+// mura's avatar page. File mode: the page carries the BVH (script#mura-bvh, a JSON string)
+// and the timeline (script#mura-timeline) inline and plays them against <audio id=mura-audio>.
+// Live mode (?live=1): see live.js. Query ?t=SECONDS opens the page paused at that time.
+// When the first frame is drawn, window.__muraReady is true; window.__mura exposes
+// time(), seek(t), play(), pause() and counts for tests and scripting.
+import {
+  AnimationMixer,
+  Box3,
+  Color,
+  DirectionalLight,
+  GridHelper,
+  HemisphereLight,
+  PerspectiveCamera,
+  Scene,
+  Vector3,
+  WebGLRenderer,
+} from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { buildAvatar } from './avatar.js';
+import { Clock } from './clock.js';
+import { applyFrame, connectLive } from './live.js';
+import { UNIT, jointBones, parseBVH, skeletonFromLive } from './skeleton.js';
+import { CSS } from './style.js';
+import { TimelineView, normalizeTimeline } from './timeline.js';
+
+function readJSON(id) {
+  const element = document.getElementById(id);
+  return element ? JSON.parse(element.textContent) : undefined;
+}
+
+function element(tag, props = {}, parent = null) {
+  const node = Object.assign(document.createElement(tag), props);
+  if (parent) parent.append(node);
+  return node;
+}
+
+function buildUI() {
+  const style = element('style', { textContent: CSS });
+  document.head.append(style);
+  const app = document.getElementById('mura-app') ?? element('div', { id: 'mura-app' }, document.body);
+  const title = element('h1', { textContent: app.dataset.name ? `mura — ${app.dataset.name}` : 'mura' });
+  const stage = element('div', { id: 'mura-stage' });
+  const status = element('div', { id: 'mura-status' }, stage);
+  const controls = element('div', { id: 'mura-controls' });
+  const play = element('button', { id: 'mura-play', type: 'button', textContent: 'Play' }, controls);
+  const scrub = element('input', { id: 'mura-scrub', type: 'range', min: '0', max: '1', step: '0.001', value: '0' }, controls);
+  const time = element('span', { id: 'mura-time', textContent: '0.00 s' }, controls);
+  const strip = element('canvas', { id: 'mura-timeline-strip' });
+  const list = element('section', { id: 'mura-timeline-list' });
+  app.prepend(title, stage, controls, strip, list);
+  return { app, title, stage, status, play, scrub, time, strip, list };
+}
+
+function buildScene(stage) {
+  const renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  stage.prepend(renderer.domElement);
+  const scene = new Scene();
+  scene.background = new Color(0x20252c);
+  scene.add(new HemisphereLight(0xf4f1ea, 0x3a3530, 1.6));
+  const key = new DirectionalLight(0xffffff, 2.2);
+  key.position.set(150, 300, 400);
+  scene.add(key);
+  const rim = new DirectionalLight(0x9fb8ff, 0.8);
+  rim.position.set(-200, 150, -300);
+  scene.add(rim);
+  const camera = new PerspectiveCamera(32, 1, 1, 10000);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  const resize = () => {
+    const width = stage.clientWidth || 640;
+    const height = stage.clientHeight || 480;
+    renderer.setSize(width, height, false);
+    camera.aspect = width / height;
+    camera.updateProjectionMatrix();
+  };
+  resize();
+  window.addEventListener('resize', resize);
+  return { renderer, scene, camera, controls };
+}
+
+// Frame the body from the front (+z), with a floor grid at its lowest point.
+function frameBody(view, root) {
+  root.updateMatrixWorld(true);
+  const box = new Box3().setFromObject(root);
+  const centre = box.getCenter(new Vector3());
+  const size = box.getSize(new Vector3());
+  const extent = Math.max(size.y, size.x * 1.1, 40);
+  const distance = (extent * 0.62) / Math.tan((view.camera.fov * Math.PI) / 360);
+  view.camera.position.set(centre.x + distance * 0.18, centre.y + extent * 0.08, centre.z + distance);
+  view.controls.target.copy(centre);
+  view.controls.update();
+  const grid = new GridHelper(400, 20, 0x55606c, 0x343b44);
+  grid.position.y = box.min.y;
+  view.scene.add(grid);
+}
+
+const format = (t) => `${t.toFixed(2)} s`;
+
+function startFile(ui, view, timelineView, params) {
+  const bvh = readJSON('mura-bvh');
+  if (typeof bvh !== 'string') throw new Error('no BVH in the page (script#mura-bvh)');
+  const raw = readJSON('mura-timeline') ?? {};
+  const { skeleton, clip } = parseBVH(bvh);
+  const root = skeleton.bones[0];
+  view.scene.add(root);
+  const meshes = buildAvatar(root);
+  const mixer = new AnimationMixer(root);
+  const action = mixer.clipAction(clip);
+  action.play();
+  const motionStart = typeof raw.motion_start_time === 'number' ? raw.motion_start_time : 0;
+  const pose = (t) => {
+    action.time = Math.min(clip.duration, Math.max(0, t - motionStart));
+    mixer.update(0);
+  };
+  const timeline = normalizeTimeline(raw, motionStart + clip.duration);
+  const audio = document.getElementById('mura-audio');
+  const clock = new Clock(audio, Math.max(timeline.duration, motionStart + clip.duration));
+  const setDuration = (duration) => {
+    clock.duration = duration;
+    timeline.duration = duration;
+    ui.scrub.max = String(duration);
+    timelineView.setTimeline(timeline);
+  };
+  setDuration(clock.duration);
+  audio?.addEventListener('loadedmetadata', () => {
+    if (Number.isFinite(audio.duration) && audio.duration > clock.duration) setDuration(audio.duration);
+  });
+  pose(0);
+  frameBody(view, root);
+
+  ui.play.addEventListener('click', () => (clock.playing ? clock.pause() : clock.play()));
+  ui.scrub.addEventListener('input', () => clock.seek(Number(ui.scrub.value)));
+  timelineView.onSeek = (t) => clock.seek(t);
+  document.addEventListener('keydown', (event) => {
+    if (event.code !== 'Space' || event.target instanceof HTMLInputElement) return;
+    event.preventDefault();
+    ui.play.click();
+  });
+  const requested = Number(params.get('t'));
+  if (params.has('t') && Number.isFinite(requested)) clock.seek(requested);
+
+  const draw = () => {
+    clock.tick();
+    const t = clock.time();
+    pose(t);
+    ui.play.textContent = clock.playing ? 'Pause' : 'Play';
+    if (document.activeElement !== ui.scrub) ui.scrub.value = String(t);
+    ui.time.textContent = `${format(t)} / ${format(clock.duration)}`;
+    timelineView.update(t);
+    view.controls.update();
+    view.renderer.render(view.scene, view.camera);
+  };
+  const loop = () => {
+    draw();
+    requestAnimationFrame(loop);
+  };
+  draw();
+  window.__mura = {
+    time: () => clock.time(),
+    seek: (t) => {
+      clock.seek(t);
+      draw();
+    },
+    play: () => clock.play(),
+    pause: () => clock.pause(),
+    duration: () => clock.duration,
+    joints: jointBones(skeleton).length,
+    meshes,
+  };
+  window.__muraReady = true;
+  requestAnimationFrame(loop);
+}
+
+function startLive(ui, view, timelineView) {
+  ui.play.disabled = true;
+  ui.scrub.disabled = true;
+  ui.status.textContent = 'live: connecting…';
+  let bones = [];
+  let root = null;
+  let time = 0;
+  let timeline = normalizeTimeline({}, 0);
+  connectLive('./stream', {
+    onSkeleton(description) {
+      if (root) view.scene.remove(root);
+      const skeleton = skeletonFromLive(description);
+      root = skeleton.bones[0];
+      view.scene.add(root);
+      buildAvatar(root);
+      bones = jointBones(skeleton);
+      frameBody(view, root);
+      ui.status.textContent = `live: ${bones.length} joints`;
+    },
+    onTimeline(raw) {
+      timeline = normalizeTimeline(raw, time);
+      ui.scrub.max = String(timeline.duration);
+      timelineView.setTimeline(timeline);
+    },
+    onFrame(frame) {
+      applyFrame(bones, frame, UNIT);
+      if (typeof frame.time === 'number') time = frame.time;
+    },
+    onError(message) {
+      ui.status.textContent = message;
+    },
+  });
+  const loop = () => {
+    ui.scrub.value = String(time);
+    ui.time.textContent = format(time);
+    timelineView.update(time);
+    view.controls.update();
+    view.renderer.render(view.scene, view.camera);
+    requestAnimationFrame(loop);
+  };
+  loop();
+  window.__mura = { time: () => time, joints: () => bones.length };
+  window.__muraReady = true;
+}
+
+function boot() {
+  const params = new URLSearchParams(window.location.search);
+  const ui = buildUI();
+  const timelineView = new TimelineView(ui.strip, ui.list, () => {});
+  try {
+    const view = buildScene(ui.stage);
+    if (params.get('live') === '1') startLive(ui, view, timelineView);
+    else startFile(ui, view, timelineView, params);
+  } catch (error) {
+    ui.status.textContent = `viewer error: ${error.message}`;
+    timelineView.setTimeline(normalizeTimeline(readJSON('mura-timeline'), 0));
+    window.__muraError = String(error.message);
+    window.__muraReady = true;
+    throw error;
+  }
+}
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', boot);
+else boot();
