@@ -2,7 +2,11 @@
 
 The library comes from the ``espeakng-loader`` wheel; a system ``libespeak-ng.so.1`` is
 accepted when the wheel is absent. espeak-ng keeps global state and is not thread-safe,
-so the process has one engine, initialized on first use and guarded by a lock.
+so the process has one engine, initialized on first use and guarded by a lock. Before
+each call the library's random seed is reset (``espeak_ng_SetRandSeed``, espeak-ng 1.51
+and later). espeak-ng still carries some waveform state (its pitch flutter phase) from
+one call to the next, so repeated calls in one process may differ by a sample or two;
+the same sequence of calls in a fresh process gives identical timings and audio.
 
 Times are sample-exact: each event's ``sample`` field counts samples from the start of
 the synthesis call. A phoneme ends where the next begins (the last at the end of the
@@ -54,6 +58,7 @@ _SSML = 0x10
 _PARAMETER_RATE = 1
 _EVENT_LIST_TERMINATED, _EVENT_WORD, _EVENT_MARK, _EVENT_PHONEME = 0, 1, 3, 7
 _EE_OK, _EE_NOT_FOUND = 0, 2
+_RANDOM_SEED = 1  # espeak-ng jitters pitch pulses with rand(); a fixed seed makes every call repeatable
 
 
 class _EventId(ctypes.Union):
@@ -106,6 +111,10 @@ class _Engine:
             ctypes.c_void_p, ctypes.c_void_p,
         ]
         lib.espeak_Synth.restype = ctypes.c_int
+        self._seed = getattr(lib, "espeak_ng_SetRandSeed", None)  # espeak-ng >= 1.51
+        if self._seed is not None:
+            self._seed.argtypes = [ctypes.c_long]
+            self._seed.restype = None
         path = data_path.encode() if data_path else None
         rate = lib.espeak_Initialize(
             _AUDIO_OUTPUT_SYNCHRONOUS, 0, path, _INITIALIZE_PHONEME_EVENTS | _INITIALIZE_DONT_EXIT
@@ -138,6 +147,8 @@ class _Engine:
         if self.lib.espeak_SetVoiceByName(voice.encode()) != _EE_OK:
             raise UnknownVoice(f"espeak-ng has no voice {voice!r}")
         self.lib.espeak_SetParameter(_PARAMETER_RATE, words_per_minute, 0)
+        if self._seed is not None:
+            self._seed(_RANDOM_SEED)
         self.capture = _Capture()
         data = ssml.encode()
         status = self.lib.espeak_Synth(data, len(data) + 1, 0, _POS_CHARACTER, 0, _CHARS_UTF8 | _SSML, None, None)
