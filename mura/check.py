@@ -1,0 +1,55 @@
+"""Checking spec files of any of mura's languages, for ``mura check``.
+
+The document's root element says which language a file is in: ``<definition>`` or
+``<utterance>`` (MURML), ``<lexicon>`` (a gesture lexicon). Every problem found comes back
+as a :class:`SpecError`; a file with none is valid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from mura.errors import SpecError, SpecErrors
+from mura.lexicon import load_lexicon
+from mura.murml import read_utterances
+from mura.xml_source import XmlSource
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """What checking one file found: a summary when valid, else its errors."""
+
+    path: str
+    summary: str
+    errors: tuple[SpecError, ...] = ()
+
+    @property
+    def ok(self) -> bool:
+        return not self.errors
+
+
+def check_file(path: str | Path) -> CheckResult:
+    """Parse and validate one spec file."""
+    name = str(path)
+    try:
+        source = XmlSource.from_path(path)
+        summary = _check_source(source)
+    except SpecErrors as many:
+        return CheckResult(name, "", many.errors)
+    except SpecError as error:
+        return CheckResult(name, "", (error,))
+    return CheckResult(name, summary)
+
+
+def _check_source(source: XmlSource) -> str:
+    root = source.root.tag
+    if root in ("definition", "utterance"):
+        utterances = read_utterances(source)
+        chunks = sum(len(u.chunks) for u in utterances)
+        behaviors = sum(len(u.behaviors) for u in utterances)
+        return f"{len(utterances)} utterance(s), {chunks} chunk(s), {behaviors} behaviour(s)"
+    if root == "lexicon":
+        lexicon = load_lexicon(source.file)
+        return f"lexicon of {len(lexicon.entries)} function(s), {len(lexicon.scene)} place(s)"
+    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance> or <lexicon>)", source.root)
