@@ -1,5 +1,5 @@
 """Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
 
-from agent.commands import check
+from agent.commands import check, say
 
-COMMANDS = (check,)
+COMMANDS = (check, say)
