@@ -1,0 +1,60 @@
+"""Mirror symmetry of the non-dominant hand (MURML ``SymMS``, ``SymMT``, ``SymMF`` …).
+
+A symmetrical gesture gives the dominant arm's movement; the other arm performs its
+mirror image. The mirror planes of a :class:`mura.model.Symmetry` are sagittal (``S``:
+x ↦ −x, left–right), transversal (``T``: y about the centre's height) and frontal
+(``F``: z about the centre's depth); several planes compose. Points reflect about the
+centre (metres, avatar frame; default the origin), directions only flip components, and
+rotations are conjugated by the reflection ``M``: ``R ↦ M R M``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mura.model import Symmetry
+
+_AXIS_OF_PLANE = {"S": 0, "T": 1, "F": 2}
+
+
+def reflection_signs(symmetry: Symmetry) -> np.ndarray:
+    """Diagonal ``(3,)`` of the reflection matrix M of ``symmetry`` (entries ±1)."""
+    signs = np.ones(3)
+    for plane in symmetry.planes:
+        if plane not in _AXIS_OF_PLANE:
+            raise ValueError(f"symmetry {symmetry.name!r}: unknown mirror plane {plane!r} (expected S, T or F)")
+        signs[_AXIS_OF_PLANE[plane]] = -1.0
+    return signs
+
+
+def _check_last_axis(values: np.ndarray, size: int, what: str) -> np.ndarray:
+    array = np.asarray(values, dtype=float)
+    if array.shape[-1:] != (size,):
+        raise ValueError(f"{what}: expected last axis of size {size}, got shape {array.shape}")
+    return array
+
+
+def mirror_points(
+    points: np.ndarray, symmetry: Symmetry, center: np.ndarray | tuple[float, float, float] | None = None
+) -> np.ndarray:
+    """Positions ``(..., 3)`` reflected across the symmetry's planes through ``center``."""
+    p = _check_last_axis(points, 3, "mirror_points")
+    c = np.zeros(3) if center is None else _check_last_axis(center, 3, "mirror center")
+    return c + (p - c) * reflection_signs(symmetry)
+
+
+def mirror_directions(directions: np.ndarray, symmetry: Symmetry) -> np.ndarray:
+    """Direction vectors or velocities ``(..., 3)`` reflected across the symmetry's planes."""
+    return _check_last_axis(directions, 3, "mirror_directions") * reflection_signs(symmetry)
+
+
+def mirror_quaternions(quaternions: np.ndarray, symmetry: Symmetry) -> np.ndarray:
+    """Rotations ``(..., 4)`` (scalar-last) conjugated by the reflection: ``M R M``.
+
+    A rotation's axis is a pseudovector: under M it becomes ``det(M) · M a`` while the
+    angle stays, so the vector part maps to ``det(M) · M v`` and the scalar part is kept.
+    """
+    q = _check_last_axis(quaternions, 4, "mirror_quaternions")
+    signs = reflection_signs(symmetry)
+    factors = np.append(np.prod(signs) * signs, 1.0)
+    return q * factors
