@@ -19,7 +19,7 @@ from tts import (
     write_wav,
 )
 
-_NOTATION = re.compile(r"\[([^\[\]\s]*)\]|\*([^*]+)\*")
+_NOTATION = re.compile(r"\[([^\[\]]*)\]|\*([^*]+)\*")
 
 _EPILOG = """text notation:
   [name]    a time tag at that point, between words (an XML name: t1, stroke, ...)
