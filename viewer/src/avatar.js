@@ -37,8 +37,10 @@ export function buildAvatar(root) {
       bone.add(limb(bone.name, child));
       meshes += 1;
     }
-    bone.add(jointBall(bone));
-    meshes += 1;
+    if (!isTorso(bone.name)) {
+      bone.add(jointBall(bone));
+      meshes += 1;
+    }
     if (isWrist(bone.name)) {
       const palm = palmFor(bone);
       if (palm) {
@@ -67,7 +69,7 @@ function limb(name, child) {
   const mesh = new Mesh(new CapsuleGeometry(radius, Math.max(length, 1e-3), 6, 14), material(name));
   if (length > 1e-6) mesh.quaternion.setFromUnitVectors(Y, offset.clone().divideScalar(length));
   mesh.position.copy(offset).multiplyScalar(0.5);
-  if (isTorso(name) && isTorso(childName)) mesh.scale.set(TORSO_WIDTH, 1, TORSO_DEPTH);
+  if (isTorso(name) && !/^[lr]_/.test(childName)) mesh.scale.set(TORSO_WIDTH, 1, TORSO_DEPTH);
   return mesh;
 }
 

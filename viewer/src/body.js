@@ -21,6 +21,7 @@ const SEGMENT_RADIUS = [
 const FINGER_RADIUS = { thumb: [0.011, 0.012, 0.0105, 0.0095], other: [0.009, 0.0098, 0.0088, 0.0078] };
 
 export const DEFAULT_RADIUS = 0.02;
+const UPPER_CHEST_RADIUS = 0.085; // tapers the chest into the neck
 
 export function fingerOf(name) {
   const match = FINGER.exec(name);
@@ -48,6 +49,7 @@ export function isClothed(name) {
 // leaves the midline for a side (spine → clavicle) takes the side's size.
 export function segmentRadius(from, to) {
   const side = /^[lr]_/;
+  if (isTorso(from) && /^vc\d+$/.test(to)) return UPPER_CHEST_RADIUS;
   const name = !side.test(from) && side.test(to) ? to : from;
   const finger = fingerOf(name);
   if (finger) {

@@ -78,20 +78,38 @@ function buildScene(stage) {
   return { renderer, scene, camera, controls };
 }
 
-// Frame the body from the front (+z), with a floor grid at its lowest point.
-function frameBody(view, root) {
-  root.updateMatrixWorld(true);
-  const box = new Box3().setFromObject(root);
-  const centre = box.getCenter(new Vector3());
-  const size = box.getSize(new Vector3());
-  const extent = Math.max(size.y, size.x * 1.1, 40);
-  const distance = (extent * 0.62) / Math.tan((view.camera.fov * Math.PI) / 360);
-  view.camera.position.set(centre.x + distance * 0.18, centre.y + extent * 0.08, centre.z + distance);
+const LEG = /hip|knee|ankle|foot|toe|metatarsal|tarsal/;
+
+function isLeg(bone) {
+  for (let node = bone; node?.isBone; node = node.parent) if (LEG.test(node.name)) return true;
+  return false;
+}
+
+// Frame the upper body (where gestures happen) from the front (+z) over the given poses,
+// with a floor grid under the lowest point of the body.
+function frameBody(view, root, poses) {
+  const upper = new Box3();
+  const whole = new Box3();
+  const point = new Vector3();
+  for (const pose of poses) {
+    pose();
+    root.updateMatrixWorld(true);
+    whole.expandByObject(root);
+    root.traverse((node) => {
+      if (node.isBone && !isLeg(node)) upper.expandByPoint(node.getWorldPosition(point));
+    });
+  }
+  const centre = upper.getCenter(new Vector3());
+  const size = upper.getSize(new Vector3());
+  const extent = Math.max(size.y * 1.25, size.x * 1.1, 40);
+  const distance = (extent * 0.6) / Math.tan((view.camera.fov * Math.PI) / 360);
+  view.camera.position.set(centre.x + distance * 0.15, centre.y + extent * 0.06, centre.z + distance);
   view.controls.target.copy(centre);
   view.controls.update();
   const grid = new GridHelper(400, 20, 0x55606c, 0x343b44);
-  grid.position.y = box.min.y;
+  grid.position.y = whole.min.y;
   view.scene.add(grid);
+  return grid;
 }
 
 const format = (t) => `${t.toFixed(2)} s`;
@@ -125,8 +143,9 @@ function startFile(ui, view, timelineView, params) {
   audio?.addEventListener('loadedmetadata', () => {
     if (Number.isFinite(audio.duration) && audio.duration > clock.duration) setDuration(audio.duration);
   });
+  const samples = Array.from({ length: 16 }, (_, i) => () => pose(motionStart + (i / 15) * clip.duration));
+  frameBody(view, root, samples);
   pose(0);
-  frameBody(view, root);
 
   ui.play.addEventListener('click', () => (clock.playing ? clock.pause() : clock.play()));
   ui.scrub.addEventListener('input', () => clock.seek(Number(ui.scrub.value)));
@@ -177,17 +196,18 @@ function startLive(ui, view, timelineView) {
   ui.status.textContent = 'live: connecting…';
   let bones = [];
   let root = null;
+  let grid = null;
   let time = 0;
   let timeline = normalizeTimeline({}, 0);
   connectLive('./stream', {
     onSkeleton(description) {
-      if (root) view.scene.remove(root);
+      if (root) view.scene.remove(root, grid);
       const skeleton = skeletonFromLive(description);
       root = skeleton.bones[0];
       view.scene.add(root);
       buildAvatar(root);
       bones = jointBones(skeleton);
-      frameBody(view, root);
+      grid = frameBody(view, root, [() => {}]);
       ui.status.textContent = `live: ${bones.length} joints`;
     },
     onTimeline(raw) {
