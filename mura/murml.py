@@ -228,18 +228,18 @@ class _UtteranceReader:
         for attribute, tag_id in (("onset", onset), ("end", end)):
             if tag_id not in self.tags:
                 known = ", ".join(sorted(self.tags)) or "none"
-                raise self.source.error(f"{behavior_id!r}: {attribute} names unknown time tag {tag_id!r} (known: {known})", element, attribute)
+                raise self.source.error(f"behaviour {behavior_id!r}: {attribute} names unknown time tag {tag_id!r} (known: {known})", element, attribute)
         first, last = self.tags[onset], self.tags[end]
         if first.chunk != last.chunk:
             raise self.source.error(
-                f"{behavior_id!r}: affiliate from {onset!r} (chunk {first.chunk + 1}) to {end!r} (chunk {last.chunk + 1}) crosses a chunk border",
+                f"behaviour {behavior_id!r}: affiliate from {onset!r} (chunk {first.chunk + 1}) to {end!r} (chunk {last.chunk + 1}) crosses a chunk border",
                 element,
                 "end",
             )
-        if last.offset < first.offset or (last.offset == first.offset and onset != end and _order(self.tags, end) < _order(self.tags, onset)):
-            raise self.source.error(f"{behavior_id!r}: affiliate ends at {end!r}, before its onset {onset!r}", element, "end")
+        if last.offset < first.offset:
+            raise self.source.error(f"behaviour {behavior_id!r}: affiliate ends at {end!r}, before its onset {onset!r}", element, "end")
         if last.offset == first.offset:
-            raise self.source.error(f"{behavior_id!r}: affiliate from {onset!r} to {end!r} spans no words", element, "end")
+            raise self.source.error(f"behaviour {behavior_id!r}: affiliate from {onset!r} to {end!r} spans no words", element, "end")
         return Affiliate(onset, end, self.source.where(element))
 
     def _read_gesture(self, element: etree._Element, behavior_id: str) -> Gesture:
@@ -276,10 +276,6 @@ def _timing_element(behaviorspec: etree._Element, body: etree._Element) -> etree
         if candidate is not None:
             return candidate
     return None
-
-
-def _order(tags: Mapping[str, TimeTag], tag_id: str) -> int:
-    return list(tags).index(tag_id)
 
 
 @dataclass
@@ -528,10 +524,10 @@ class _ConstraintReader:
     def _distance(self, text: str, element: etree._Element, attribute: str) -> float:
         if text in vocabulary.DISTANCES:
             return vocabulary.DISTANCES[text]
-        values = self._numbers(element, attribute, self.unit, text)
-        if len(values) != 1:
-            raise self._error(f"a distance is one number or a Dist… name, got {text!r}", element, attribute)
-        return values[0]
+        expected = f"a distance is one number or one of {', '.join(vocabulary.DISTANCES)}, not {text!r}"
+        if not _is_numbers(text) or len(text.split()) != 1:
+            raise self._error(expected, element, attribute)
+        return self._numbers(element, attribute, self.unit, text)[0]
 
     def _scalar(self, text: str, names: Mapping[str, float], key: str, element: etree._Element, attribute: str) -> float:
         if text in names:
