@@ -10,6 +10,7 @@ $(STAMP): pyproject.toml
 	$(PY) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
 	$(BIN)/pip install --quiet -e '.[test]'
+	cd viewer && npm ci --no-audit --no-fund --loglevel=error && npm run build --silent
 	touch $(STAMP)
 
 setup: $(STAMP)
