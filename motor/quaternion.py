@@ -1,0 +1,150 @@
+"""Vectorized unit-quaternion algebra in scipy's scalar-last order ``(x, y, z, w)``.
+
+Forward and inverse kinematics run over thousands of frames at once; building scipy
+``Rotation`` objects in the hot path costs more than the arithmetic itself, so these
+functions work on raw arrays of shape ``(..., 4)`` (vectors ``(..., 3)``) and broadcast.
+Angles are radians.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
+
+
+def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Hamilton product ``p * q`` (apply ``q`` first, then ``p``)."""
+    px, py, pz, pw = p[..., 0], p[..., 1], p[..., 2], p[..., 3]
+    qx, qy, qz, qw = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    return np.stack(
+        (
+            pw * qx + px * qw + py * qz - pz * qy,
+            pw * qy - px * qz + py * qw + pz * qx,
+            pw * qz + px * qy - py * qx + pz * qw,
+            pw * qw - px * qx - py * qy - pz * qz,
+        ),
+        axis=-1,
+    )
+
+
+def conjugate(q: np.ndarray) -> np.ndarray:
+    """The inverse of a unit quaternion."""
+    return q * np.array([-1.0, -1.0, -1.0, 1.0])
+
+
+def normalize(q: np.ndarray) -> np.ndarray:
+    """Scale quaternions (or vectors) to unit length along the last axis."""
+    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+
+
+def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Rotate vectors ``v (..., 3)`` by unit quaternions ``q (..., 4)``."""
+    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    vx, vy, vz = v[..., 0], v[..., 1], v[..., 2]
+    tx = 2.0 * (y * vz - z * vy)
+    ty = 2.0 * (z * vx - x * vz)
+    tz = 2.0 * (x * vy - y * vx)
+    return np.stack(
+        (
+            vx + w * tx + y * tz - z * ty,
+            vy + w * ty + z * tx - x * tz,
+            vz + w * tz + x * ty - y * tx,
+        ),
+        axis=-1,
+    )
+
+
+def from_axis_angle(axis: np.ndarray, angle: np.ndarray | float) -> np.ndarray:
+    """Rotation by ``angle`` about the unit ``axis``; broadcasts ``(..., 3)`` with ``(...)``."""
+    half = 0.5 * np.asarray(angle, dtype=float)[..., None]
+    xyz = np.asarray(axis, dtype=float) * np.sin(half)
+    w = np.broadcast_to(np.cos(half), xyz.shape[:-1] + (1,))
+    return np.concatenate((xyz, w), axis=-1)
+
+
+def from_rotation_vector(rotvec: np.ndarray) -> np.ndarray:
+    """Quaternion of a rotation vector (axis times angle), safe at zero."""
+    angle = np.linalg.norm(rotvec, axis=-1)
+    half = 0.5 * angle
+    scale = np.where(angle > 1e-12, np.sin(half) / np.where(angle > 1e-12, angle, 1.0), 0.5)
+    return np.concatenate((rotvec * scale[..., None], np.cos(half)[..., None]), axis=-1)
+
+
+def to_rotation_vector(q: np.ndarray) -> np.ndarray:
+    """Rotation vector (axis times angle in ``[0, π]``) of unit quaternions."""
+    q = np.where(q[..., 3:4] < 0.0, -q, q)
+    sin_half = np.linalg.norm(q[..., :3], axis=-1)
+    angle = 2.0 * np.arctan2(sin_half, q[..., 3])
+    scale = np.where(sin_half > 1e-12, angle / np.where(sin_half > 1e-12, sin_half, 1.0), 2.0)
+    return q[..., :3] * scale[..., None]
+
+
+def angle_between(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Angle of the rotation taking ``p`` to ``q``, radians in ``[0, π]``."""
+    dot = np.abs(np.sum(p * q, axis=-1))
+    return 2.0 * np.arccos(np.clip(dot, 0.0, 1.0))
+
+
+def between_vectors(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Shortest rotation taking unit vectors ``u`` to ``v`` (any axis ⟂ u when opposite)."""
+    u = np.broadcast_to(u, np.broadcast_shapes(np.shape(u), np.shape(v)))
+    v = np.broadcast_to(v, u.shape)
+    cross = np.cross(u, v)
+    dot = np.sum(u * v, axis=-1)
+    q = np.concatenate((cross, (1.0 + dot)[..., None]), axis=-1)
+    opposite = (1.0 + dot) < 1e-9
+    if np.any(opposite):
+        helper = np.where(np.abs(u[..., :1]) < 0.9, np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+        axis = normalize(np.cross(u, helper))
+        q = np.where(opposite[..., None], np.concatenate((axis, np.zeros(axis.shape[:-1] + (1,))), axis=-1), q)
+    return normalize(q)
+
+
+def from_matrix(m: np.ndarray) -> np.ndarray:
+    """Unit quaternions of rotation matrices ``(..., 3, 3)`` (columns are the rotated axes)."""
+    m00, m11, m22 = m[..., 0, 0], m[..., 1, 1], m[..., 2, 2]
+    candidates = np.stack(
+        (
+            np.stack((1 + m00 - m11 - m22, m[..., 0, 1] + m[..., 1, 0], m[..., 0, 2] + m[..., 2, 0], m[..., 2, 1] - m[..., 1, 2]), -1),
+            np.stack((m[..., 0, 1] + m[..., 1, 0], 1 - m00 + m11 - m22, m[..., 1, 2] + m[..., 2, 1], m[..., 0, 2] - m[..., 2, 0]), -1),
+            np.stack((m[..., 0, 2] + m[..., 2, 0], m[..., 1, 2] + m[..., 2, 1], 1 - m00 - m11 + m22, m[..., 1, 0] - m[..., 0, 1]), -1),
+            np.stack((m[..., 2, 1] - m[..., 1, 2], m[..., 0, 2] - m[..., 2, 0], m[..., 1, 0] - m[..., 0, 1], 1 + m00 + m11 + m22), -1),
+        ),
+        axis=-2,
+    )
+    best = np.argmax(np.stack((m00, m11, m22, m00 + m11 + m22), -1), axis=-1)
+    q = np.take_along_axis(candidates, best[..., None, None], axis=-2)[..., 0, :]
+    return normalize(q)
+
+
+def from_frames(rest: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Rotation taking an orthonormal frame ``rest (..., 3, 3)`` onto ``target`` (axes as columns)."""
+    return from_matrix(target @ np.swapaxes(rest, -1, -2))
+
+
+def swing_twist(q: np.ndarray, axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Split ``q = swing * twist`` with ``twist`` about unit ``axis`` and swing ⟂ to it.
+
+    Returns ``(swing, twist_angle)``; the twist angle is signed about ``axis``, radians.
+    """
+    along = np.sum(q[..., :3] * axis, axis=-1)
+    twist_angle = 2.0 * np.arctan2(along, q[..., 3])
+    twist_angle = (twist_angle + np.pi) % (2.0 * np.pi) - np.pi
+    twist = from_axis_angle(axis, twist_angle)
+    return multiply(q, conjugate(twist)), twist_angle
+
+
+def slerp(p: np.ndarray, q: np.ndarray, t: np.ndarray | float) -> np.ndarray:
+    """Spherical linear interpolation from ``p`` (t = 0) to ``q`` (t = 1), shortest arc."""
+    t = np.asarray(t, dtype=float)[..., None]
+    dot = np.sum(p * q, axis=-1, keepdims=True)
+    q = np.where(dot < 0.0, -q, q)
+    dot = np.abs(dot)
+    theta = np.arccos(np.clip(dot, -1.0, 1.0))
+    sin_theta = np.sin(theta)
+    small = sin_theta < 1e-9
+    safe = np.where(small, 1.0, sin_theta)
+    a = np.where(small, 1.0 - t, np.sin((1.0 - t) * theta) / safe)
+    b = np.where(small, t, np.sin(t * theta) / safe)
+    return normalize(a * p + b * q)
