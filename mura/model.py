@@ -74,6 +74,11 @@ class Segment:
     shape (``LeftC``, ``RightC``, ``LeftS``, ``RightS``), an extent (bulge relative to the
     chord), roundness and skewedness in [-1, 1]. For other slots only ``start`` and ``end``
     are used, as the values to move between.
+
+    Signs add the HamNoSys qualities of the movement: ``manner`` (``targetted`` by
+    default for signs, ``fast``, ``slow``, ``tense``, ``rest``, ``halt``), ``size``
+    (``small``, ``large``, ``increasing``, ``decreasing``) and ``modifiers``, further
+    qualifiers as ``key`` or ``key=value`` strings (see :mod:`mura.signs`).
     """
 
     kind: SegmentKind
@@ -87,6 +92,9 @@ class Segment:
     roundness: float | None = None
     skewedness: float | None = None
     where: SourceLocation | None = field(default=None, compare=False)
+    manner: str | None = None
+    size: str | None = None
+    modifiers: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -142,11 +150,18 @@ class Symmetrical:
 
 @dataclass(frozen=True)
 class Repetition:
-    """A constraint performed ``count`` times in a row (``count`` ≥ 2)."""
+    """A constraint performed ``count`` times in a row (``count`` ≥ 2).
+
+    ``mode`` says where each repetition starts (HamNoSys): ``fromstart`` (back to the
+    initial posture), ``continue`` (on from where the last one ended) or ``reverse``
+    (back along the same path); ``alternating`` makes the two hands take turns.
+    """
 
     child: Constraint
     count: int = 2
     where: SourceLocation | None = field(default=None, compare=False)
+    mode: str = "fromstart"
+    alternating: bool = False
 
 
 Constraint = Union[Static, Dynamic, Parallel, Sequence, Symmetrical, Repetition]

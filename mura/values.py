@@ -104,6 +104,10 @@ class HandShape:
         opening: one of :data:`OPENINGS` for cee and pinch shapes, or None.
         between: a second shape; the hand takes the shape halfway between the two.
         name: the symbol as written in the spec, for messages.
+        contact: a contact between digits inside the shape, as HamNoSys writes it: the
+            fingers, the site and the partner fingers, e.g. ``("index", "fingernail",
+            "middle")``, or ``("middle", "between", "ring")`` for the thumb between two
+            fingers; empty when none.
     """
 
     basic: str
@@ -114,6 +118,7 @@ class HandShape:
     opening: str | None = None
     between: HandShape | None = None
     name: str = ""
+    contact: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

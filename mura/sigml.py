@@ -1,0 +1,452 @@
+"""SiGML documents: ``<hns_sign>`` tag streams and ``<hamgestural_sign>`` feature trees.
+
+A SiGML document (root ``<sigml>`` or ``<sigml_collection>``) holds signs in either of two
+forms. ``<hns_sign>`` writes the HamNoSys manual stream as a list of empty tags in
+``<hamnosys_manual>`` (read by :mod:`mura.hamnosys`) with nonmanual tiers in
+``<hamnosys_nonmanual>``. ``<hamgestural_sign>`` writes the same features as a tree
+(``<sign_manual>`` with ``<handconfig>``, ``<location_bodyarm>``, ``<directedmotion>`` …,
+seed 000 Figure 7). Both become :class:`~mura.signs.Sign`.
+
+Each sign is read on its own: one broken sign becomes a :class:`~mura.signs.SignFailure`
+with its reason and the others still parse. Reading is safe: no network, no DTD, no
+entity expansion, and inputs over :data:`MAX_SIGML_BYTES` are refused.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+from lxml import etree
+
+from mura.errors import SourceLocation, SpecError
+from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
+from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static
+from mura.signs import HandConstellation, HandPosture, NonmanualItem, SigmlParseResult, Sign, SignFailure, SignSymmetry
+from mura.values import (
+    BASIC_HANDSHAPES,
+    FINGER_BENDINGS,
+    FINGERS,
+    THUMB_POSITIONS,
+    BetweenLocation,
+    BodySite,
+    Direction,
+    FingerBend,
+    HandShape,
+    Location,
+    PalmOrientation,
+    direction_from_letters,
+)
+
+#: Largest SiGML document accepted, bytes (the corpora are about 1 MB).
+MAX_SIGML_BYTES = 32 * 1024 * 1024
+
+ROOTS: tuple[str, ...] = ("sigml", "sigml_collection")
+SIGN_TAGS: tuple[str, ...] = ("hns_sign", "hamgestural_sign")
+
+_START_TAG = re.compile(rb"<([A-Za-z_][\w.\-:]*)")
+_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[.*?\])*>", re.S)
+
+
+def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
+    """Every sign of a SiGML document; broken signs are reported one by one.
+
+    Raises SpecError only when the document as a whole cannot be read (not XML, too
+    large, wrong root).
+    """
+    data = source.encode("utf-8") if isinstance(source, str) else source
+    if len(data) > MAX_SIGML_BYTES:
+        raise SpecError(f"SiGML document is {len(data)} bytes, more than the limit of {MAX_SIGML_BYTES}", SourceLocation(file))
+    if b"<!ENTITY" in data:
+        raise SpecError("SiGML documents may not declare entities", SourceLocation(file, 1, 1))
+    root = _parse_xml(data, file)
+    positions = _start_positions(data, root)
+    where_of: Callable[[etree._Element], SourceLocation] = lambda el: SourceLocation(file, *positions.get(el, (el.sourceline or 0, 0)))
+    if root.tag not in ROOTS:
+        raise SpecError(f"root element <{root.tag}> is not <sigml> or <sigml_collection>", where_of(root))
+    signs: list[Sign] = []
+    failures: list[SignFailure] = []
+    for index, element in enumerate(e for e in root if isinstance(e.tag, str)):
+        gloss = element.get("gloss", f"#{index}")
+        try:
+            if element.tag == "hns_sign":
+                signs.append(_hns_sign(element, gloss, where_of))
+            elif element.tag == "hamgestural_sign":
+                signs.append(_GesturalReader(gloss, where_of).sign(element))
+            else:
+                raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
+        except SpecError as error:
+            failures.append(SignFailure(gloss, index, error))
+    return SigmlParseResult(tuple(signs), tuple(failures), file)
+
+
+def _parse_xml(data: bytes, file: str) -> etree._Element:
+    parser = etree.XMLParser(
+        resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False, remove_comments=True, remove_pis=True
+    )
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as error:
+        line, column = error.position if error.position else (0, 0)
+        raise SpecError(f"not well-formed XML: {error.msg}", SourceLocation(file, line, column)) from None
+    if root is None:
+        raise SpecError("empty SiGML document", SourceLocation(file, 1, 1))
+    return root
+
+
+def _start_positions(data: bytes, root: etree._Element) -> dict[etree._Element, tuple[int, int]]:
+    """Line and column where each element's start tag begins (lxml only knows the line)."""
+    blanked = _SKIPPED.sub(lambda m: re.sub(rb"[^\n]", b" ", m.group(0)), data)
+    offsets = [m.start() for m in _START_TAG.finditer(blanked)]
+    elements = [e for e in root.iter() if isinstance(e.tag, str)]
+    if len(offsets) != len(elements):
+        return {}
+    line_starts = [0] + [i + 1 for i, byte in enumerate(blanked) if byte == 0x0A]
+    positions: dict[etree._Element, tuple[int, int]] = {}
+    line = 0
+    for element, offset in zip(elements, offsets):
+        while line + 1 < len(line_starts) and line_starts[line + 1] <= offset:
+            line += 1
+        positions[element] = (line + 1, offset - line_starts[line] + 1)
+    return positions
+
+
+def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:
+    """Tier name (tag without ``hnm_``) → the items written in it, in order."""
+    tiers: dict[str, list[NonmanualItem]] = {}
+    if element is None:
+        return {}
+    for item in element.iter():
+        if item is element or not isinstance(item.tag, str):
+            continue
+        tier = item.tag.removeprefix("hnm_")
+        tiers.setdefault(tier, []).append(NonmanualItem(item.tag, tuple(sorted(item.attrib.items()))))
+    return {tier: tuple(items) for tier, items in tiers.items()}
+
+
+def _hns_sign(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation]) -> Sign:
+    where = where_of(element)
+    manual = element.find("hamnosys_manual")
+    if manual is None:
+        raise SpecError(f"sign {gloss!r}: no <hamnosys_manual>", where)
+    if (manual.text or "").strip():
+        raise SpecError(f"sign {gloss!r}: text {manual.text.strip()[:20]!r} in <hamnosys_manual> (expected only ham… tags)", where_of(manual))
+    names = [(child.tag, where_of(child)) for child in manual if isinstance(child.tag, str)]
+    tokens: list[Token] = tokens_from_names(names, gloss)
+    nonmanual = _nonmanual_tiers(element.find("hamnosys_nonmanual"))
+    return parse_manual(tokens, gloss, where, nonmanual=nonmanual)
+
+
+# --- gestural SiGML -----------------------------------------------------------------------
+
+_TRUE = {"true": True, "false": False}
+_SIDES = {"right_at": "lrat", "left_at": "lrat", "right_beside": "lrbeside", "left_beside": "lrbeside"}
+_MANNERS = ("fast", "slow", "tense", "rest", "halt", "targetted")
+_SIZES = {"small": "small", "big": "large", "large": "large", "increasing": "increasing", "decreasing": "decreasing"}
+_REPETITIONS: dict[str, tuple[str, int]] = {
+    "fromstart": ("fromstart", 2),
+    "fromstart_several": ("fromstart", 3),
+    "continue": ("continue", 2),
+    "continue_several": ("continue", 3),
+    "reverse": ("reverse", 2),
+}
+_WRIST_MOTIONS: dict[str, tuple[str, SegmentKind]] = {
+    "nodding": ("ExtFingerOrientation", SegmentKind.LINEAR),
+    "swinging": ("ExtFingerOrientation", SegmentKind.LINEAR),
+    "twisting": ("PalmOrientation", SegmentKind.LINEAR),
+    "stircw": ("HandLocation", SegmentKind.CIRCLE),
+    "stirccw": ("HandLocation", SegmentKind.CIRCLE),
+}
+#: The HamNoSys symbol family each direction attribute stands for.
+_DIRECTION_SYMBOLS = {"extfidir": "hamextfinger", "palmor": "hampalm", "direction": "hammove", "axis": "hamcircle"}
+_CURVES = {"l": "arcl", "u": "arcu", "r": "arcr", "d": "arcd", "wavy": "wavy", "zigzag": "zigzag"}
+_HANDCONFIG_ATTRS = frozenset(
+    {"handshape", "thumbpos", "mainbend", "second_handshape", "second_thumbpos", "second_mainbend", "ceeopening",
+     "extfidir", "second_extfidir", "palmor", "second_palmor", "rel_palmor", "specialfingers",
+     "bend1", "bend2", "bend3", "bend4", "bend5"}
+)
+_MOTION_TAGS = frozenset(
+    {"directedmotion", "circularmotion", "wristmotion", "fingerplay", "nomotion", "tgt_motion", "rpt_motion",
+     "seq_motion", "par_motion", "split_motion", "nonman_motion", "changeposture"}
+)
+_POSTURE_TAGS = frozenset({"handconfig", "split_handconfig", "location_bodyarm", "location_hand", "handconstellation", "split_location"})
+
+
+@dataclass
+class _GesturalReader:
+    """Reads one ``<hamgestural_sign>`` into a :class:`Sign`."""
+
+    gloss: str
+    where_of: Callable[[etree._Element], SourceLocation]
+    dominant: Arm = Arm.RIGHT
+    nonmanual: dict[str, list[NonmanualItem]] = field(default_factory=dict)
+
+    def error(self, element: etree._Element, message: str) -> SpecError:
+        return SpecError(f"sign {self.gloss!r}: <{element.tag}>: {message}", self.where_of(element))
+
+    def sign(self, element: etree._Element) -> Sign:
+        manual = element.find("sign_manual")
+        if manual is None:
+            raise self.error(element, "no <sign_manual>")
+        for tier, items in _nonmanual_tiers(element.find("sign_nonmanual")).items():
+            self.nonmanual.setdefault(tier, []).extend(items)
+        self.dominant = Arm.LEFT if manual.get("nondominant") == "true" or manual.get("dominant") == "left" else Arm.RIGHT
+        both = self.flag(manual, "both_hands")
+        symmetry = self.symmetry(manual)
+        dominant_hand: dict[str, object] = {}
+        other_hand: dict[str, object] | None = None
+        constellation: HandConstellation | None = None
+        motions: list[Constraint] = []
+        children = [c for c in manual if isinstance(c.tag, str)]
+        if not children:
+            raise self.error(manual, "empty sign")
+        for child in children:
+            tag = child.tag
+            if tag in _POSTURE_TAGS and motions:
+                raise self.error(child, "a posture after the movement (expected a motion element)")
+            if tag == "handconfig":
+                dominant_hand.update(self.handconfig(child))
+            elif tag == "location_bodyarm" or tag == "location_hand":
+                dominant_hand["location"] = self.location(child)
+            elif tag in ("split_handconfig", "split_location"):
+                first, second = self.split(child, self.handconfig if tag == "split_handconfig" else self.location_part)
+                dominant_hand.update(first)
+                other_hand = {**(other_hand or {}), **second}
+            elif tag == "handconstellation":
+                constellation = self.constellation(child)
+            elif tag in _MOTION_TAGS:
+                motions.append(self.motion(child))
+            else:
+                raise self.error(child, "unknown element in <sign_manual>")
+        if not dominant_hand and constellation is None:
+            raise self.error(manual, "no hand configuration")
+        movement = motions[0] if len(motions) == 1 else (Sequence(tuple(motions)) if motions else None)
+        return Sign(
+            gloss=self.gloss,
+            posture=_posture(dominant_hand),
+            dominant=self.dominant,
+            two_handed=both or symmetry is not None or other_hand is not None or constellation is not None,
+            symmetry=symmetry,
+            nondominant=_posture(other_hand) if other_hand is not None else None,
+            constellation=constellation,
+            movement=movement,
+            nonmanual={tier: tuple(items) for tier, items in self.nonmanual.items()},
+            where=self.where_of(element),
+        )
+
+    def flag(self, element: etree._Element, name: str) -> bool:
+        value = element.get(name)
+        if value is None:
+            return False
+        if value not in _TRUE:
+            raise self.error(element, f"{name}={value!r} (expected true or false)")
+        return _TRUE[value]
+
+    def symmetry(self, manual: etree._Element) -> SignSymmetry | None:
+        planes = {plane for attr, plane in (("lr_symm", "S"), ("ud_symm", "T"), ("oi_symm", "F")) if self.flag(manual, attr)}
+        alternating = self.flag(manual, "outofphase")
+        nonipsi = self.flag(manual, "nonipsi")
+        if planes:
+            return SignSymmetry("lr", frozenset(planes), alternating, nonipsi)
+        if self.flag(manual, "both_hands") and manual.find("split_handconfig") is None:
+            return SignSymmetry("par", frozenset(), alternating, nonipsi)
+        return None
+
+    # -- posture ---------------------------------------------------------------------------
+    def handconfig(self, element: etree._Element) -> dict[str, object]:
+        unknown = set(element.attrib) - _HANDCONFIG_ATTRS
+        if unknown:
+            raise self.error(element, f"unknown attribute {sorted(unknown)[0]!r}")
+        features: dict[str, object] = {}
+        if element.get("handshape") is not None:
+            shape = self.handshape(element, "")
+            if element.get("second_handshape") is not None:
+                shape = replace(shape, between=self.handshape(element, "second_"))
+            features["shape"] = shape
+        if element.get("extfidir") is not None:
+            features["ext_finger"] = self.direction(element, "extfidir")
+        if element.get("palmor") is not None:
+            palm = self.direction(element, "palmor")
+            features["palm"] = PalmOrientation(palm.vector, palm.name, relative=element.get("rel_palmor") == "true")
+        if not features:
+            raise self.error(element, "names no hand shape, extended-finger direction or palm orientation")
+        return features
+
+    def handshape(self, element: etree._Element, prefix: str) -> HandShape:
+        basic = element.get(prefix + "handshape", "")
+        if basic not in BASIC_HANDSHAPES:
+            raise self.error(element, f"unknown {prefix}handshape {basic!r}")
+        thumb = element.get(prefix + "thumbpos")
+        if thumb is not None and thumb not in THUMB_POSITIONS:
+            raise self.error(element, f"unknown {prefix}thumbpos {thumb!r} (expected one of {', '.join(THUMB_POSITIONS)})")
+        bending = element.get(prefix + "mainbend")
+        if bending is not None and bending not in FINGER_BENDINGS:
+            raise self.error(element, f"unknown {prefix}mainbend {bending!r}")
+        bends = []
+        for digit, finger in enumerate(FINGERS, start=1):
+            value = element.get(f"bend{digit}") if not prefix else None
+            if value is None:
+                continue
+            if value not in FINGER_BENDINGS:
+                raise self.error(element, f"unknown bend{digit} {value!r}")
+            bends.append(FingerBend((finger,), value))
+        special = element.get("specialfingers") if not prefix else None
+        extended = None
+        if special is not None:
+            if not special or any(c not in "12345" for c in special):
+                raise self.error(element, f"specialfingers={special!r} (expected digits 1 to 5)")
+            extended = tuple(FINGERS[int(c) - 1] for c in special)
+        return HandShape(basic, thumb, bending, tuple(bends), extended, element.get("ceeopening"), name="ham" + basic)
+
+    def direction(self, element: etree._Element, attr: str) -> Direction:
+        first = self.letters(element, attr)
+        second_letters = element.get("second_" + attr)
+        if second_letters is None:
+            return first
+        second = self.letters(element, "second_" + attr)
+        total = tuple(a + b for a, b in zip(first.vector, second.vector))
+        norm = sum(c * c for c in total) ** 0.5
+        if norm < 1e-9:
+            raise self.error(element, f"{attr} and second_{attr} are opposite")
+        return Direction(tuple(c / norm for c in total), f"{first.name} hambetween {second.name}")  # type: ignore[arg-type]
+
+    def letters(self, element: etree._Element, attr: str) -> Direction:
+        """A direction attribute, named like the HamNoSys symbol it stands for."""
+        value = element.get(attr, "")
+        prefix = _DIRECTION_SYMBOLS[attr.removeprefix("second_")]
+        try:
+            return Direction(direction_from_letters(value), prefix + value)
+        except ValueError as error:
+            raise self.error(element, f"{attr}={value!r}: {error}") from None
+
+    def location(self, element: etree._Element) -> Location:
+        return self.location_part(element)["location"]  # type: ignore[return-value]
+
+    def location_part(self, element: etree._Element) -> dict[str, object]:
+        if element.tag not in ("location_bodyarm", "location_hand"):
+            raise self.error(element, "expected <location_bodyarm> or <location_hand>")
+        site = element.get("location")
+        if not site:
+            raise self.error(element, "no location attribute")
+        side = element.get("side")
+        if side is not None and side not in _SIDES:
+            raise self.error(element, f"unknown side {side!r} (expected right_at, left_at, right_beside or left_beside)")
+        digits = element.get("digits")
+        finger = FINGERS[int(digits[0]) - 1] if digits and digits[0] in "12345" else None
+        contact = element.get("contact")
+        place: Location = BodySite(site, _SIDES.get(side or ""), contact, finger)
+        second = element.get("second_location")
+        if second:
+            place = BetweenLocation(place, BodySite(second, None, contact))
+        return {"location": place}
+
+    def split(self, element: etree._Element, read: Callable[[etree._Element], dict[str, object]]) -> tuple[dict[str, object], dict[str, object]]:
+        parts = [c for c in element if isinstance(c.tag, str)]
+        if len(parts) != 2:
+            raise self.error(element, f"has {len(parts)} parts (expected two: dominant and non-dominant hand)")
+        return read(parts[0]), read(parts[1])
+
+    def constellation(self, element: etree._Element) -> HandConstellation:
+        hands = [c for c in element if c.tag == "location_hand"]
+        body = [c for c in element if c.tag == "location_bodyarm"]
+        if len(hands) not in (0, 2):
+            raise self.error(element, f"has {len(hands)} <location_hand> (expected none or two)")
+        first, second = (self.location(hands[0]), self.location(hands[1])) if hands else (None, None)
+        return HandConstellation(first, second, element.get("contact"), self.location(body[0]) if body else None)
+
+    # -- motion ------------------------------------------------------------------------------
+    def motion(self, element: etree._Element) -> Constraint:
+        tag = element.tag
+        where = self.where_of(element)
+        if tag == "directedmotion":
+            direction = self.direction(element, "direction")
+            curve = element.get("curve")
+            if curve is not None and curve not in _CURVES:
+                raise self.error(element, f"unknown curve {curve!r}")
+            kind = SegmentKind.CURVE if curve else SegmentKind.LINEAR
+            segment = Segment(kind, direction=direction, shape=_CURVES.get(curve or ""), where=where)
+            return Dynamic("HandLocation", (self.qualities(element, segment),), where=where)
+        if tag == "circularmotion":
+            axis = self.direction(element, "axis")
+            modifiers = tuple(f"{key}={element.get(key)}" for key in ("start", "end") if element.get(key))
+            if element.get("ellipse_direction"):
+                modifiers += (f"ellipse={element.get('ellipse_direction')}",)
+            segment = Segment(SegmentKind.CIRCLE, normal=axis, where=where, modifiers=modifiers)
+            return Dynamic("HandLocation", (self.qualities(element, segment),), where=where)
+        if tag == "wristmotion":
+            motion = element.get("motion", "")
+            if motion not in _WRIST_MOTIONS:
+                raise self.error(element, f"unknown motion {motion!r} (expected one of {', '.join(_WRIST_MOTIONS)})")
+            slot, kind = _WRIST_MOTIONS[motion]
+            return Dynamic(slot, (self.qualities(element, Segment(kind, shape=motion, where=where)),), where=where)
+        if tag == "fingerplay":
+            return Dynamic("HandShape", (self.qualities(element, Segment(SegmentKind.LINEAR, shape="fingerplay", where=where)),), where=where)
+        if tag == "nomotion":
+            return Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, shape="nomotion", where=where, manner="targetted"),), where=where)
+        if tag in ("tgt_motion", "changeposture"):
+            return self.target_motion(element)
+        if tag == "rpt_motion":
+            return self.repetition(element)
+        if tag in ("seq_motion", "par_motion"):
+            children = self.children_motions(element)
+            return (Sequence if tag == "seq_motion" else Parallel)(tuple(children), where=where)
+        if tag == "split_motion":
+            parts = self.children_motions(element)
+            if len(parts) != 2:
+                raise self.error(element, f"has {len(parts)} parts (expected two: dominant and non-dominant hand)")
+            return Parallel((scoped_to(parts[0], self.dominant), scoped_to(parts[1], self.dominant.other)), where=where)
+        if tag == "nonman_motion":
+            for tier, items in _nonmanual_tiers(element).items():
+                self.nonmanual.setdefault(tier, []).extend(items)
+            return Static("HandLocation", BodySite("current"), where=where)
+        raise self.error(element, "unknown motion element")
+
+    def qualities(self, element: etree._Element, segment: Segment) -> Segment:
+        size = element.get("size")
+        if size is not None and size not in _SIZES:
+            raise self.error(element, f"unknown size {size!r} (expected small, big, large, increasing or decreasing)")
+        manner = element.get("manner", "targetted")
+        if manner not in _MANNERS:
+            raise self.error(element, f"unknown manner {manner!r} (expected one of {', '.join(_MANNERS)})")
+        return replace(segment, size=_SIZES.get(size or ""), manner=manner)
+
+    def children_motions(self, element: etree._Element) -> list[Constraint]:
+        children = [c for c in element if isinstance(c.tag, str)]
+        if not children:
+            raise self.error(element, "has no motion inside")
+        return [self.motion(child) for child in children]
+
+    def repetition(self, element: etree._Element) -> Constraint:
+        value = element.get("repetition", "")
+        if value not in _REPETITIONS:
+            raise self.error(element, f"unknown repetition {value!r} (expected one of {', '.join(_REPETITIONS)})")
+        mode, count = _REPETITIONS[value]
+        children = self.children_motions(element)
+        child = children[0] if len(children) == 1 else Sequence(tuple(children))
+        return Repetition(child, count, where=self.where_of(element), mode=mode, alternating=self.flag(element, "outofphase"))
+
+    def target_motion(self, element: etree._Element) -> Constraint:
+        where = self.where_of(element)
+        leaves: list[Constraint] = []
+        slots = {"shape": "HandShape", "ext_finger": "ExtFingerOrientation", "palm": "PalmOrientation", "location": "HandLocation"}
+        for child in (c for c in element if isinstance(c.tag, str)):
+            if child.tag == "handconfig" or child.tag in ("location_bodyarm", "location_hand"):
+                features = self.handconfig(child) if child.tag == "handconfig" else self.location_part(child)
+                for key, value in features.items():
+                    leaves.append(Dynamic(slots[key], (Segment(SegmentKind.LINEAR, end=value, where=where, manner="targetted"),), where=where))  # type: ignore[arg-type]
+            else:
+                leaves.append(self.motion(child))
+        if not leaves:
+            raise self.error(element, "has no target or motion inside")
+        return leaves[0] if len(leaves) == 1 else Parallel(tuple(leaves), where=where)
+
+
+def _posture(features: dict[str, object]) -> HandPosture:
+    return HandPosture(
+        shape=features.get("shape"),  # type: ignore[arg-type]
+        ext_finger=features.get("ext_finger"),  # type: ignore[arg-type]
+        palm=features.get("palm"),  # type: ignore[arg-type]
+        location=features.get("location"),  # type: ignore[arg-type]
+    )
+
