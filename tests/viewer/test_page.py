@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from headless_chromium import Browser, find_chromium
 from matplotlib.image import imread
+from scipy.spatial.transform import Rotation
 
 from agent.export.bvh import bvh_text
 from agent.export.html import write_html
@@ -109,3 +110,27 @@ def test_controls_present(browser: Browser, shots) -> None:
     assert browser.evaluate("document.getElementById('mura-play').textContent") == "Play"
     assert float(browser.evaluate("document.getElementById('mura-scrub').value")) == pytest.approx(1.1)
     assert browser.evaluate("document.getElementById('mura-time').textContent") == "1.10 s / 2.00 s"
+
+
+def _world_positions(motion: Motion, frame: int) -> dict[str, np.ndarray]:
+    """Forward kinematics of one frame in Python, centimetres: the pose the page must draw."""
+    rotations = Rotation.from_quat(motion.rotations[frame])
+    world: list[Rotation] = []
+    positions: list[np.ndarray] = []
+    for joint, parent in enumerate(motion.parents):
+        if parent < 0:
+            world.append(rotations[joint])
+            positions.append(motion.root_translation[frame])
+            continue
+        world.append(world[parent] * rotations[joint])
+        positions.append(positions[parent] + world[parent].apply(motion.offsets[joint]))
+    return {name: 100.0 * position for name, position in zip(motion.joint_names, positions)}
+
+
+@pytest.mark.parametrize("joint", ["skullbase", "r_elbow", "r_wrist", "r_index3", "l_wrist", "l_pinky3"])
+def test_drawn_pose_matches_forward_kinematics(browser: Browser, shots, motion: Motion, joint: str) -> None:
+    """End to end through BVH text and three.js' loader: Euler order and units agree."""
+    frame = 66
+    browser.evaluate(f"window.__mura.seek({frame / motion.fps!r})")
+    drawn = browser.evaluate(f"window.__mura.jointPosition({joint!r})")
+    np.testing.assert_allclose(drawn, _world_positions(motion, frame)[joint], atol=0.01)

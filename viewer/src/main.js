@@ -2,7 +2,7 @@
 // and the timeline (script#mura-timeline) inline and plays them against <audio id=mura-audio>.
 // Live mode (?live=1): see live.js. Query ?t=SECONDS opens the page paused at that time.
 // When the first frame is drawn, window.__muraReady is true; window.__mura exposes
-// time(), seek(t), play(), pause() and counts for tests and scripting.
+// time(), seek(t), play(), pause(), jointPosition(name) and counts for tests and scripting.
 import {
   AnimationMixer,
   Box3,
@@ -185,6 +185,8 @@ function startFile(ui, view, timelineView, params) {
     duration: () => clock.duration,
     joints: jointBones(skeleton).length,
     meshes,
+    // World position of a joint in the drawn pose, scene units (cm).
+    jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
   };
   window.__muraReady = true;
   requestAnimationFrame(loop);
@@ -197,17 +199,18 @@ function startLive(ui, view, timelineView) {
   let bones = [];
   let root = null;
   let grid = null;
+  let framed = false;
   let time = 0;
   let timeline = normalizeTimeline({}, 0);
   connectLive('./stream', {
     onSkeleton(description) {
-      if (root) view.scene.remove(root, grid);
+      if (root) view.scene.remove(root);
       const skeleton = skeletonFromLive(description);
       root = skeleton.bones[0];
       view.scene.add(root);
       buildAvatar(root);
       bones = jointBones(skeleton);
-      grid = frameBody(view, root, [() => {}]);
+      framed = false;
       ui.status.textContent = `live: ${bones.length} joints`;
     },
     onTimeline(raw) {
@@ -217,6 +220,12 @@ function startLive(ui, view, timelineView) {
     },
     onFrame(frame) {
       applyFrame(bones, frame, UNIT);
+      if (!framed && root) {
+        // Frame on the first posed frame: the rest pose has the root at the origin.
+        if (grid) view.scene.remove(grid);
+        grid = frameBody(view, root, [() => {}]);
+        framed = true;
+      }
       if (typeof frame.time === 'number') time = frame.time;
     },
     onError(message) {

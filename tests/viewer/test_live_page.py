@@ -1,0 +1,112 @@
+"""Live mode (``?live=1``): the page builds the body from a stream's skeleton and poses it
+from frame messages, served here by a throwaway event-stream server."""
+
+from __future__ import annotations
+
+import io
+import json
+import queue
+import threading
+from collections.abc import Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+import numpy as np
+import pytest
+from bvh import Bvh
+from headless_chromium import Browser, find_chromium
+from matplotlib.image import imread
+
+from agent.export.bvh import bvh_text
+from agent.export.html import render_html
+from motor.motion import Motion
+
+
+class _Stream:
+    """A page at /live.html and an event stream at /stream fed from a queue of messages."""
+
+    def __init__(self, page: str) -> None:
+        self.messages: queue.Queue[dict | None] = queue.Queue()
+        stream = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def log_message(self, *args: object) -> None:
+                pass
+
+            def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
+                if self.path.startswith("/live.html"):
+                    body = page.encode()
+                    self.send_response(200)
+                    self.send_header("Content-Type", "text/html; charset=utf-8")
+                    self.send_header("Content-Length", str(len(body)))
+                    self.end_headers()
+                    self.wfile.write(body)
+                    return
+                if self.path != "/stream":
+                    self.send_error(404)
+                    return
+                self.send_response(200)
+                self.send_header("Content-Type", "text/event-stream")
+                self.send_header("Cache-Control", "no-cache")
+                self.end_headers()
+                while (message := stream.messages.get()) is not None:
+                    self.wfile.write(f"data: {json.dumps(message)}\n\n".encode())
+                    self.wfile.flush()
+
+        self.server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.server.daemon_threads = True
+        self.thread = threading.Thread(target=self.server.serve_forever, daemon=True)
+        self.thread.start()
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.server.server_address[1]}/live.html?live=1"
+
+    def close(self) -> None:
+        self.messages.put(None)
+        self.server.shutdown()
+        self.server.server_close()
+
+
+@pytest.fixture(scope="module")
+def stream(motion: Motion, timeline: dict) -> Iterator[_Stream]:
+    bvh = bvh_text(motion)
+    served = _Stream(render_html(name="live", bvh_text=bvh, timeline={}, wav_filename=None))
+    served.messages.put({"skeleton": bvh[: bvh.index("MOTION")], "timeline": timeline})
+    yield served
+    served.close()
+
+
+def _frame(motion: Motion, order: list[int], index: int) -> dict:
+    return {
+        "frame": index,
+        "time": index / motion.fps,
+        "rotations": motion.rotations[index, order].ravel().tolist(),
+        "root": motion.root_translation[index].tolist(),
+    }
+
+
+def test_live_stream_poses_the_body(stream: _Stream, motion: Motion) -> None:
+    executable = find_chromium()
+    if executable is None:
+        pytest.skip("Chromium is not installed (apt-get install -y chromium); the page test needs it")
+    joint_order = Bvh(bvh_text(motion)).get_joints_names()  # the skeleton's joint order
+    order = [motion.joint_names.index(name) for name in joint_order]
+    wait_for = (
+        "new Promise((resolve) => { const check = () => (window.__mura && window.__mura.time() === {t})"
+        " ? resolve(true) : setTimeout(check, 10); check(); })"
+    )
+    shots = {}
+    with Browser(executable) as browser:
+        browser.open(stream.url)
+        for index in (6, 66):
+            frame = _frame(motion, order, index)
+            stream.messages.put(frame)
+            assert browser.evaluate(wait_for.replace("{t}", repr(frame["time"])))
+            browser.evaluate("new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)))")
+            shots[index] = imread(io.BytesIO(browser.screenshot("#mura-stage")), format="png")[..., :3]
+        assert browser.evaluate("window.__mura.joints()") == len(motion.joint_names)
+        listed = browser.evaluate("document.getElementById('mura-timeline-list').innerText")
+        assert browser.exceptions() == []
+    assert "gesture_1" in listed and "And now take this bar" in listed
+    changed = np.abs(shots[6] - shots[66]).max(axis=-1) > 0.1
+    assert changed.sum() > 2000, f"only {changed.sum()} pixels differ between the two streamed frames"
