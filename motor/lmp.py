@@ -258,6 +258,8 @@ class VectorKeyframeLMP:
         keys = keys[:, None] if keys.ndim == 1 else keys
         if keys.ndim != 2 or keys.shape[0] < 1 or not np.all(np.isfinite(keys)):
             raise ValueError(f"{self.channel}: keys must be finite (m, D) values, got shape {np.shape(self.keys)}")
+        if self.channel[1] in ROTATION_CHANNELS:
+            raise ValueError(f"{self.channel}: a rotation channel; use WristRotationLMP")
         expected = CHANNEL_SIZES.get(self.channel[1])
         if expected is not None and keys.shape[1] != expected:
             raise ValueError(f"{self.channel}: keys have {keys.shape[1]} values, the channel takes {expected}")
@@ -370,6 +372,8 @@ class WristPositionLMP:
             power-law rule of :func:`motor.trajectory.time_breakpoints`.
         curved: per-stroke curve flags (``n − 1``), for the 0.8 breakpoint gain.
         accents: accents on strokes, indexed over ``breakpoints``.
+        warnings: notes from planning the breakpoints (e.g. a curve's default normal),
+            carried into the realization.
     """
 
     side: str
@@ -378,6 +382,7 @@ class WristPositionLMP:
     breakpoint_times: np.ndarray | None = None
     curved: tuple[bool, ...] | None = None
     accents: tuple[Accent, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         points = np.atleast_2d(np.asarray(self.breakpoints, dtype=float))
@@ -408,7 +413,7 @@ class WristPositionLMP:
         first, arrival = self.breakpoints[0], self.pegs.ready
         amplitude = float(np.linalg.norm(first - here))
         moving = float(np.linalg.norm(velocity)) > _AT_REST
-        warnings: list[str] = []
+        warnings = list(self.warnings)
         points, times = [here], [state.time]
         if amplitude > _AT_REST or moving:
             natural = float(fitts_duration(amplitude))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from motor.trajectory import WristTrajectory
 from mura.model import Symmetry
 
 _AXIS_OF_PLANE = {"S": 0, "T": 1, "F": 2}
@@ -58,3 +59,19 @@ def mirror_quaternions(quaternions: np.ndarray, symmetry: Symmetry) -> np.ndarra
     signs = reflection_signs(symmetry)
     factors = np.append(np.prod(signs) * signs, 1.0)
     return q * factors
+
+
+def mirror_trajectory(
+    trajectory: WristTrajectory, symmetry: Symmetry, center: np.ndarray | tuple[float, float, float] | None = None
+) -> WristTrajectory:
+    """The mirror image of a wrist trajectory: breakpoints reflected, velocities flipped.
+
+    A Hermite curve commutes with the reflection, so the result is exactly the reflected
+    curve at every time.
+    """
+    return WristTrajectory(
+        mirror_points(trajectory.breakpoints, symmetry, center),
+        trajectory.times,
+        mirror_directions(trajectory.velocities, symmetry),
+        trajectory.warnings,
+    )

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from motor.guiding_strokes import curve_breakpoints
 from motor.lmp import (
     ChannelState,
     ChannelTimeline,
@@ -80,6 +81,13 @@ def test_wrist_lmp_started_while_moving_keeps_the_velocity() -> None:
     state = realization.state(0.5)
     np.testing.assert_allclose(state.value, REST)
     np.testing.assert_allclose(state.velocity, [0.4, 0.3, 0.0])
+
+
+def test_curve_warnings_reach_the_realization() -> None:
+    curve = curve_breakpoints(STROKE[0], STROKE[2])
+    lmp = WristPositionLMP("right", TimePegs(0.0, 0.8, 0.8, 1.0, 1.3, 1.3, 1.3), curve.points, warnings=curve.warnings)
+    timeline = ChannelTimeline.build(WRIST, [lmp], ChannelState.at_rest(REST))
+    assert any("no normal" in w for w in timeline.warnings)
 
 
 def test_squeezed_preparation_warns() -> None:
@@ -160,6 +168,7 @@ def test_rotation_timeline_is_continuous_and_reaches_its_keys() -> None:
     times = frames(0.0, 3.0)
     values = timeline.sample(times)
     np.testing.assert_allclose(np.linalg.norm(values, axis=1), 1.0)
+    assert np.all(np.einsum("ij,ij->i", values[1:], values[:-1]) > 0.99), "quaternion sign flips between frames"
     reached = Rotation.from_quat(timeline.sample(np.array([0.8, 1.4, 2.5])))
     expected = Rotation.from_quat(keys[[1, 2, 1]])
     assert np.all((reached * expected.inv()).magnitude() < 1e-6)
@@ -213,6 +222,7 @@ def test_retraction_is_lax_and_arrives_at_ready() -> None:
         (lambda: SwivelLMP("right", TimePegs.movement(0.0, 1.0), [0.1, 0.2], key_times=[0.5, 0.4]), "increase"),
         (lambda: VectorKeyframeLMP(("right", "swivel"), TimePegs.movement(0.0, 1.0), np.zeros((1, 2))), "takes 1"),
         (lambda: RetractionLMP(WRIST, TimePegs.movement(1.0, 1.0), REST), "must follow start"),
+        (lambda: VectorKeyframeLMP(ROTATION, TimePegs.movement(0.0, 1.0), np.zeros((1, 4))), "use WristRotationLMP"),
         (lambda: HandShapeLMP("left", TimePegs.movement(1.0, 2.0), [[0.0]], key_times=[1.0]), "after the start peg"),
     ],
 )

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from motor.symmetry import mirror_directions, mirror_points, mirror_quaternions, reflection_signs
+from motor.symmetry import mirror_directions, mirror_points, mirror_quaternions, mirror_trajectory, reflection_signs
+from motor.trajectory import plan_wrist_trajectory
 from mura.model import Symmetry
 
 
@@ -59,3 +60,12 @@ def test_bad_input_is_named() -> None:
         mirror_points(POINT, sym("X"))
     with pytest.raises(ValueError, match="mirror_quaternions"):
         mirror_quaternions(np.zeros((3, 3)), sym("S"))
+
+
+@pytest.mark.parametrize("planes", ["S", "ST", "STF"])
+def test_mirrored_trajectory_is_the_reflected_curve(planes: str) -> None:
+    points = np.array([[0.0, 1.0, 0.3], [0.2, 1.1, 0.4], [0.1, 1.3, 0.35]])
+    trajectory = plan_wrist_trajectory(points, np.array([0.0, 0.3, 0.7]))
+    mirrored = mirror_trajectory(trajectory, sym(planes), CENTER)
+    t = np.linspace(-0.1, 0.8, 91)
+    np.testing.assert_allclose(mirrored.position(t), mirror_points(trajectory.position(t), sym(planes), CENTER), atol=1e-12)
