@@ -218,6 +218,11 @@ class RotationKeyframes:
         return ChannelState(q[0].as_quat(), (4.0 * one - two) / (2.0 * h), float(time))
 
 
+def _check_activation(channel: Channel, state: ChannelState, first_target: float) -> None:
+    if not state.time < first_target:
+        raise ValueError(f"{channel}: activated at {state.time}, not before its first target time {first_target}")
+
+
 def _key_times(pegs: TimePegs, count: int, given: np.ndarray | Sequence[float] | None, name: str) -> np.ndarray:
     """Key times: given, or the first key at ``ready`` and the rest spread over the stroke."""
     if given is None:
@@ -271,6 +276,7 @@ class VectorKeyframeLMP:
         value = np.asarray(state.value, dtype=float)
         if value.shape != self.keys.shape[1:]:
             raise ValueError(f"{self.channel}: activation value has shape {value.shape}, keys {self.keys.shape[1:]}")
+        _check_activation(self.channel, state, float(self.key_times[0]))
         knots = np.concatenate([[state.time], self.key_times])
         values = np.concatenate([value[None], self.keys])
         return VectorKeyframes(knots, values, np.asarray(state.velocity, dtype=float), self.time_profile)
@@ -328,6 +334,7 @@ class WristRotationLMP:
         return (self.side, "hand_rotation")
 
     def activate(self, state: ChannelState) -> RotationKeyframes:
+        _check_activation(self.channel, state, float(self.key_times[0]))
         knots = np.concatenate([[state.time], self.key_times])
         rotations = Rotation.from_quat(np.concatenate([np.asarray(state.value, dtype=float)[None], self.keys]))
         return RotationKeyframes(knots, rotations, np.asarray(state.velocity, dtype=float), self.time_profile)
@@ -408,6 +415,7 @@ class WristPositionLMP:
         return (self.side, "wrist_position")
 
     def activate(self, state: ChannelState) -> SplineRealization:
+        _check_activation(self.channel, state, self.pegs.ready)
         here = np.asarray(state.value, dtype=float)
         velocity = np.asarray(state.velocity, dtype=float)
         first, arrival = self.breakpoints[0], self.pegs.ready

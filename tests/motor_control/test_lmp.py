@@ -229,3 +229,11 @@ def test_retraction_is_lax_and_arrives_at_ready() -> None:
 def test_bad_lmps_are_named(build, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         build()
+
+
+def test_activation_after_the_first_target_is_refused() -> None:
+    lmp = WristPositionLMP("right", TimePegs.movement(0.0, 0.5), STROKE[:1])
+    with pytest.raises(ValueError, match="activated at 0.7, not before its first target time 0.5"):
+        lmp.activate(ChannelState.at_rest(REST, 0.7))
+    with pytest.raises(ValueError, match="not before its first target"):
+        SwivelLMP("right", TimePegs.movement(0.0, 0.5), [0.3]).activate(ChannelState.at_rest([0.0], 0.5))
