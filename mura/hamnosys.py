@@ -119,6 +119,9 @@ _LOCAL_MOVES: dict[str, tuple[str, SegmentKind]] = {
     "hammovecross": ("HandLocation", SegmentKind.LINEAR),
     "hammovex": ("HandLocation", SegmentKind.LINEAR),
 }
+_OPENER_OF: dict[str, str] = {"hamseqend": "hamseqbegin", "hamparend": "hamparbegin", "hamfusionend": "hamfusionbegin"}
+#: Deepest nesting of brackets accepted (real signs nest three or four deep).
+MAX_NESTING = 32
 _FEATURE_STARTS = frozenset({"handshape", "extfinger", "palm"})
 _SITE_CATEGORIES = frozenset({"location-head", "location-body", "location-arm", "location-hand"})
 _HAND_SIDES = frozenset({"hampalm", "hamhandback", "hamthumbside", "hampinkyside"})
@@ -299,6 +302,7 @@ class _Parser:
     where: SourceLocation
     dominant: Arm
     pos: int = 0
+    depth: int = 0
     two_handed: bool = False
     current: dict[str, object] = field(default_factory=dict)
 
@@ -362,9 +366,10 @@ class _Parser:
                 raise self.truncated("the posture of the next part after hamplus")
             actions.append(self.posture_change(plus, self.posture()))
             actions.extend(self.actions(stop=()))
-        if self.peek() is not None:
-            token = self.peek()
-            assert token is not None
+        token = self.peek()
+        if token is not None and token.name in _OPENER_OF:
+            raise _misplaced(self.gloss, token, f"{token.name} without a matching {_OPENER_OF[token.name]}")
+        if token is not None:
             raise self.unexpected(token, "a movement, a repetition or the end of the sign")
         movement = _sequence(actions)
         if alternating and movement is not None:
@@ -462,7 +467,7 @@ class _Parser:
         if self.peek() is not None and not self.at("hamparend"):
             raise self.unexpected(self.tokens[self.pos], f"hamparend to close hamparbegin at position {opening.index}")
         self.expect("hamparend", f"hamparbegin at position {opening.index}")
-        contact = _CONTACTS[self.take().name] if self.at_category("contact") and not self.at_place(ahead=1) else None
+        contact = _CONTACTS[self.take().name] if self.at_category("contact") else None
         return first, second, contact
 
     def hand(self, allow_empty: bool) -> _Hand:
@@ -717,8 +722,14 @@ class _Parser:
             return None
         raise self.unexpected(token, "a movement, a change of posture, a location or a repetition")
 
+    def enter(self, opening: Token) -> None:
+        self.depth += 1
+        if self.depth > MAX_NESTING:
+            raise _misplaced(self.gloss, opening, f"brackets nested more than {MAX_NESTING} deep")
+
     def bracket(self, opening_name: str, closing_name: str) -> Constraint:
         opening = self.take()
+        self.enter(opening)
         children = self.actions(stop=(closing_name,))
         context = f"{opening_name} at position {opening.index}"
         if self.peek() is not None and not self.at(closing_name):
@@ -726,10 +737,18 @@ class _Parser:
         self.expect(closing_name, context)
         if not children:
             raise SpecError(f"sign {self.gloss!r}: empty {opening_name} … {closing_name} at position {opening.index}", opening.where)
+        self.depth -= 1
         return SequenceNode(tuple(children), where=opening.where)
 
     def parallel(self) -> Constraint:
         opening = self.take()
+        self.enter(opening)
+        try:
+            return self.parallel_parts(opening)
+        finally:
+            self.depth -= 1
+
+    def parallel_parts(self, opening: Token) -> Constraint:
         before = dict(self.current)
         first = self.actions(stop=("hamparend", "hamplus"))
         context = f"hamparbegin at position {opening.index}"
@@ -795,7 +814,8 @@ class _Parser:
                 clocks += 1
             elif category == "ellipse" and family in ("move-circle", "move-straight"):
                 segment = replace(segment, modifiers=segment.modifiers + (f"ellipse={name[len('hamellipse'):]}",))
-            elif name == "hambetween" and following is not None and following.category == family != "local-move":
+            elif name == "hambetween" and following is not None and following.category == family != "local-move" \
+                    and following.name.lower() not in _LOCAL_MOVES:
                 self.take()
                 segment = self.halfway_movement(segment, self.take())
                 continue
