@@ -7,12 +7,14 @@ builds its own H-Anim-named body: spine, head, arms, five-fingered hands and leg
 from __future__ import annotations
 
 import wave
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from headless_chromium import Browser, find_chromium
 from motor.motion import Motion
 
 FPS = 60.0
@@ -158,3 +160,13 @@ def performance_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     folder = tmp_path_factory.mktemp("performance")
     write_tone(folder / "synthetic.wav")
     return folder
+
+
+@pytest.fixture(scope="session")
+def browser() -> Iterator[Browser]:
+    """One headless Chromium shared by the page tests (starting it is the slow part)."""
+    executable = find_chromium()
+    if executable is None:
+        pytest.skip("Chromium is not installed (apt-get install -y chromium); the page tests need it")
+    with Browser(executable) as running:
+        yield running

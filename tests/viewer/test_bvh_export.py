@@ -21,6 +21,19 @@ def parsed(motion: Motion) -> Bvh:
     return Bvh(bvh_text(motion))
 
 
+@pytest.fixture(scope="module")
+def table(parsed: Bvh) -> np.ndarray:
+    """All channel values, one row per frame, as the ``bvh`` package split them."""
+    return np.array(parsed.frames, dtype=float)
+
+
+def _channels(parsed: Bvh, table: np.ndarray, joint: str, channels: list[str]) -> np.ndarray:
+    """``(frames, len(channels))`` values of one joint, located through the ``bvh`` package's layout."""
+    first = parsed.get_joint_channels_index(joint)
+    names = parsed.joint_channels(joint)
+    return table[:, [first + names.index(channel) for channel in channels]]
+
+
 def _axis_matrix(axis: str, degrees: np.ndarray) -> np.ndarray:
     """Rotation matrices about one axis, built by hand so the check does not trust scipy's Euler code."""
     angle = np.radians(degrees)
@@ -52,29 +65,29 @@ def test_every_leaf_has_an_end_site(motion: Motion) -> None:
     assert bvh_text(motion).count("End Site") == len(leaves)
 
 
-def test_frames_and_frame_time(motion: Motion, parsed: Bvh) -> None:
+def test_frames_and_frame_time(motion: Motion, parsed: Bvh, table: np.ndarray) -> None:
     assert parsed.nframes == motion.frame_count
     assert parsed.frame_time == pytest.approx(1.0 / motion.fps, abs=1e-8)
-    assert all(len(frame) == 6 + 3 * (len(motion.joint_names) - 1) for frame in parsed.frames)
+    assert table.shape == (motion.frame_count, 6 + 3 * (len(motion.joint_names) - 1))
 
 
-def test_root_position_in_centimetres(motion: Motion, parsed: Bvh) -> None:
-    position = np.array(parsed.frames_joint_channels("humanoid_root", ["Xposition", "Yposition", "Zposition"]))
+def test_root_position_in_centimetres(motion: Motion, parsed: Bvh, table: np.ndarray) -> None:
+    position = _channels(parsed, table, "humanoid_root", ["Xposition", "Yposition", "Zposition"])
     np.testing.assert_allclose(position, motion.root_translation * 100.0, atol=1e-6)
 
 
-def test_euler_angles_compose_back_to_the_quaternions(motion: Motion, parsed: Bvh) -> None:
+def test_euler_angles_compose_back_to_the_quaternions(motion: Motion, parsed: Bvh, table: np.ndarray) -> None:
     """BVH semantics: channels ``Z X Y`` are applied in order as intrinsic rotations, R = Rz·Rx·Ry."""
     for joint, name in enumerate(motion.joint_names):
-        angles = np.array(parsed.frames_joint_channels(name, ROTATION_CHANNELS))
+        angles = _channels(parsed, table, name, ROTATION_CHANNELS)
         composed = _axis_matrix("Z", angles[:, 0]) @ _axis_matrix("X", angles[:, 1]) @ _axis_matrix("Y", angles[:, 2])
         expected = Rotation.from_quat(motion.rotations[:, joint]).as_matrix()
         np.testing.assert_allclose(composed, expected, atol=1e-6, err_msg=name)
 
 
-def test_motion_actually_moves(motion: Motion, parsed: Bvh) -> None:
+def test_motion_actually_moves(parsed: Bvh, table: np.ndarray) -> None:
     """Guards the round-trip test against a motion that is all identity."""
-    angles = np.array(parsed.frames_joint_channels("r_shoulder", ROTATION_CHANNELS))
+    angles = _channels(parsed, table, "r_shoulder", ROTATION_CHANNELS)
     assert np.ptp(angles, axis=0).max() > 45.0
 
 

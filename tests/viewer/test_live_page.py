@@ -13,7 +13,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 import numpy as np
 import pytest
 from bvh import Bvh
-from headless_chromium import Browser, find_chromium
+from headless_chromium import Browser
 from matplotlib.image import imread
 
 from agent.export.bvh import bvh_text
@@ -85,10 +85,7 @@ def _frame(motion: Motion, order: list[int], index: int) -> dict:
     }
 
 
-def test_live_stream_poses_the_body(stream: _Stream, motion: Motion) -> None:
-    executable = find_chromium()
-    if executable is None:
-        pytest.skip("Chromium is not installed (apt-get install -y chromium); the page test needs it")
+def test_live_stream_poses_the_body(browser: Browser, stream: _Stream, motion: Motion) -> None:
     joint_order = Bvh(bvh_text(motion)).get_joints_names()  # the skeleton's joint order
     order = [motion.joint_names.index(name) for name in joint_order]
     wait_for = (
@@ -96,17 +93,16 @@ def test_live_stream_poses_the_body(stream: _Stream, motion: Motion) -> None:
         " ? resolve(true) : setTimeout(check, 10); check(); })"
     )
     shots = {}
-    with Browser(executable) as browser:
-        browser.open(stream.url)
-        for index in (6, 66):
-            frame = _frame(motion, order, index)
-            stream.messages.put(frame)
-            assert browser.evaluate(wait_for.replace("{t}", repr(frame["time"])))
-            browser.evaluate("new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)))")
-            shots[index] = imread(io.BytesIO(browser.screenshot("#mura-stage")), format="png")[..., :3]
-        assert browser.evaluate("window.__mura.joints()") == len(motion.joint_names)
-        listed = browser.evaluate("document.getElementById('mura-timeline-list').innerText")
-        assert browser.exceptions() == []
+    browser.open(stream.url)
+    for index in (6, 66):
+        frame = _frame(motion, order, index)
+        stream.messages.put(frame)
+        assert browser.evaluate(wait_for.replace("{t}", repr(frame["time"])))
+        browser.evaluate("new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)))")
+        shots[index] = imread(io.BytesIO(browser.screenshot("#mura-stage")), format="png")[..., :3]
+    assert browser.evaluate("window.__mura.joints()") == len(motion.joint_names)
+    listed = browser.evaluate("document.getElementById('mura-timeline-list').innerText")
+    assert browser.exceptions() == []
     assert "gesture_1" in listed and "And now take this bar" in listed
     changed = np.abs(shots[6] - shots[66]).max(axis=-1) > 0.1
     assert changed.sum() > 2000, f"only {changed.sum()} pixels differ between the two streamed frames"

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from headless_chromium import Browser, find_chromium
+from headless_chromium import Browser
 from matplotlib.image import imread
 from scipy.spatial.transform import Rotation
 
@@ -25,26 +25,12 @@ TRICKY_TEXT = "and </script><b>this</b> & that"
 
 
 @pytest.fixture(scope="module")
-def chromium() -> str:
-    executable = find_chromium()
-    if executable is None:
-        pytest.skip("Chromium is not installed (apt-get install -y chromium); the page test needs it")
-    return executable
-
-
-@pytest.fixture(scope="module")
 def page(performance_dir: Path, motion: Motion, timeline: dict) -> Path:
     tricky = copy.deepcopy(timeline)
     tricky["chunks"][1]["text"] = TRICKY_TEXT
     path = performance_dir / "synthetic.html"
     write_html(path, name="synthetic", bvh_text=bvh_text(motion), timeline=tricky, wav_filename="synthetic.wav")
     return path
-
-
-@pytest.fixture(scope="module")
-def browser(chromium: str):
-    with Browser(chromium) as running:
-        yield running
 
 
 @pytest.fixture(scope="module")
