@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
+from signing_helpers import CORPORA
 
 
 @pytest.fixture(scope="session")

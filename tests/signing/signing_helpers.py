@@ -19,3 +19,6 @@ def hns_document(gloss: str, symbols: str, nonmanual: str = "") -> str:
 def sign_of(symbols: str, gloss: str = "test") -> Sign:
     """Parse space-separated symbol names as a HamNoSys 4 Unicode string."""
     return parse_hamnosys(hamnosys_string(symbols.split()), gloss=gloss)
+
+#: The SiGML corpora in ``../shared/corpora/sigml``.
+CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
