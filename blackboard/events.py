@@ -1,0 +1,95 @@
+"""What observers of the blackboard hear: plain event dataclasses and a bus to subscribe to.
+
+Times are seconds on the utterance clock (0 = the utterance's start). Observers are
+plain callables; in a live run they are called from the scheduler's thread or from the
+planning worker, so they must be quick and thread-safe.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Union
+
+from motor.motion import Motion
+
+from blackboard.chunk import ChunkState
+
+
+@dataclass(frozen=True)
+class ChunkStateChanged:
+    """Chunk ``chunk`` of utterance ``utterance`` entered ``state`` (from ``previous``)."""
+
+    utterance: str
+    chunk: int
+    previous: ChunkState | None
+    state: ChunkState
+    time: float
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class BehaviorFeedback:
+    """A behaviour reports progress: ``kind`` is ``started``, ``sync`` (``point`` names the peg) or ``finished``."""
+
+    utterance: str
+    chunk: int
+    behavior: str
+    kind: str
+    point: str
+    time: float
+
+
+@dataclass(frozen=True)
+class SpeechStarted:
+    utterance: str
+    chunk: int
+    text: str
+    time: float
+
+
+@dataclass(frozen=True)
+class SpeechEnded:
+    utterance: str
+    chunk: int
+    time: float
+
+
+@dataclass(frozen=True)
+class FramesReady:
+    """Frames with times in ``[start, end)`` are ready; ``motion.start_time`` is the first one's time."""
+
+    utterance: str
+    start: float
+    end: float
+    motion: Motion
+
+
+Event = Union[ChunkStateChanged, BehaviorFeedback, SpeechStarted, SpeechEnded, FramesReady]
+Observer = Callable[[Event], None]
+
+
+class EventBus:
+    """Delivers every event to every subscriber, in subscription order."""
+
+    def __init__(self) -> None:
+        self._observers: list[Observer] = []
+        self._lock = threading.Lock()
+
+    def subscribe(self, observer: Observer) -> Callable[[], None]:
+        """Add ``observer``; returns a function that removes it again."""
+        with self._lock:
+            self._observers.append(observer)
+        return lambda: self._unsubscribe(observer)
+
+    def _unsubscribe(self, observer: Observer) -> None:
+        with self._lock:
+            if observer in self._observers:
+                self._observers.remove(observer)
+
+    def publish(self, event: Event) -> None:
+        with self._lock:
+            observers = tuple(self._observers)
+        for observer in observers:
+            observer(event)

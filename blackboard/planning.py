@@ -1,0 +1,127 @@
+"""The contract between the scheduler and the motor side (seed 004, section 5).
+
+The scheduler times gestures against speech; the motor side turns a timed gesture into
+a motor program of LMPs and samples frames from everything activated so far. This module
+is the whole interface: :class:`GestureDemands`, what the scheduler must know before it
+can time a gesture, and :class:`MotorControl`, the object it calls. Times are seconds on
+the utterance clock of the session (the clock the scheduler hands out), distances metres.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
+
+from motor.motion import Motion
+from mura.model import BehaviorSpec
+
+try:
+    from motor.lmp import TimePegs
+except ImportError:  # motor/lmp.py is being written; same fields, replaced once it lands
+
+    @dataclass(frozen=True)
+    class TimePegs:  # type: ignore[no-redef]
+        """The seven time pegs of a gesture's phases, seconds on the utterance clock."""
+
+        start: float
+        ready: float
+        stroke_start: float
+        stroke: float
+        stroke_end: float
+        relax: float
+        end: float
+
+
+#: The pegs in phase order, as they appear in the timeline.
+PEG_NAMES: tuple[str, ...] = ("start", "ready", "stroke_start", "stroke", "stroke_end", "relax", "end")
+
+
+@dataclass(frozen=True)
+class GestureDemands:
+    """What the scheduler must know about a gesture before timing it.
+
+    Attributes:
+        arms: the arms the gesture occupies, ``{"right"}``, ``{"left"}`` or both; empty for
+            a behaviour that moves no arm (head, gaze).
+        stroke_duration: natural (comfortable) duration of the stroke, s; 0 for a purely
+            static stroke (a held posture).
+        dynamic: True when the stroke moves, False when it holds a posture.
+        repeatable: the stroke can be performed again to fill a longer affiliate.
+        preparation_distance: metres from the rest position to the stroke's start (the
+            planner's estimate); Fitts' law ``T = 0.24 · ln(100·A + 1)`` turns it into a
+            preparation time (``motor.trajectory.fitts_duration``).
+    """
+
+    arms: frozenset[str]
+    stroke_duration: float
+    dynamic: bool
+    repeatable: bool
+    preparation_distance: float
+
+
+@runtime_checkable
+class MotorProgramLike(Protocol):
+    """A planned gesture: its LMPs, the pegs it realizes, and planner warnings."""
+
+    lmps: Sequence[object]
+    warnings: Sequence[str]
+    pegs: TimePegs
+
+
+@runtime_checkable
+class MotorControl(Protocol):
+    """The motor side as the scheduler uses it.
+
+    Call order for each chunk: ``demands`` and ``preparation_duration`` while timing
+    (InPrep), ``plan`` once the pegs are fixed, ``activate`` when the chunk becomes
+    Lurking, always before ``frames`` samples any time at or after the program's start.
+    Frames are asked for in consecutive windows ``[start, end)`` that never overlap.
+    """
+
+    fps: float
+
+    def demands(self, behavior: BehaviorSpec) -> GestureDemands:
+        """Arms, stroke duration and preparation distance of ``behavior``'s gesture."""
+        ...
+
+    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+        """Seconds to bring the arm(s) from where they will be at ``at_time`` (given the
+        programs activated so far) to the start of ``behavior``'s stroke."""
+        ...
+
+    def plan(
+        self,
+        behavior: BehaviorSpec,
+        pegs: TimePegs,
+        *,
+        repetitions: int = 1,
+        next_gesture_follows: bool = False,
+    ) -> MotorProgramLike:
+        """The motor program performing ``behavior`` on ``pegs``.
+
+        ``pegs.start`` … ``pegs.relax`` are binding: preparation from ``start`` to
+        ``ready``, the stroke from ``stroke_start`` to ``stroke_end`` performed
+        ``repetitions`` times (slowed evenly to fill it), held until ``relax``.
+        ``pegs.end`` is the scheduler's estimate of the end of the retraction; the program's
+        own ``pegs`` give the real one. ``next_gesture_follows`` asks for a retraction into
+        an interim rest position instead of the full rest.
+        """
+        ...
+
+    def activate(self, program: MotorProgramLike) -> None:
+        """Hand the program's LMPs to the channel timelines; they start themselves at their
+        start times and connect to the arm's state there (cutting a retraction in progress)."""
+        ...
+
+    def frames(self, start: float, end: float) -> Motion:
+        """Frames at times ``k / fps`` in ``[start, end)`` from everything activated so far."""
+        ...
+
+    def busy_until(self, arm: str) -> float:
+        """When the arm's last activated LMP (retraction included) ends; 0 when never used."""
+        ...
+
+    def interrupt(self, at_time: float) -> None:
+        """Stop every gesture at ``at_time`` and retract from wherever the arms are then."""
+        ...
