@@ -1,0 +1,171 @@
+"""The live avatar: a small HTTP server on 127.0.0.1 streaming frames to the browser page.
+
+``mura play`` schedules an utterance on the wall clock; as the scheduler produces frames
+they are pushed to every connected page as server-sent events (the protocol of
+``viewer/src/live.js``): first the skeleton and the timeline, then one message per frame
+with the local joint rotations. The server binds to the loopback interface by default and
+serves exactly two paths of its own — the page (``/``) and the stream (``/stream``) — and
+nothing from the file system.
+"""
+
+from __future__ import annotations
+
+import json
+import queue
+import threading
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+import numpy as np
+
+from agent.export.bvh import bvh_text
+from agent.export.html import render_html
+from motor.motion import Motion
+
+#: Seconds between keep-alive comments on an idle stream.
+KEEPALIVE_SECONDS = 10.0
+#: Frames a slow client may lag behind before it is dropped.
+CLIENT_BACKLOG = 6000
+
+
+def skeleton_message(motion: Motion) -> dict:
+    """The stream's first message: the joint list (name, parent index, offset in metres)."""
+    joints = [
+        {"name": name, "parent": int(parent), "offset": [float(v) for v in offset]}
+        for name, parent, offset in zip(motion.joint_names, motion.parents, motion.offsets)
+    ]
+    return {"skeleton": joints}
+
+
+def frame_messages(motion: Motion) -> list[str]:
+    """One JSON message per frame of ``motion``: frame index, time, rotations, root."""
+    first = int(round(motion.start_time * motion.fps))
+    rotations = np.round(motion.rotations.reshape(motion.frame_count, -1), 5).tolist()
+    roots = np.round(motion.root_translation, 5).tolist()
+    times = np.round(motion.times, 5).tolist()
+    return [
+        json.dumps({"frame": first + i, "time": t, "rotations": r, "root": root}, separators=(",", ":"))
+        for i, (t, r, root) in enumerate(zip(times, rotations, roots))
+    ]
+
+
+class LiveServer:
+    """Serves the live page and pushes skeleton, timeline and frames to every client."""
+
+    def __init__(self, motion_template: Motion, *, name: str = "mura live", host: str = "127.0.0.1", port: int = 0) -> None:
+        rest = Motion(
+            motion_template.fps,
+            motion_template.joint_names,
+            motion_template.parents,
+            motion_template.offsets,
+            motion_template.rotations[:1],
+            motion_template.root_translation[:1],
+        )
+        self._page = render_html(name=name, bvh_text=bvh_text(rest), timeline={}, wav_filename=None).encode("utf-8")
+        self._header: list[str] = [json.dumps(skeleton_message(rest), separators=(",", ":"))]
+        self._clients: set[queue.Queue[str | None]] = set()
+        self._lock = threading.Lock()
+        self._httpd = ThreadingHTTPServer((host, port), self._handler_class())
+        self._httpd.daemon_threads = True
+        self._thread = threading.Thread(target=self._httpd.serve_forever, name="mura-live-server", daemon=True)
+
+    @property
+    def url(self) -> str:
+        """The page's address, live mode on."""
+        host, port = self._httpd.server_address[:2]
+        return f"http://{host}:{port}/?live=1"
+
+    def start(self) -> str:
+        """Start serving in a background thread; returns the page's address."""
+        self._thread.start()
+        return self.url
+
+    def close(self) -> None:
+        """Stop serving and end every stream."""
+        with self._lock:
+            for client in self._clients:
+                client.put(None)
+        self._httpd.shutdown()
+        self._httpd.server_close()
+
+    def publish_timeline(self, timeline: dict) -> None:
+        """Send (and remember for later clients) the current timeline."""
+        message = json.dumps({"timeline": timeline}, separators=(",", ":"))
+        with self._lock:
+            self._header = self._header[:1] + [message]
+            self._broadcast([message])
+
+    def publish_motion(self, motion: Motion) -> None:
+        """Send every frame of ``motion`` to every connected client."""
+        messages = frame_messages(motion)
+        with self._lock:
+            self._broadcast(messages)
+
+    def _broadcast(self, messages: list[str]) -> None:
+        for client in list(self._clients):
+            if client.qsize() + len(messages) > CLIENT_BACKLOG:
+                client.put(None)
+                self._clients.discard(client)
+                continue
+            for message in messages:
+                client.put(message)
+
+    def _subscribe(self) -> queue.Queue[str | None]:
+        client: queue.Queue[str | None] = queue.Queue()
+        with self._lock:
+            for message in self._header:
+                client.put(message)
+            self._clients.add(client)
+        return client
+
+    def _unsubscribe(self, client: queue.Queue[str | None]) -> None:
+        with self._lock:
+            self._clients.discard(client)
+
+    def _handler_class(self) -> type[BaseHTTPRequestHandler]:
+        server = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def do_GET(self) -> None:  # noqa: N802 (the http.server name)
+                path = self.path.split("?", 1)[0]
+                if path == "/":
+                    self._send(200, "text/html; charset=utf-8", server._page)
+                elif path == "/stream":
+                    self._stream()
+                else:
+                    self._send(404, "text/plain; charset=utf-8", b"not found\n")
+
+            def _send(self, status: int, kind: str, body: bytes) -> None:
+                self.send_response(status)
+                self.send_header("Content-Type", kind)
+                self.send_header("Content-Length", str(len(body)))
+                self.send_header("Cache-Control", "no-store")
+                self.end_headers()
+                self.wfile.write(body)
+
+            def _stream(self) -> None:
+                self.send_response(200)
+                self.send_header("Content-Type", "text/event-stream")
+                self.send_header("Cache-Control", "no-store")
+                self.end_headers()
+                client = server._subscribe()
+                try:
+                    while True:
+                        try:
+                            message = client.get(timeout=KEEPALIVE_SECONDS)
+                        except queue.Empty:
+                            self.wfile.write(b": keep-alive\n\n")
+                            self.wfile.flush()
+                            continue
+                        if message is None:
+                            return
+                        self.wfile.write(b"data: " + message.encode("utf-8") + b"\n\n")
+                        self.wfile.flush()
+                except (BrokenPipeError, ConnectionResetError):
+                    return
+                finally:
+                    server._unsubscribe(client)
+
+            def log_message(self, format: str, *args: object) -> None:  # noqa: A002 (the http.server name)
+                return
+
+        return Handler
