@@ -33,6 +33,7 @@ FLAGS = (
     "--no-first-run",
     "--no-default-browser-check",
     "--mute-audio",
+    "--autoplay-policy=no-user-gesture-required",
     "--remote-debugging-pipe",
 )
 

@@ -120,3 +120,33 @@ def test_drawn_pose_matches_forward_kinematics(browser: Browser, shots, motion: 
     browser.evaluate(f"window.__mura.seek({frame / motion.fps!r})")
     drawn = browser.evaluate(f"window.__mura.jointPosition({joint!r})")
     np.testing.assert_allclose(drawn, _world_positions(motion, frame)[joint], atol=0.01)
+
+
+ADVANCES = (
+    "new Promise((resolve) => { const from = window.__mura.time(); const start = performance.now();"
+    " const check = () => window.__mura.time() > from + 0.1 ? resolve(true)"
+    " : performance.now() - start > 5000 ? resolve(false) : setTimeout(check, 10); check(); })"
+)
+
+
+def test_playing_follows_the_audio_clock(browser: Browser, page: Path) -> None:
+    browser.open(f"{page.as_uri()}?t=0.5")
+    browser.evaluate("window.__mura.play()")
+    assert browser.evaluate(ADVANCES), "time did not advance while playing"
+    assert browser.evaluate("document.getElementById('mura-audio').paused") is False
+    browser.evaluate("window.__mura.pause()")
+    assert browser.evaluate("document.getElementById('mura-audio').paused") is True
+    paused_at = browser.evaluate("window.__mura.time()")
+    browser.evaluate("new Promise((resolve) => setTimeout(resolve, 100))")
+    assert browser.evaluate("window.__mura.time()") == paused_at
+
+
+def test_silent_page_plays_on_the_wall_clock(browser: Browser, performance_dir: Path, motion: Motion) -> None:
+    path = performance_dir / "silent.html"
+    write_html(path, name="silent", bvh_text=bvh_text(motion), timeline={}, wav_filename=None)
+    browser.open(path.as_uri())
+    assert browser.evaluate("document.getElementById('mura-audio')") is None
+    assert browser.evaluate("window.__mura.duration()") == pytest.approx((motion.frame_count - 1) / motion.fps)
+    browser.evaluate("window.__mura.play()")
+    assert browser.evaluate(ADVANCES), "time did not advance while playing without audio"
+    assert browser.exceptions() == []
