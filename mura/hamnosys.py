@@ -4,26 +4,28 @@ A HamNoSys transcription is a flat string of symbols; this module reads it with 
 recursive-descent parser into a :class:`~mura.signs.Sign`. The grammar, as real corpora
 write it (``[…]`` optional, ``{…}`` any number, ``|`` choice)::
 
-    sign        = [symmetry] posture {action}
+    sign        = [alternatingmotion] [symmetry] posture [manner] {action}
+                  {plus [symmetry] posture {action}}
     symmetry    = (symmlr | symmpar) {fingerstraightmod | largemod | alternatingmotion
                   | nonipsi | fingerplay}
     posture     = group {group}
-    group       = hand | parbegin hand plus hand parend [contact] [location]
+    group       = hand | parbegin hand plus (hand | nomotion) parend [contact] [location]
     hand        = [nondominant] [etc] [shape] [etc] [extfinger] [palm] [etc] [location]
-    shape       = handshape {thumbmod | bending | fingers bending | fingers}
-                  [between shape]
-    extfinger   = extfinger [extfinger] [between extfinger] [orirelative]
+    shape       = handshape {thumbmod | bending | fingers bending | fingers
+                  | fingers (handsite | between) fingers} [between shape]
+    extfinger   = extfinger [orirelative] [extfinger] [between extfinger] [orirelative]
     palm        = palm [between palm] [orirelative]
     location    = [contact] place [between place] [contact]
-    place       = [side] site {site | finger} [side] | fingers
-    action      = unit {repeat [alternatingmotion]}
-    unit        = move {modifier} | circle {modifier} | local {modifier} | nomotion
-                | replace (hand | parbegin hand plus hand parend)
+    place       = [side] (site | finger) {site | finger} [side]
+    action      = unit {repeat [alternatingmotion] | alternatingmotion | size | manner}
+                | (size | manner) unit
+    unit        = move {modifier} | circle {modifier} | local {modifier}
+                | replace {size | manner} posture | posture
                 | seqbegin {action} seqend | fusionbegin {action} fusionend
                 | parbegin {action} [plus {action}] parend
                 | location
-    modifier    = size | manner | arc | clock | ellipse | between move | location
-                | alternatingmotion
+    modifier    = size | manner | arc | clock | ellipse | between move | contact
+                | location | alternatingmotion
 
 Decisions the real corpora force (documented because they change meaning):
 
@@ -33,6 +35,15 @@ Decisions the real corpora force (documented because they change meaning):
 - Two extended-finger directions in a row (``hamextfingeruo hamextfingerol``) and
   ``a hambetween b`` both mean the direction halfway between (the normalized sum).
 - A repetition applies to the unit just before it (a bracket counts as one unit).
+- A size or manner after a bracket applies to every segment inside it that has none.
+- A shape or orientation in the movement part without ``hamreplace`` is a change of
+  posture all the same; ``hamplus`` at the top level joins a further part of a compound
+  sign, which starts with a change to its own posture.
+- A manner after a posture with no movement (``… hampalmd hamtense``) is the sign's
+  :attr:`~mura.signs.Sign.manner`; ``hamnondominant`` before a one-hand posture makes the
+  whole sign with the non-dominant arm.
+- ``hamfusionbegin … hamfusionend`` (movements fused into one) is read as a sequence; a
+  location after a movement is its end, after a bracket a ``Static`` target.
 - Of alternatives ``hamaltbegin a hammetaalt b hamaltend`` the first is read.
 - Punctuation, ``hamversion40``, ``hammime`` and the coreference tags annotate the
   stream and are skipped by the grammar (they stay in :attr:`Sign.symbols`).
@@ -353,6 +364,8 @@ class _Parser:
             alternating = True
         symmetry = self.symmetry()
         posture = self.posture()
+        if posture.dominant.nondominant and posture.other is None:
+            self.dominant = self.dominant.other  # the whole sign is made by the non-dominant hand
         manner = None
         if self.at_category("manner") and self.peek(1) is None:
             manner = _MANNERS[self.take().name]  # a held posture performed tensely, …
@@ -964,6 +977,7 @@ def _merge(into: _Hand, part: _Hand) -> None:
     into.palm = part.palm or into.palm
     into.location = part.location or into.location
     into.etc = into.etc or part.etc
+    into.nondominant = into.nondominant or part.nondominant
 
 
 def _sequence(actions: list[Constraint]) -> Constraint | None:

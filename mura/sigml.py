@@ -22,7 +22,7 @@ from lxml import etree
 
 from mura.errors import SourceLocation, SpecError
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
-from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static
+from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence
 from mura.signs import HandConstellation, HandPosture, NonmanualItem, SigmlParseResult, Sign, SignFailure, SignSymmetry
 from mura.values import (
     BASIC_HANDSHAPES,
@@ -113,15 +113,19 @@ def _start_positions(data: bytes, root: etree._Element) -> dict[etree._Element, 
 
 
 def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:
-    """Tier name (tag without ``hnm_``) → the items written in it, in order."""
+    """Tier name → the items written in it, in order.
+
+    A child with children of its own is a tier (``<head_tier>…</head_tier>`` in gestural
+    SiGML); a childless child is an item in the tier of its own name without ``hnm_``
+    (``<hnm_mouthpicture picture="…"/>`` in ``<hamnosys_nonmanual>``).
+    """
     tiers: dict[str, list[NonmanualItem]] = {}
     if element is None:
         return {}
-    for item in element.iter():
-        if item is element or not isinstance(item.tag, str):
-            continue
-        tier = item.tag.removeprefix("hnm_")
-        tiers.setdefault(tier, []).append(NonmanualItem(item.tag, tuple(sorted(item.attrib.items()))))
+    for child in (c for c in element if isinstance(c.tag, str)):
+        items = [e for e in child.iterdescendants() if isinstance(e.tag, str)] or [child]
+        tier = tiers.setdefault(child.tag.removeprefix("hnm_"), [])
+        tier.extend(NonmanualItem(item.tag, tuple(sorted(item.attrib.items()))) for item in items)
     return {tier: tuple(items) for tier, items in tiers.items()}
 
 
@@ -215,6 +219,8 @@ class _GesturalReader:
                 other_hand = {**(other_hand or {}), **second}
             elif tag == "handconstellation":
                 constellation = self.constellation(child)
+            elif tag == "nonman_motion":
+                self.keep_nonmanual(child)
             elif tag in _MOTION_TAGS:
                 motions.append(self.motion(child))
             else:
@@ -396,11 +402,12 @@ class _GesturalReader:
             if len(parts) != 2:
                 raise self.error(element, f"has {len(parts)} parts (expected two: dominant and non-dominant hand)")
             return Parallel((scoped_to(parts[0], self.dominant), scoped_to(parts[1], self.dominant.other)), where=where)
-        if tag == "nonman_motion":
-            for tier, items in _nonmanual_tiers(element).items():
-                self.nonmanual.setdefault(tier, []).extend(items)
-            return Static("HandLocation", BodySite("current"), where=where)
         raise self.error(element, "unknown motion element")
+
+    def keep_nonmanual(self, element: etree._Element) -> None:
+        """A ``<nonman_motion>`` inside the manual part goes to the nonmanual tiers."""
+        for tier, items in _nonmanual_tiers(element).items():
+            self.nonmanual.setdefault(tier, []).extend(items)
 
     def qualities(self, element: etree._Element, segment: Segment) -> Segment:
         size = element.get("size")
@@ -412,10 +419,15 @@ class _GesturalReader:
         return replace(segment, size=_SIZES.get(size or ""), manner=manner)
 
     def children_motions(self, element: etree._Element) -> list[Constraint]:
-        children = [c for c in element if isinstance(c.tag, str)]
-        if not children:
+        motions = []
+        for child in (c for c in element if isinstance(c.tag, str)):
+            if child.tag == "nonman_motion":
+                self.keep_nonmanual(child)
+            else:
+                motions.append(self.motion(child))
+        if not motions:
             raise self.error(element, "has no motion inside")
-        return [self.motion(child) for child in children]
+        return motions
 
     def repetition(self, element: etree._Element) -> Constraint:
         value = element.get("repetition", "")

@@ -300,3 +300,8 @@ def test_mutated_streams_raise_nothing_but_spec_error(base: str, edits: list[tup
         sign_of(" ".join(symbols))
     except SpecError:
         pass
+
+
+def test_sign_made_by_the_nondominant_hand() -> None:
+    sign = sign_of("hamnondominant hamflathand hamextfingeru hampalml hamchest hammoved")
+    assert sign.dominant is Arm.LEFT and not sign.two_handed

@@ -204,3 +204,16 @@ def test_gestural_errors(manual: str, message: str) -> None:
 def test_bad_boolean_attribute() -> None:
     result = parse_sigml(gestural('<handconfig handshape="fist"/>', 'both_hands="yes"'))
     assert "both_hands='yes' (expected true or false)" in result.failures[0].error.message
+
+
+def test_gestural_nonmanual_tiers_and_nonmanual_motion() -> None:
+    sign = only_sign(
+        '<sigml><hamgestural_sign gloss="g"><sign_nonmanual><head_tier><head_movement movement="NO"/></head_tier></sign_nonmanual>'
+        '<sign_manual><handconfig handshape="fist" extfidir="o" palmor="d"/>'
+        '<seq_motion><directedmotion direction="u"/><nonman_motion><mouth_picture picture="pa"/></nonman_motion></seq_motion>'
+        "</sign_manual></hamgestural_sign></sigml>"
+    )
+    assert set(sign.nonmanual) == {"head_tier", "mouth_picture"}
+    assert sign.nonmanual["head_tier"] == (NonmanualItem("head_movement", (("movement", "NO"),)),)
+    assert sign.nonmanual["mouth_picture"] == (NonmanualItem("mouth_picture", (("picture", "pa"),)),)
+    assert isinstance(sign.movement, Sequence) and len(sign.movement.children) == 1
