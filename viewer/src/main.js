@@ -140,9 +140,13 @@ function startFile(ui, view, timelineView, params) {
     timelineView.setTimeline(timeline);
   };
   setDuration(clock.duration);
-  audio?.addEventListener('loadedmetadata', () => {
+  const fitAudio = () => {
     if (Number.isFinite(audio.duration) && audio.duration > clock.duration) setDuration(audio.duration);
-  });
+  };
+  if (audio) {
+    audio.addEventListener('loadedmetadata', fitAudio);
+    if (audio.readyState >= 1) fitAudio();
+  }
   const samples = Array.from({ length: 16 }, (_, i) => () => pose(motionStart + (i / 15) * clip.duration));
   frameBody(view, root, samples);
   pose(0);

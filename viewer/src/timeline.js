@@ -75,6 +75,11 @@ export class TimelineView {
     this.background = document.createElement('canvas');
     this.timeline = normalizeTimeline({}, 0);
     this.items = [];
+    window.addEventListener('resize', () => {
+      this.renderStrip();
+      this.update(this.lastTime);
+    });
+    this.lastTime = 0;
     const seekFromPointer = (event) => {
       const rect = strip.getBoundingClientRect();
       const x = event.clientX - rect.left - LABEL;
@@ -197,6 +202,7 @@ export class TimelineView {
 
   // Draw the playhead at time t (seconds) and mark the chunks and behaviours active then.
   update(t) {
+    this.lastTime = t;
     if (!this.x) return;
     const g = this.strip.getContext('2d');
     const ratio = window.devicePixelRatio || 1;
