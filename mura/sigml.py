@@ -174,6 +174,22 @@ _MOTION_TAGS = frozenset(
     {"directedmotion", "circularmotion", "wristmotion", "fingerplay", "nomotion", "tgt_motion", "rpt_motion",
      "seq_motion", "par_motion", "split_motion", "nonman_motion", "changeposture"}
 )
+_LOCATION_ATTRS = frozenset({"location", "second_location", "side", "contact", "digits"})
+_QUALITIES = frozenset({"size", "manner"})
+#: Attributes each motion element may carry.
+_MOTION_ATTRS: dict[str, frozenset[str]] = {
+    "directedmotion": _QUALITIES | {"direction", "second_direction", "curve"},
+    "circularmotion": _QUALITIES | {"axis", "second_axis", "start", "end", "ellipse_direction"},
+    "wristmotion": _QUALITIES | {"motion"},
+    "fingerplay": _QUALITIES | {"digits"},
+    "nomotion": frozenset(),
+    "rpt_motion": frozenset({"repetition", "outofphase"}),
+    "seq_motion": frozenset({"fused"}),
+    "par_motion": frozenset(),
+    "split_motion": frozenset(),
+    "tgt_motion": frozenset(),
+    "changeposture": frozenset(),
+}
 _POSTURE_TAGS = frozenset({"handconfig", "split_handconfig", "location_bodyarm", "location_hand", "handconstellation", "split_location"})
 
 
@@ -332,6 +348,9 @@ class _GesturalReader:
     def location_part(self, element: etree._Element) -> dict[str, object]:
         if element.tag not in ("location_bodyarm", "location_hand"):
             raise self.error(element, "expected <location_bodyarm> or <location_hand>")
+        unknown = set(element.attrib) - _LOCATION_ATTRS
+        if unknown:
+            raise self.error(element, f"unknown attribute {sorted(unknown)[0]!r}")
         site = element.get("location")
         if not site:
             raise self.error(element, "no location attribute")
@@ -365,6 +384,9 @@ class _GesturalReader:
     def motion(self, element: etree._Element) -> Constraint:
         tag = element.tag
         where = self.where_of(element)
+        allowed = _MOTION_ATTRS.get(tag)
+        if allowed is not None and not set(element.attrib) <= allowed:
+            raise self.error(element, f"unknown attribute {sorted(set(element.attrib) - allowed)[0]!r}")
         if tag == "directedmotion":
             direction = self.direction(element, "direction")
             curve = element.get("curve")

@@ -39,7 +39,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from mura.errors import SourceLocation, SpecError
-from mura.model import Arm, Constraint, Symmetry
+from mura.model import Arm, Constraint, Parallel, Sequence, Static, Symmetrical, Symmetry
 from mura.values import Direction, HandShape, Location, PalmOrientation
 
 #: Symmetry kinds: left-right mirror and parallel (HamNoSys ``hamsymmlr``/``hamsymmpar``).
@@ -142,6 +142,41 @@ class Sign:
     nonmanual: Mapping[str, tuple[NonmanualItem, ...]] = field(default_factory=dict, compare=False)
     symbols: tuple[str, ...] = ()
     where: SourceLocation | None = field(default=None, compare=False)
+
+
+    def to_constraint(self) -> Constraint:
+        """The whole sign as one constraint tree, the form MURML gestures take.
+
+        The initial posture becomes ``Static`` leaves (the non-dominant hand's scoped to
+        its arm), followed in a ``Sequence`` by the movement; a symmetric sign is wrapped in
+        ``Symmetrical`` with the dominant arm. The hand constellation is not a slot value
+        and stays on :attr:`constellation`.
+        """
+        own_scope = self.dominant if self.nondominant is not None else None
+        statics = _posture_statics(self.posture, own_scope)
+        if self.nondominant is not None:
+            statics += _posture_statics(self.nondominant, self.dominant.other)
+        parts: list[Constraint] = []
+        if statics:
+            parts.append(statics[0] if len(statics) == 1 else Parallel(tuple(statics), where=self.where))
+        if self.movement is not None:
+            parts.append(self.movement)
+        if not parts:
+            raise SpecError(f"sign {self.gloss!r} has neither a posture nor a movement", self.where)
+        tree: Constraint = parts[0] if len(parts) == 1 else Sequence(tuple(parts), where=self.where)
+        if self.symmetry is None:
+            return tree
+        return Symmetrical(tree, self.dominant, self.symmetry.to_model(), where=self.where)
+
+
+def _posture_statics(posture: HandPosture, scope: Arm | None) -> list[Constraint]:
+    values = (
+        ("HandShape", posture.shape),
+        ("ExtFingerOrientation", posture.ext_finger),
+        ("PalmOrientation", posture.palm),
+        ("HandLocation", posture.location),
+    )
+    return [Static(slot, value, scope=scope) for slot, value in values if value is not None]
 
 
 @dataclass(frozen=True)

@@ -46,3 +46,9 @@ def test_capitalized_tag_and_mouth_picture(results: dict[str, SigmlParseResult])
     assert "hamupperarm" in dgs["ARM1B^"].symbols
     isl = {s.gloss: s for s in results["Indian_SL.sigml"].signs}
     assert isl["hello"].nonmanual["mouthpicture"] == (NonmanualItem("hnm_mouthpicture", (("picture", "hVlU"),)),)
+
+
+def test_every_parsed_sign_gives_a_constraint_tree(results: dict[str, SigmlParseResult]) -> None:
+    for result in results.values():
+        for sign in result.signs:
+            assert sign.to_constraint() is not None

@@ -305,3 +305,19 @@ def test_mutated_streams_raise_nothing_but_spec_error(base: str, edits: list[tup
 def test_sign_made_by_the_nondominant_hand() -> None:
     sign = sign_of("hamnondominant hamflathand hamextfingeru hampalml hamchest hammoved")
     assert sign.dominant is Arm.LEFT and not sign.two_handed
+
+
+def test_whole_sign_as_one_constraint_tree() -> None:
+    from mura.model import Symmetrical, Symmetry, iter_leaves
+
+    sign = sign_of(HERE)
+    tree = sign.to_constraint()
+    assert isinstance(tree, Symmetrical)
+    assert tree.dominant is Arm.RIGHT and tree.symmetry == Symmetry(frozenset({"S"}), "SymS")
+    assert isinstance(tree.child, Sequence)
+    posture, movement = tree.child.children
+    assert movement == sign.movement
+    assert [leaf.slot for leaf in iter_leaves(posture)] == ["HandShape", "ExtFingerOrientation", "PalmOrientation", "HandLocation"]
+    two = sign_of("hamparbegin hamflathand hamextfingerol hampalmd hamplus hamfist hamextfingeror hampalmu hamparend hamchest")
+    leaves = list(iter_leaves(two.to_constraint()))
+    assert [leaf.scope for leaf in leaves] == [Arm.RIGHT] * 4 + [Arm.LEFT] * 3

@@ -217,3 +217,18 @@ def test_gestural_nonmanual_tiers_and_nonmanual_motion() -> None:
     assert sign.nonmanual["head_tier"] == (NonmanualItem("head_movement", (("movement", "NO"),)),)
     assert sign.nonmanual["mouth_picture"] == (NonmanualItem("mouth_picture", (("picture", "pa"),)),)
     assert isinstance(sign.movement, Sequence) and len(sign.movement.children) == 1
+
+
+@pytest.mark.parametrize(
+    ("manual", "message"),
+    [
+        ('<handconfig handshape="fist"/><directedmotion direction="u" speed="9"/>', "<directedmotion>: unknown attribute 'speed'"),
+        ('<handconfig handshape="fist"/><location_bodyarm location="chest" height="2"/>', "<location_bodyarm>: unknown attribute 'height'"),
+        ('<handconfig handshape="fist"/><directedmotion direction="u" size="huge"/>', "unknown size 'huge'"),
+        ('<handconfig handshape="fist"/><wristmotion motion="flapping"/>', "unknown motion 'flapping'"),
+        ('<handconfig handshape="fist"/><split_motion><nomotion/></split_motion>', "has 1 parts (expected two"),
+    ],
+)
+def test_gestural_motion_errors(manual: str, message: str) -> None:
+    (failure,) = parse_sigml(gestural(manual)).failures
+    assert message in failure.error.message
