@@ -210,11 +210,11 @@ class Avatar:
 
     def arm_joints(self, side: str) -> np.ndarray:
         """Indices of sternoclavicular, shoulder, elbow, wrist of one side (``l``/``r``)."""
-        return np.array([self.joint_index(f"{_side(side)}_{joint}") for joint in ARM_JOINTS])
+        return np.array([self.joint_index(f"{check_side(side)}_{joint}") for joint in ARM_JOINTS])
 
     def hand_joints(self, side: str) -> np.ndarray:
         """Indices of the 17 hand joints of one side, in :data:`HAND_JOINTS` order."""
-        return np.array([self.joint_index(f"{_side(side)}_{joint}") for joint in HAND_JOINTS])
+        return np.array([self.joint_index(f"{check_side(side)}_{joint}") for joint in HAND_JOINTS])
 
     def limit(self, joint: str, kind: str) -> tuple[float, float]:
         """A joint limit ``(min, max)`` in radians."""
@@ -238,7 +238,8 @@ class Avatar:
             raise KeyError(f"avatar {self.name!r} has no location {name!r}") from None
 
 
-def _side(side: str) -> str:
+def check_side(side: str) -> str:
+    """The side itself if it is "l" or "r"; ValueError otherwise."""
     if side not in SIDES:
         raise ValueError(f"side must be 'l' or 'r', got {side!r}")
     return side
