@@ -532,13 +532,15 @@ class _Parser:
         return token.category in ("thumbmod", "bending")
 
     def shape(self) -> HandShape:
-        basic = self.take()
-        shape = self.shape_modifiers(HandShape(basic=basic.name[3:], name=basic.name))
+        shape = self.basic_shape()
         if self.at("hambetween") and self.peek(1) is not None and self.peek(1).category == "handshape":
             self.take()
-            second = self.shape()
-            shape = replace(shape, between=second)
+            shape = replace(shape, between=self.basic_shape())
         return shape
+
+    def basic_shape(self) -> HandShape:
+        basic = self.take()
+        return self.shape_modifiers(HandShape(basic=basic.name[3:], name=basic.name))
 
     def shape_modifiers(self, shape: HandShape) -> HandShape:
         while True:
@@ -676,6 +678,8 @@ class _Parser:
                     self.take()
                     actions[-1] = _alternating(actions[-1])
                 else:
+                    if _repetition_depth(actions[-1]) >= MAX_NESTING:
+                        raise _misplaced(self.gloss, token, f"more than {MAX_NESTING} repetitions of one movement")
                     actions[-1] = self.repetition(actions[-1])
                 continue
             if token.category in ("size", "manner"):
@@ -899,6 +903,13 @@ class _Parser:
         if not leaves:
             return None
         return leaves[0] if len(leaves) == 1 else Parallel(tuple(leaves), where=token.where)
+
+
+def _repetition_depth(node: Constraint) -> int:
+    depth = 0
+    while isinstance(node, Repetition):
+        node, depth = node.child, depth + 1
+    return depth
 
 
 def _features(hand: _Hand) -> dict[str, object]:

@@ -321,3 +321,15 @@ def test_whole_sign_as_one_constraint_tree() -> None:
     two = sign_of("hamparbegin hamflathand hamextfingerol hampalmd hamplus hamfist hamextfingeror hampalmu hamparend hamchest")
     leaves = list(iter_leaves(two.to_constraint()))
     assert [leaf.scope for leaf in leaves] == [Arm.RIGHT] * 4 + [Arm.LEFT] * 3
+
+
+@pytest.mark.parametrize(
+    ("tail", "message"),
+    [
+        ("hammoved" + " hamrepeatfromstart" * 40, "more than 32 repetitions of one movement"),
+        ("hamchest" + " hambetween hamchest" * 3, "unexpected symbol hambetween at position 6"),
+    ],
+)
+def test_runaway_streams_are_spec_errors(tail: str, message: str) -> None:
+    with pytest.raises(SpecError, match=message):
+        sign_of("hamfist hamextfingero hampalmd " + tail)
