@@ -268,11 +268,12 @@ def _direction(name: str, prefix: str) -> Direction:
     return Direction(direction_from_letters(name[len(prefix):]), name)
 
 
-def _halfway(first: Direction, second: Direction, name: str) -> Direction:
+def _halfway(first: Direction, second: Direction, name: str) -> Direction | None:
+    """The direction halfway between two, None when they are opposite."""
     total = np.add(first.vector, second.vector)
     norm = float(np.linalg.norm(total))
     if norm < 1e-9:
-        return first
+        return None
     unit = total / norm
     return Direction((float(unit[0]), float(unit[1]), float(unit[2])), name)
 
@@ -596,11 +597,11 @@ class _Parser:
             self.take()
         if self.at_category("extfinger"):
             second = self.take()
-            direction = _halfway(direction, _direction(second.name, "hamextfinger"), f"{first.name} {second.name}")
+            direction = self.between(direction, second, "hamextfinger", f"{first.name} {second.name}")
         if self.at("hambetween") and self.peek(1) is not None and self.peek(1).category == "extfinger":
             self.take()
             other = self.take()
-            direction = _halfway(direction, _direction(other.name, "hamextfinger"), f"{direction.name} hambetween {other.name}")
+            direction = self.between(direction, other, "hamextfinger", f"{direction.name} hambetween {other.name}")
         if self.at("hamorirelative"):
             self.take()
         return direction
@@ -611,7 +612,7 @@ class _Parser:
         if self.at("hambetween") and self.peek(1) is not None and self.peek(1).category == "palm":
             self.take()
             other = self.take()
-            direction = _halfway(direction, _direction(other.name, "hampalm"), f"{first.name} hambetween {other.name}")
+            direction = self.between(direction, other, "hampalm", f"{first.name} hambetween {other.name}")
         relative = False
         if self.at("hamorirelative"):
             self.take()
@@ -855,11 +856,16 @@ class _Parser:
     def halfway_movement(self, segment: Segment, other: Token) -> Segment:
         if segment.kind is SegmentKind.CIRCLE:
             assert segment.normal is not None
-            axis = _direction(other.name, "hamcircle")
-            return replace(segment, normal=_halfway(segment.normal, axis, f"{segment.normal.name} hambetween {other.name}"))
+            return replace(segment, normal=self.between(segment.normal, other, "hamcircle", f"{segment.normal.name} hambetween {other.name}"))
         assert segment.direction is not None
-        direction = _direction(other.name, "hammove")
-        return replace(segment, direction=_halfway(segment.direction, direction, f"{segment.direction.name} hambetween {other.name}"))
+        return replace(segment, direction=self.between(segment.direction, other, "hammove", f"{segment.direction.name} hambetween {other.name}"))
+
+    def between(self, first: Direction, other: Token, prefix: str, name: str) -> Direction:
+        """The direction halfway between ``first`` and the one ``other`` names."""
+        halfway = _halfway(first, _direction(other.name, prefix), name)
+        if halfway is None:
+            raise _misplaced(self.gloss, other, f"{other.name} is opposite to {first.name}, so no direction lies halfway")
+        return halfway
 
     def change_of_posture(self) -> Constraint:
         token = self.take()

@@ -26,7 +26,8 @@ constraint tree of :mod:`mura.model` (``Sequence``, ``Parallel``, ``Repetition``
   leaves, one per changed feature, with ``start`` the posture before and ``end`` after.
 - **Contact** reached during a movement is ``modifiers`` ``contact=touch`` (or ``close``,
   ``brushing`` …); a contact or location reached with no movement is a ``Static``
-  ``HandLocation``.
+  ``HandLocation`` (a bare contact, such as ``hamtouch`` alone, is the pseudo-site
+  ``BodySite("contact", proximity=…)``: touch whatever the hand moves towards).
 - **Manner** of a segment is ``targetted`` unless the sign says ``fast``, ``slow``,
   ``tense``, ``rest`` or ``halt`` (sudden stop); ``size`` is ``small``, ``large``,
   ``increasing`` or ``decreasing``, None for normal.

@@ -333,3 +333,8 @@ def test_whole_sign_as_one_constraint_tree() -> None:
 def test_runaway_streams_are_spec_errors(tail: str, message: str) -> None:
     with pytest.raises(SpecError, match=message):
         sign_of("hamfist hamextfingero hampalmd " + tail)
+
+
+def test_between_opposite_directions_is_an_error() -> None:
+    with pytest.raises(SpecError, match="misplaced symbol hamextfingerd at position 3: hamextfingerd is opposite to hamextfingeru"):
+        sign_of("hamfist hamextfingeru hambetween hamextfingerd hampalml")
