@@ -9,6 +9,7 @@ import queue
 import threading
 from collections.abc import Iterator
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,7 +18,7 @@ from headless_chromium import Browser
 from matplotlib.image import imread
 
 from agent.export.bvh import bvh_text
-from agent.export.html import render_html
+from agent.export.html import render_html, write_html
 from motor.motion import Motion
 
 
@@ -67,11 +68,24 @@ class _Stream:
         self.server.server_close()
 
 
-@pytest.fixture(scope="module")
-def stream(motion: Motion, timeline: dict) -> Iterator[_Stream]:
+def _joint_list(motion: Motion) -> list[dict]:
+    return [
+        {"name": name, "parent": parent, "offset": offset.tolist()}
+        for name, parent, offset in zip(motion.joint_names, motion.parents, motion.offsets)
+    ]
+
+
+@pytest.fixture(params=["bvh-hierarchy", "joint-list"])
+def skeleton_kind(request: pytest.FixtureRequest) -> str:
+    return request.param
+
+
+@pytest.fixture
+def stream(motion: Motion, timeline: dict, skeleton_kind: str) -> Iterator[_Stream]:
     bvh = bvh_text(motion)
     served = _Stream(render_html(name="live", bvh_text=bvh, timeline={}, wav_filename=None))
-    served.messages.put({"skeleton": bvh[: bvh.index("MOTION")], "timeline": timeline})
+    skeleton = bvh[: bvh.index("MOTION")] if skeleton_kind == "bvh-hierarchy" else _joint_list(motion)
+    served.messages.put({"skeleton": skeleton, "timeline": timeline})
     yield served
     served.close()
 
@@ -85,8 +99,11 @@ def _frame(motion: Motion, order: list[int], index: int) -> dict:
     }
 
 
-def test_live_stream_poses_the_body(browser: Browser, stream: _Stream, motion: Motion) -> None:
-    joint_order = Bvh(bvh_text(motion)).get_joints_names()  # the skeleton's joint order
+def test_live_stream_poses_the_body(
+    browser: Browser, stream: _Stream, motion: Motion, skeleton_kind: str, tmp_path: Path
+) -> None:
+    """Rotations come in the skeleton's joint order: BVH hierarchy order, or the list's."""
+    joint_order = Bvh(bvh_text(motion)).get_joints_names() if skeleton_kind == "bvh-hierarchy" else motion.joint_names
     order = [motion.joint_names.index(name) for name in joint_order]
     wait_for = (
         "new Promise((resolve) => { const check = () => (window.__mura && window.__mura.time() === {t})"
@@ -103,6 +120,11 @@ def test_live_stream_poses_the_body(browser: Browser, stream: _Stream, motion: M
     assert browser.evaluate("window.__mura.joints()") == len(motion.joint_names)
     listed = browser.evaluate("document.getElementById('mura-timeline-list').innerText")
     assert browser.exceptions() == []
+    live_meshes = browser.evaluate("window.__mura.meshes()")
     assert "gesture_1" in listed and "And now take this bar" in listed
     changed = np.abs(shots[6] - shots[66]).max(axis=-1) > 0.1
     assert changed.sum() > 2000, f"only {changed.sum()} pixels differ between the two streamed frames"
+    file_page = tmp_path / "file.html"
+    write_html(file_page, name="file", bvh_text=bvh_text(motion), timeline={}, wav_filename=None)
+    browser.open(file_page.as_uri())
+    assert live_meshes == browser.evaluate("window.__mura.meshes"), "live body differs from the file-mode body"

@@ -204,6 +204,7 @@ function startLive(ui, view, timelineView) {
   let root = null;
   let grid = null;
   let framed = false;
+  let meshes = 0;
   let time = 0;
   let timeline = normalizeTimeline({}, 0);
   connectLive('./stream', {
@@ -212,7 +213,7 @@ function startLive(ui, view, timelineView) {
       const skeleton = skeletonFromLive(description);
       root = skeleton.bones[0];
       view.scene.add(root);
-      buildAvatar(root);
+      meshes = buildAvatar(root);
       bones = jointBones(skeleton);
       framed = false;
       ui.status.textContent = `live: ${bones.length} joints`;
@@ -245,7 +246,7 @@ function startLive(ui, view, timelineView) {
     requestAnimationFrame(loop);
   };
   loop();
-  window.__mura = { time: () => time, joints: () => bones.length };
+  window.__mura = { time: () => time, joints: () => bones.length, meshes: () => meshes };
   window.__muraReady = true;
 }
 

@@ -4,6 +4,7 @@ import { BVHLoader } from 'three/addons/loaders/BVHLoader.js';
 
 // Scene length unit: centimetres per metre (mura's BVH is written in centimetres).
 export const UNIT = 100;
+const END_SITE_FRACTION = 0.75; // end-site length over the leaf's own bone, as in agent/export/bvh.py
 
 // Parse a whole BVH file: { skeleton, clip } as three.js' BVHLoader returns them.
 export function parseBVH(text) {
@@ -36,7 +37,18 @@ function skeletonFromJoints(joints) {
     const parent = Number(joint.parent ?? -1);
     if (parent >= 0 && parent < index) bones[parent].add(bones[index]);
   });
-  return new Skeleton(bones);
+  // Leaves get an end site continuing their bone, as the BVH writer adds, so fingertips
+  // have a last phalanx to draw.
+  const ends = bones
+    .filter((bone) => bone.parent && !bone.children.some((child) => child.isBone))
+    .map((leaf) => {
+      const end = new Bone();
+      end.name = 'ENDSITE';
+      end.position.copy(leaf.position).multiplyScalar(END_SITE_FRACTION);
+      leaf.add(end);
+      return end;
+    });
+  return new Skeleton([...bones, ...ends]);
 }
 
 // Bones that carry rotations, in file/joint order (BVH end sites excluded).
