@@ -1,0 +1,31 @@
+"""The chunk blackboard and scheduler (seed 004, section 5): chunks run through
+InPrep → Pending → Lurking → InExec → Subsiding → Completed, planning of the next chunk
+interleaved with the execution of the current one, speech and gesture synchronized within
+each chunk by a simple temporal network."""
+
+from blackboard.board import Blackboard, PlannedGesture
+from blackboard.chunk import TRANSITIONS, ChunkState, ChunkStateMachine, Transition
+from blackboard.clock import Clock, VirtualClock, WallClock
+from blackboard.errors import BehaviorError, IllegalTransition, OverlappingGestures, ScheduleError, TimingConflict
+from blackboard.events import (
+    BehaviorFeedback,
+    ChunkStateChanged,
+    EventBus,
+    FramesReady,
+    SpeechEnded,
+    SpeechStarted,
+)
+from blackboard.planning import PEG_NAMES, GestureDemands, MotorControl, MotorProgramLike, TimePegs
+from blackboard.scheduler import LiveHandle, ScheduledUtterance, Scheduler, SchedulerConfig, validate
+from blackboard.timeline import Timeline, plot_timeline
+from blackboard.timing import ChunkTiming, GestureRequest, GestureTiming, PauseStretch, TemporalNetwork, TimingConfig, time_chunk
+
+__all__ = [
+    "PEG_NAMES", "TRANSITIONS", "BehaviorError", "BehaviorFeedback", "Blackboard", "ChunkState",
+    "ChunkStateChanged", "ChunkStateMachine", "ChunkTiming", "Clock", "EventBus", "FramesReady",
+    "GestureDemands", "GestureRequest", "GestureTiming", "IllegalTransition", "LiveHandle", "MotorControl",
+    "MotorProgramLike", "OverlappingGestures", "PauseStretch", "PlannedGesture", "ScheduleError",
+    "ScheduledUtterance", "Scheduler", "SchedulerConfig", "SpeechEnded", "SpeechStarted", "TemporalNetwork",
+    "TimePegs", "Timeline", "TimingConfig", "TimingConflict", "Transition", "VirtualClock", "WallClock",
+    "plot_timeline", "time_chunk", "validate",
+]

@@ -1,0 +1,121 @@
+"""The blackboard of one chunk: what speech and movement planning contributed, the chunk's
+state, and the feedback its behaviours post while they run (seed 004, section 5).
+
+Times on the board are on the session clock (the scheduler's clock); ``origin`` is the
+clock time of the utterance start, subtracted for the timeline and for observers.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+
+from mura.model import BehaviorSpec, ChunkSpec
+from tts import SpeechTiming
+
+from blackboard.chunk import ChunkState, ChunkStateMachine, Transition
+from blackboard.events import BehaviorFeedback, ChunkStateChanged, EventBus
+from blackboard.planning import GestureDemands, MotorProgramLike
+from blackboard.timeline import Timeline
+from blackboard.timing import ChunkTiming, GestureTiming
+
+
+@dataclass(frozen=True)
+class PlannedGesture:
+    """A gesture as planned on the board: its demands, solved timing and motor program."""
+
+    behavior: BehaviorSpec
+    demands: GestureDemands
+    timing: GestureTiming
+    program: MotorProgramLike
+    next_gesture_follows: bool
+
+
+class Blackboard:
+    """One chunk's blackboard: contributions, state machine and feedback (thread-safe)."""
+
+    def __init__(
+        self,
+        utterance: str,
+        spec: ChunkSpec,
+        behaviors: tuple[BehaviorSpec, ...],
+        origin: float,
+        time: float,
+        bus: EventBus,
+        timeline: Timeline,
+    ) -> None:
+        self.utterance = utterance
+        self.spec = spec
+        self.behaviors = behaviors
+        self.origin = origin
+        self.bus = bus
+        self.timeline = timeline
+        self.machine = ChunkStateMachine(f"{utterance}: chunk {spec.index + 1}", time)
+        self.speech: SpeechTiming | None = None
+        self.demands: dict[str, GestureDemands] = {}
+        self.timing: ChunkTiming | None = None
+        self.gestures: tuple[PlannedGesture, ...] = ()
+        self.speech_end: float = time  # session clock; the onset plus the last word's end
+        self.error: Exception | None = None
+        self.feedback: list[BehaviorFeedback] = []
+        self.effective_ends: dict[str, float] = {}
+        self.lurk_allowed: float = time  # when the previous chunk subsides: this one may take over
+        # agenda entries of the scheduler, kept to cancel or move them (interrupts, cut retractions)
+        self.feedback_entries: list[int] = []
+        self.finish_entries: dict[str, int] = {}
+        self.speech_end_entry: int | None = None
+        self.completed_entry: int | None = None
+        self._lock = threading.Lock()
+        self._announce(None, self.machine.history[0])
+
+    @property
+    def index(self) -> int:
+        return self.spec.index
+
+    @property
+    def state(self) -> ChunkState:
+        return self.machine.state
+
+    @property
+    def speech_onset(self) -> float:
+        return self.timing.speech_onset
+
+    @property
+    def has_speech(self) -> bool:
+        return self.speech is not None and bool(self.speech.words)
+
+    @property
+    def exec_start(self) -> float:
+        """When the first behaviour or the speech starts (session clock)."""
+        starts = [g.program.pegs.start for g in self.gestures]
+        if self.has_speech or not starts:
+            starts.append(self.speech_onset)
+        return min(starts)
+
+    @property
+    def strokes_done(self) -> float:
+        """When the phrase and every stroke (with its hold) are over: the chunk may subside."""
+        return max([self.speech_end] + [g.program.pegs.relax for g in self.gestures])
+
+    @property
+    def effective_end(self) -> float:
+        """When the last behaviour ends, retractions cut short by a following gesture included."""
+        return max([self.strokes_done] + list(self.effective_ends.values()))
+
+    def move(self, state: ChunkState, time: float, reason: str = "") -> None:
+        """Enter ``state`` at session time ``time``; tells the timeline and the observers."""
+        previous = self.machine.state
+        transition = self.machine.move(state, time, reason)
+        self._announce(previous, transition)
+
+    def _announce(self, previous: ChunkState | None, transition: Transition) -> None:
+        local = Transition(transition.state, transition.time - self.origin, transition.reason)
+        self.timeline.record_state(self.index, local)
+        self.bus.publish(ChunkStateChanged(self.utterance, self.index, previous, local.state, local.time, local.reason))
+
+    def post(self, behavior: str, kind: str, point: str, time: float) -> None:
+        """A behaviour reports progress at session time ``time`` (``started``, ``sync``, ``finished``)."""
+        feedback = BehaviorFeedback(self.utterance, self.index, behavior, kind, point, time - self.origin)
+        with self._lock:
+            self.feedback.append(feedback)
+        self.bus.publish(feedback)
