@@ -56,7 +56,7 @@ _PENETRATION_WEIGHT = 50.0
 #: Radius of the upper arm kept clear of the torso, as a fraction of arm length.
 _ARM_RADIUS = 0.05
 #: Points along the upper arm (fractions from shoulder to elbow) checked against the torso.
-_ARM_SAMPLES = np.array([0.5, 0.75, 1.0])
+_ARM_SAMPLES = np.array([0.3, 0.45, 0.6, 0.75, 0.9, 1.0])
 
 
 @dataclass(frozen=True, eq=False)
