@@ -149,6 +149,7 @@ class Scheduler:
         self._frame_cursor: float | None = None
         self._arm_last: dict[str, tuple[Blackboard, PlannedGesture]] = {}
         self._queue: list[_Job] = []
+        self._board_jobs: dict[Blackboard, _Job] = {}
         self._active: list[_Job] = []
         self._lock = threading.Lock()
         self._thread: threading.Thread | None = None
@@ -258,12 +259,12 @@ class Scheduler:
 
     def _job_of(self, board: Blackboard) -> _Job:
         with self._lock:
-            return next(j for j in self._active if board in j.boards)
+            return self._board_jobs[board]
 
     def _perform_chunk(self, board: Blackboard) -> Blackboard | None:
-        job = self._job_of(board)
         if board.state is ChunkState.FAILED:
-            return self._next_board(board)
+            return self._next_board(None)  # its utterance ends here; the next queued one, if any, goes on
+        job = self._job_of(board)
         self._advance_to(max(self.clock.now(), board.lurk_allowed))
         if self._take_interrupt(job):
             board.move(ChunkState.FAILED, self.clock.now(), "interrupted before it ran")
@@ -449,6 +450,8 @@ class Scheduler:
         behaviors = job.utterance.behaviors_in_chunk(index) if job.utterance.chunks else ()
         board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.gesture is not None), job.origin, now, self.bus, job.timeline)
         job.boards.append(board)
+        with self._lock:
+            self._board_jobs[board] = job
         try:
             self._fill(board, job, previous, now)
         except (SpeechError, ScheduleError, ValueError) as error:
@@ -646,6 +649,8 @@ class Scheduler:
         )
         with self._lock:
             self._active.remove(job)
+            for board in job.boards:
+                self._board_jobs.pop(board, None)
         job.done.set()
 
     def _audio(self, job: _Job) -> tuple[np.ndarray | None, int | None]:

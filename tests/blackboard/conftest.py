@@ -19,7 +19,7 @@ import pytest
 from blackboard import GestureDemands, TimePegs
 from motor.motion import Motion
 from motor.trajectory import fitts_duration
-from mura.model import BehaviorSpec, Dynamic, Repetition, Symmetrical, iter_leaves
+from mura.model import ARM_SLOTS, BehaviorSpec, Dynamic, Repetition, Symmetrical, iter_leaves
 from mura.murml import load_utterance
 from tts import FakeSynthesizer, SpeechError, SpeechRequest, SpeechTiming
 
@@ -80,7 +80,7 @@ class FakeMotor:
         scope = gesture.scope or ""
         if isinstance(node, Symmetrical):
             arms = frozenset({"right", "left"})
-        elif "head" in scope:
+        elif "head" in scope or not any(leaf.slot in ARM_SLOTS for leaf in iter_leaves(node)):
             arms = frozenset()
         elif "left" in scope:
             arms = frozenset({"left"})
