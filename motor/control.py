@@ -1,0 +1,211 @@
+"""Motor control: the object the scheduler calls to plan, activate and sample gestures.
+
+:class:`MotorControl` keeps one :class:`motor.lmp.ChannelTimeline` per channel of each
+arm — wrist position, hand rotation, hand shape — holding every LMP activated so far.
+Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
+all frames of the window at once: first the externally formulated LMPs (wrist position,
+wrist rotation) are sampled, then both arms' IK is solved (analytic, natural swivel),
+then the joint-space LMPs (hand shape → finger joint rotations) are applied; every other
+joint keeps its rest rotation and the root stands still at ``(0, root_height, 0)``.
+
+Frames depend only on their own times and the activated LMPs, so sampling window after
+window gives exactly the frames of one call over the whole span. Runs of identical
+channel values (holds, rest) are solved once and repeated, which is exact.
+"""
+
+from __future__ import annotations
+
+import math
+import numpy as np
+
+from motor.arm_ik import solve_arm
+from motor.avatar import Avatar
+from motor.hand import hand_rotations
+from motor.lmp import LMP, ChannelState, ChannelTimeline, RetractionLMP, TimePegs
+from motor.motion import Motion
+from motor.program import ARMS, AVATAR_SIDE, GestureDemands, MotorProgram, Planner, first_location, rest_handshape, retraction_duration
+from motor.trajectory import fitts_duration
+from mura.model import BehaviorSpec
+
+#: The channels of one arm, in sampling order (externally formulated ones first).
+ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
+#: Frame times are ``k / fps``; a time within this of a frame counts as on it.
+_FRAME_TOLERANCE = 1e-9
+
+
+class MotorControl:
+    """Plans gestures into motor programs and renders the activated programs as frames.
+
+    Implements the scheduler's motor contract (``blackboard.planning.MotorControl``)
+    structurally. Times are seconds on the utterance clock; ``fps`` frames per second.
+    """
+
+    def __init__(self, avatar: Avatar, fps: float = 60.0) -> None:
+        if not fps > 0:
+            raise ValueError(f"fps must be positive, got {fps}")
+        self.avatar = avatar
+        self.fps = float(fps)
+        self.planner = Planner(avatar)
+        self._initial = self._rest_states()
+        self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
+        self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
+        self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
+        self._hand_joints = {arm: avatar.hand_joints(AVATAR_SIDE[arm]) for arm in ARMS}
+        rest = np.zeros((avatar.joint_count, 4))
+        rest[:, 3] = 1.0
+        self._rest_rotations = rest
+        self._root = np.array([0.0, avatar.root_height, 0.0])
+
+    def _rest_states(self) -> dict[tuple[str, str], ChannelState]:
+        states = {}
+        for arm in ARMS:
+            rest = self.avatar.postures["rest"][AVATAR_SIDE[arm]]
+            states[(arm, "wrist_position")] = ChannelState.at_rest(rest.wrist)
+            states[(arm, "hand_rotation")] = ChannelState.at_rest(rest.hand_rotation, rotation=True)
+            states[(arm, "handshape")] = ChannelState.at_rest(rest_handshape())
+        return states
+
+    # -- planning -----------------------------------------------------------------------
+
+    def demands(self, behavior: BehaviorSpec) -> GestureDemands:
+        """Arms, natural stroke duration and preparation distance of ``behavior``."""
+        return self.planner.demands(behavior)
+
+    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+        """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
+        programs activated so far) to the start of the stroke; the slowest arm counts."""
+        fragment = self.planner.fragment(behavior)
+        longest = 0.0
+        for arm in ARMS:
+            target = first_location(fragment, arm)
+            if target is None:
+                continue
+            here = self.timeline((arm, "wrist_position")).state(at_time).value
+            longest = max(longest, float(fitts_duration(float(np.linalg.norm(target - here)))))
+        return longest
+
+    def plan(
+        self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
+    ) -> MotorProgram:
+        """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program`)."""
+        return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+
+    # -- execution ----------------------------------------------------------------------
+
+    def activate(self, program: MotorProgram) -> None:
+        """Hand the program's LMPs to their channels; each starts itself at its start peg."""
+        for lmp in program.lmps:
+            channel = tuple(lmp.channel)
+            if channel not in self._lmps:
+                raise ValueError(f"program {program.behavior!r}: no channel {channel} on this avatar")
+        for lmp in program.lmps:
+            channel = tuple(lmp.channel)
+            self._lmps[channel].append(lmp)
+            self._timelines.pop(channel, None)
+
+    def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
+        """The channel's timeline of everything activated so far (built on demand)."""
+        if channel not in self._timelines:
+            self._timelines[channel] = ChannelTimeline.build(channel, self._lmps[channel], self._initial[channel])
+        return self._timelines[channel]
+
+    def busy_until(self, arm: str) -> float:
+        """When the arm's last activated LMP ends (retraction included); 0 if never used."""
+        if arm not in ARMS:
+            raise ValueError(f"arm must be one of {ARMS}, got {arm!r}")
+        return max((lmp.pegs.end for name in ARM_CHANNELS for lmp in self._lmps[(arm, name)]), default=0.0)
+
+    def interrupt(self, at_time: float) -> None:
+        """Stop every gesture at ``at_time``: LMPs starting later are dropped and each arm
+        that is away from rest retracts from where it is then, in Fitts' law time."""
+        for arm in ARMS:
+            channels = [(arm, name) for name in ARM_CHANNELS]
+            if not any(lmp.pegs.end > at_time for channel in channels for lmp in self._lmps[channel]):
+                continue
+            wrist = self.timeline((arm, "wrist_position")).state(at_time).value
+            rest = self.avatar.postures["rest"][AVATAR_SIDE[arm]]
+            pegs = TimePegs.movement(at_time, at_time + retraction_duration(float(np.linalg.norm(wrist - rest.wrist))))
+            for channel in channels:
+                kept = [lmp for lmp in self._lmps[channel] if lmp.pegs.start < at_time]
+                target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(channel[1], rest_handshape())
+                self._lmps[channel] = [*kept, RetractionLMP(channel, pegs, np.asarray(target, dtype=float))]
+                self._timelines.pop(channel, None)
+
+    def frame_times(self, start: float, end: float) -> np.ndarray:
+        """Frame times ``k / fps`` in ``[start, end)``."""
+        first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
+        stop = math.ceil(end * self.fps - _FRAME_TOLERANCE)
+        return np.arange(first, max(first, stop)) / self.fps
+
+    def frames(self, start: float, end: float) -> Motion:
+        """Frames at times ``k / fps`` in ``[start, end)`` from everything activated so far."""
+        times = self.frame_times(start, end)
+        count = times.size
+        rotations = np.empty((count, self.avatar.joint_count, 4))
+        rotations[:] = self._rest_rotations
+        for arm in ARMS:
+            wrists = _sample(self.timeline((arm, "wrist_position")), times)
+            hands = _sample(self.timeline((arm, "hand_rotation")), times)
+            params = _sample(self.timeline((arm, "handshape")), times)
+            rotations[:, self._arm_joints[arm]] = _solved_arm(self.avatar, AVATAR_SIDE[arm], wrists, hands)
+            rotations[:, self._hand_joints[arm]] = _runs_applied(
+                lambda p, side=AVATAR_SIDE[arm]: hand_rotations(self.avatar, side, p), params
+            )
+        if count and not np.all(np.isfinite(rotations)):
+            bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
+            raise FloatingPointError(f"non-finite joint rotation at t = {bad:.4f} s")
+        return Motion(
+            fps=self.fps,
+            joint_names=self.avatar.joint_names,
+            parents=tuple(int(p) for p in self.avatar.parents),
+            offsets=np.asarray(self.avatar.offsets),
+            rotations=rotations,
+            root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
+            start_time=float(times[0]) if count else float(start),
+        )
+
+    def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
+        """The LMPs activated on every channel so far."""
+        return {channel: tuple(lmps) for channel, lmps in self._lmps.items()}
+
+
+def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
+    """A timeline's values at ``times``: only the realizations in control there are asked."""
+    value = np.asarray(timeline.initial.value, dtype=float)
+    out = np.empty((times.size, value.size))
+    out[:] = value
+    if not timeline.realizations or times.size == 0:
+        return out
+    owner = np.searchsorted(timeline.starts, times, side="right") - 1
+    first, last = int(owner[0]), int(owner[-1])
+    for index in range(max(first, 0), last + 1):
+        lo = np.searchsorted(owner, index, side="left")
+        hi = np.searchsorted(owner, index, side="right")
+        if hi > lo:
+            out[lo:hi] = timeline.realizations[index].sample(times[lo:hi])
+    return out
+
+
+def _run_starts(values: np.ndarray) -> np.ndarray:
+    """Indices where a run of identical rows begins."""
+    if values.shape[0] == 0:
+        return np.zeros(0, dtype=int)
+    changed = np.any(values[1:] != values[:-1], axis=1)
+    return np.concatenate([[0], np.flatnonzero(changed) + 1])
+
+
+def _runs_applied(function, values: np.ndarray) -> np.ndarray:
+    """``function(values)`` evaluated once per run of identical rows, repeated back."""
+    starts = _run_starts(values)
+    if starts.size == 0:
+        return function(values)
+    result = function(values[starts])
+    lengths = np.diff(np.append(starts, values.shape[0]))
+    return np.repeat(result, lengths, axis=0)
+
+
+def _solved_arm(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
+    """Local rotations ``(n, 4, 4)`` of one arm's joints from the IK."""
+    inputs = np.concatenate([wrists, hands], axis=1)
+    return _runs_applied(lambda rows: solve_arm(avatar, side, rows[:, :3], rows[:, 3:]).rotations, inputs)
+
