@@ -1,8 +1,9 @@
 """Checking spec files of any of mura's languages, for ``mura check``.
 
 The document's root element says which language a file is in: ``<definition>`` or
-``<utterance>`` (MURML), ``<lexicon>`` (a gesture lexicon). Every problem found comes back
-as a :class:`SpecError`; a file with none is valid.
+``<utterance>`` (MURML), ``<lexicon>`` (a gesture lexicon), ``<sigml>`` or
+``<sigml_collection>`` (signs). Every problem found comes back as a :class:`SpecError`
+(for SiGML, one per broken sign); a file with none is valid.
 """
 
 from __future__ import annotations
@@ -13,6 +14,8 @@ from pathlib import Path
 from mura.errors import SpecError, SpecErrors
 from mura.lexicon import load_lexicon
 from mura.murml import read_utterances
+from mura.sigml import ROOTS as SIGML_ROOTS
+from mura.sigml import read_sigml
 from mura.xml_source import XmlSource
 
 
@@ -49,7 +52,12 @@ def _check_source(source: XmlSource) -> str:
         chunks = sum(len(u.chunks) for u in utterances)
         behaviors = sum(len(u.behaviors) for u in utterances)
         return f"{len(utterances)} utterance(s), {chunks} chunk(s), {behaviors} behaviour(s)"
+    if root in SIGML_ROOTS:
+        result = read_sigml(source)
+        if result.failures:
+            raise SpecErrors([failure.error for failure in result.failures])
+        return f"{len(result.signs)} sign(s)"
     if root == "lexicon":
         lexicon = load_lexicon(source.file)
         return f"lexicon of {len(lexicon.entries)} function(s), {len(lexicon.scene)} place(s)"
-    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance> or <lexicon>)", source.root)
+    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance>, <lexicon>, <sigml> or <sigml_collection>)", source.root)

@@ -24,6 +24,7 @@ from mura.errors import SourceLocation, SpecError
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
 from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence
 from mura.signs import HandConstellation, HandPosture, NonmanualItem, SigmlParseResult, Sign, SignFailure, SignSymmetry
+from mura.xml_source import XmlSource
 from mura.values import (
     BASIC_HANDSHAPES,
     FINGER_BENDINGS,
@@ -45,8 +46,6 @@ MAX_SIGML_BYTES = 32 * 1024 * 1024
 ROOTS: tuple[str, ...] = ("sigml", "sigml_collection")
 SIGN_TAGS: tuple[str, ...] = ("hns_sign", "hamgestural_sign")
 
-_START_TAG = re.compile(rb"<([A-Za-z_][\w.\-:]*)")
-_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[.*?\])*>", re.S)
 
 
 def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
@@ -56,13 +55,13 @@ def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
     large, wrong root).
     """
     data = source.encode("utf-8") if isinstance(source, str) else source
-    if len(data) > MAX_SIGML_BYTES:
-        raise SpecError(f"SiGML document is {len(data)} bytes, more than the limit of {MAX_SIGML_BYTES}", SourceLocation(file))
-    if b"<!ENTITY" in data:
-        raise SpecError("SiGML documents may not declare entities", SourceLocation(file, 1, 1))
-    root = _parse_xml(data, file)
-    positions = _start_positions(data, root)
-    where_of: Callable[[etree._Element], SourceLocation] = lambda el: SourceLocation(file, *positions.get(el, (el.sourceline or 0, 0)))
+    return read_sigml(XmlSource.from_bytes(data, file, MAX_SIGML_BYTES))
+
+
+def read_sigml(source: XmlSource) -> SigmlParseResult:
+    """Every sign of an already parsed SiGML document."""
+    root = source.root
+    where_of: Callable[[etree._Element], SourceLocation] = source.where
     if root.tag not in ROOTS:
         raise SpecError(f"root element <{root.tag}> is not <sigml> or <sigml_collection>", where_of(root))
     signs: list[Sign] = []
@@ -78,38 +77,7 @@ def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
                 raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
         except SpecError as error:
             failures.append(SignFailure(gloss, index, error))
-    return SigmlParseResult(tuple(signs), tuple(failures), file)
-
-
-def _parse_xml(data: bytes, file: str) -> etree._Element:
-    parser = etree.XMLParser(
-        resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False, remove_comments=True, remove_pis=True
-    )
-    try:
-        root = etree.fromstring(data, parser)
-    except etree.XMLSyntaxError as error:
-        line, column = error.position if error.position else (0, 0)
-        raise SpecError(f"not well-formed XML: {error.msg}", SourceLocation(file, line, column)) from None
-    if root is None:
-        raise SpecError("empty SiGML document", SourceLocation(file, 1, 1))
-    return root
-
-
-def _start_positions(data: bytes, root: etree._Element) -> dict[etree._Element, tuple[int, int]]:
-    """Line and column where each element's start tag begins (lxml only knows the line)."""
-    blanked = _SKIPPED.sub(lambda m: re.sub(rb"[^\n]", b" ", m.group(0)), data)
-    offsets = [m.start() for m in _START_TAG.finditer(blanked)]
-    elements = [e for e in root.iter() if isinstance(e.tag, str)]
-    if len(offsets) != len(elements):
-        return {}
-    line_starts = [0] + [i + 1 for i, byte in enumerate(blanked) if byte == 0x0A]
-    positions: dict[etree._Element, tuple[int, int]] = {}
-    line = 0
-    for element, offset in zip(elements, offsets):
-        while line + 1 < len(line_starts) and line_starts[line + 1] <= offset:
-            line += 1
-        positions[element] = (line + 1, offset - line_starts[line] + 1)
-    return positions
+    return SigmlParseResult(tuple(signs), tuple(failures), source.file)
 
 
 def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:

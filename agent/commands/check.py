@@ -11,7 +11,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "check",
         help="parse and validate spec files",
-        description="Parse and validate MURML utterances and gesture lexicons. "
+        description="Parse and validate MURML utterances, gesture lexicons and SiGML signs. "
         "Prints 'FILE: OK' or each error as 'FILE:LINE:COL: message'; exits 0 only if every file is valid.",
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="spec files to check")

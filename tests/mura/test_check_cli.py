@@ -29,4 +29,15 @@ def test_unknown_document_type(tmp_path, capsys):
     path = tmp_path / "song.xml"
     path.write_text("<song/>")
     assert main(["check", str(path)]) == 1
-    assert capsys.readouterr().out.strip() == f"{path}:1:1: unknown document type <song> (expected <definition>, <utterance> or <lexicon>)"
+    assert capsys.readouterr().out.strip() == f"{path}:1:1: unknown document type <song> (expected <definition>, <utterance>, <lexicon>, <sigml> or <sigml_collection>)"
+
+
+def test_sigml_lists_each_broken_sign(tmp_path, capsys):
+    path = tmp_path / "signs.sigml"
+    path.write_text(
+        "<sigml>\n<hns_sign gloss='GOOD'><hamnosys_manual><hamfist/><hamextfingeru/><hampalmd/><hamchest/></hamnosys_manual></hns_sign>\n"
+        "<hns_sign gloss='EMPTY'><hamnosys_manual></hamnosys_manual></hns_sign>\n</sigml>\n"
+    )
+    assert main(["check", str(path)]) == 1
+    (line,) = capsys.readouterr().out.splitlines()
+    assert line.startswith(f"{path}:3:1: ") and "EMPTY" in line and "empty manual stream" in line

@@ -104,9 +104,9 @@ def test_nonmanual_tiers_are_kept_raw() -> None:
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("<sigml><hns_sign>", "not well-formed XML"),
+        ("<sigml><hns_sign>", "malformed XML: Premature end of data"),
         ("<signs/>", "root element <signs> is not <sigml> or <sigml_collection>"),
-        ('<!DOCTYPE sigml [<!ENTITY x "y">]><sigml/>', "may not declare entities"),
+        ('<!DOCTYPE sigml [<!ENTITY x "y">]><sigml/>', "entity declarations are not allowed"),
     ],
 )
 def test_document_errors(text: str, message: str) -> None:
