@@ -261,6 +261,15 @@ class _Circle:
             flexion=flexion,
         )
 
+    def take(self, mask: np.ndarray) -> _Circle:
+        """The circles of the frames selected by a boolean mask."""
+        return _Circle(**{name: getattr(self, name)[mask] for name in self.__dataclass_fields__})
+
+    def elbow(self, psi: np.ndarray) -> np.ndarray:
+        """Elbow positions ``(n, ..., 3)`` at swivels ``psi (n, ...)``."""
+        at = (slice(None),) + (None,) * (psi.ndim - 1)
+        return self.center[at] + self.direction(psi) * self.radius[at][..., None]
+
     def direction(self, psi: np.ndarray) -> np.ndarray:
         """Unit direction from the circle's centre to the elbow at swivel ``psi (n, ...)``."""
         cos, sin = np.cos(psi)[..., None], np.sin(psi)[..., None]
@@ -301,7 +310,7 @@ def _arm_at(chain: _Chain, circle: _Circle, psi: np.ndarray, sc_global: np.ndarr
     extra = (None,) * (psi.ndim - 1)
     at = (slice(None),) + extra
     radial = circle.direction(psi)
-    elbow = circle.center[at] + radial * circle.radius[at][..., None]
+    elbow = circle.elbow(psi)
     upper_dir = quat.normalize(elbow - circle.shoulder[at])
     hinge = quat.normalize(np.cross(radial, np.broadcast_to(circle.axis[at], radial.shape)))
     rest = np.stack((chain.upper_rest, chain.hinge_rest, np.cross(chain.upper_rest, chain.hinge_rest)), axis=-1)
@@ -342,10 +351,31 @@ def _corrected_swivel(
     torso_q: np.ndarray,
     torso_p: np.ndarray,
 ) -> np.ndarray:
-    """The natural swivel moved to spare the wrist and keep the upper arm out of the torso."""
-    coarse = _best_candidate(chain, circle, natural[:, None] + _CANDIDATES, natural, sc_global, hands, torso_q, torso_p)
-    fine = _best_candidate(chain, circle, coarse[:, None] + _FINE, natural, sc_global, hands, torso_q, torso_p)
-    return fine
+    """The natural swivel moved to spare the wrist and keep the upper arm out of the torso.
+
+    Without a hand rotation only frames whose natural swivel puts the upper arm into the
+    torso need the search (elsewhere the natural swivel is already the optimum).
+    """
+    if hands is None:
+        elbow = circle.elbow(natural[:, None])
+        needed = _torso_penetration(chain, circle.shoulder, elbow, torso_q, torso_p)[:, 0] > 0.0
+    else:
+        needed = np.ones(len(natural), dtype=bool)
+    if not np.any(needed):
+        return natural
+    sub = (
+        circle.take(needed),
+        natural[needed],
+        sc_global[needed],
+        None if hands is None else hands[needed],
+        torso_q[needed],
+        torso_p[needed],
+    )
+    coarse = _best_candidate(chain, sub[0], sub[1][:, None] + _CANDIDATES, *sub[1:])
+    fine = _best_candidate(chain, sub[0], coarse[:, None] + _FINE, *sub[1:])
+    swivel = natural.copy()
+    swivel[needed] = fine
+    return swivel
 
 
 def _best_candidate(
@@ -383,13 +413,16 @@ def _cost(
     torso_q: np.ndarray,
     torso_p: np.ndarray,
 ) -> np.ndarray:
-    arm = _arm_at(chain, circle, psi, sc_global, hands)
     cost = ((psi - natural[:, None]) / _SWIVEL_SCALE) ** 2
-    if hands is not None:
+    if hands is None:
+        elbow = circle.elbow(psi)
+    else:
+        arm = _arm_at(chain, circle, psi, sc_global, hands)
+        elbow = arm.elbow
         deviation = arm.deviation / np.where(arm.deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
         flexion = arm.wrist_flexion / np.where(arm.wrist_flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
         cost = cost + _DEVIATION_WEIGHT * deviation**2 + _FLEXION_WEIGHT * flexion**2 + _RESIDUAL_WEIGHT * arm.residual**2
-    depth = _torso_penetration(chain, circle.shoulder, arm.elbow, torso_q, torso_p)
+    depth = _torso_penetration(chain, circle.shoulder, elbow, torso_q, torso_p)
     return cost + _PENETRATION_WEIGHT * (100.0 * depth) ** 2
 
 
