@@ -8,9 +8,16 @@ wrist rotation) are sampled, then both arms' IK is solved (analytic, natural swi
 then the joint-space LMPs (hand shape → finger joint rotations) are applied; every other
 joint keeps its rest rotation and the root stands still at ``(0, root_height, 0)``.
 
-Frames depend only on their own times and the activated LMPs, so sampling window after
-window gives exactly the frames of one call over the whole span. Runs of identical
-channel values (holds, rest) are solved once and repeated, which is exact.
+The elbow's swivel: the IK's natural swivel (Soechting & Flanders with its wrist and
+torso corrections, a search over candidate swivels) is the costly part of the arm, and
+it varies slowly. It is therefore computed on a fixed grid of the utterance clock, every
+:data:`SWIVEL_PERIOD` seconds, and interpolated between grid points by a Catmull-Rom
+spline (C¹); each frame's arm is then solved analytically with that swivel, so wrist
+positions and hand rotations are exact at every frame and the elbow follows the natural
+swivel within the interpolation error. The grid does not depend on the frame rate or on
+the window, so frames depend only on their own times and the activated LMPs: sampling
+window after window gives exactly the frames of one call over the whole span. Runs of
+identical channel values (holds, rest) are solved once and repeated, which is exact.
 """
 
 from __future__ import annotations
@@ -29,6 +36,8 @@ from mura.model import BehaviorSpec
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
+#: Period of the grid on which the natural swivel is computed, seconds (module docstring).
+SWIVEL_PERIOD = 0.1
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -147,7 +156,8 @@ class MotorControl:
             wrists = _sample(self.timeline((arm, "wrist_position")), times)
             hands = _sample(self.timeline((arm, "hand_rotation")), times)
             params = _sample(self.timeline((arm, "handshape")), times)
-            rotations[:, self._arm_joints[arm]] = _solved_arm(self.avatar, AVATAR_SIDE[arm], wrists, hands)
+            swivel = self.swivel(arm, times)
+            rotations[:, self._arm_joints[arm]] = _solved_arm(self.avatar, AVATAR_SIDE[arm], wrists, hands, swivel)
             rotations[:, self._hand_joints[arm]] = _runs_applied(
                 lambda p, side=AVATAR_SIDE[arm]: hand_rotations(self.avatar, side, p), params
             )
@@ -163,6 +173,21 @@ class MotorControl:
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
             start_time=float(times[0]) if count else float(start),
         )
+
+    def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
+        """The natural swivel (radians) at ``times``: IK on the :data:`SWIVEL_PERIOD` grid,
+        Catmull-Rom interpolated."""
+        if times.size == 0:
+            return np.zeros(0)
+        first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
+        last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
+        grid = np.arange(first, last + 1) * SWIVEL_PERIOD
+        wrists = _sample(self.timeline((arm, "wrist_position")), grid)
+        hands = _sample(self.timeline((arm, "hand_rotation")), grid)
+        inputs = np.concatenate([wrists, hands], axis=1)
+        side = AVATAR_SIDE[arm]
+        natural = _runs_applied(lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None], inputs)
+        return _catmull_rom(np.unwrap(natural[:, 0]), first, times / SWIVEL_PERIOD)
 
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
@@ -204,8 +229,17 @@ def _runs_applied(function, values: np.ndarray) -> np.ndarray:
     return np.repeat(result, lengths, axis=0)
 
 
-def _solved_arm(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
-    """Local rotations ``(n, 4, 4)`` of one arm's joints from the IK."""
-    inputs = np.concatenate([wrists, hands], axis=1)
-    return _runs_applied(lambda rows: solve_arm(avatar, side, rows[:, :3], rows[:, 3:]).rotations, inputs)
+def _solved_arm(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray, swivel: np.ndarray) -> np.ndarray:
+    """Local rotations ``(n, 4, 4)`` of one arm's joints from the IK with a given swivel."""
+    inputs = np.concatenate([wrists, hands, swivel[:, None]], axis=1)
+    return _runs_applied(lambda rows: solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs)
+
+
+def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.ndarray:
+    """Catmull-Rom spline through ``values`` at grid indices ``first, first + 1, …``,
+    evaluated at fractional grid ``positions`` (which need one grid point of margin)."""
+    index = np.floor(positions + _FRAME_TOLERANCE).astype(int) - first
+    u = positions - (index + first)
+    p0, p1, p2, p3 = values[index - 1], values[index], values[index + 1], values[index + 2]
+    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
 

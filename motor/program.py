@@ -39,6 +39,11 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
   floor (the avatar's ``root_height`` is subtracted); otherwise through the dominant
   hand's mean stroke position. Only the first three numbers of a center are used.
 
+A location out of the arm's reach (the IK falls short by more than :data:`REACH_TOLERANCE`)
+is replaced by the nearest point the arm reaches, with a warning; a stroke too fast for
+the wrist (above :data:`motor.trajectory.MAX_WRIST_SPEED`) is slowed by the trajectory
+planner, and the warning is carried into the program.
+
 ``mode="pointTo"`` with a point: the wrist goes on the line from the shoulder toward
 the point at :data:`POINTING_REACH` of the arm's length, and the fingers point from the
 wrist to the point.
@@ -64,6 +69,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from motor.arm_ik import solve_arm
 from motor.avatar import Avatar
 from motor.biocontrol import MANNERS, movement_duration
 from motor.guiding_strokes import circle_from_start, curve_breakpoints
@@ -73,7 +79,7 @@ from motor.lmp import LMP, HandShapeLMP, RetractionLMP, TimePegs, WristPositionL
 from motor.locations import resolve_location
 from motor.quaternion import between_vectors, rotate
 from motor.symmetry import mirror_directions, mirror_points
-from motor.trajectory import fitts_duration, time_breakpoints
+from motor.trajectory import fitts_duration, plan_wrist_trajectory, time_breakpoints
 from mura.errors import SourceLocation, SpecError
 from mura.model import (
     Arm,
@@ -116,6 +122,8 @@ NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
 NEUTRAL_LOCATION = GridLocation("LocChest", "LocCCenterRight", "LocNorm")
 #: The relaxed hand: this fraction of the way from the flat hand to the rounded one.
 REST_CURL = 0.3
+#: How far (m) the IK may fall short of a planned location before it is moved in reach.
+REACH_TOLERANCE = 1e-3
 #: Closest two key times may be and still count as distinct, seconds.
 _SAME_TIME = 1e-9
 _SAME_PLACE = 1e-4
@@ -663,7 +671,7 @@ class Planner:
         retraction = 0.0
         posture = "interim_rest" if next_gesture_follows else "rest"
         for arm in arms:
-            arm_lmps, last_wrist = self.arm_lmps(compiler, stroke, arm, pegs)
+            arm_lmps, last_wrist = self.arm_lmps(compiler, stroke, arm, pegs, notes)
             lmps.extend(arm_lmps)
             distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
             retraction = max(retraction, retraction_duration(distance))
@@ -687,7 +695,21 @@ class Planner:
             )  # fmt: skip
         return pegs
 
-    def arm_lmps(self, compiler: _Compiler, stroke: _Fragment, arm: str, pegs: TimePegs) -> tuple[list[LMP], np.ndarray | None]:
+    def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
+        """``points`` with those the arm cannot reach moved to the nearest it can (warning)."""
+        solution = solve_arm(self.avatar, AVATAR_SIDE[arm], points)
+        short = solution.shortfall > REACH_TOLERANCE
+        if not np.any(short):
+            return points
+        notes.append(
+            f"{behavior}: {int(np.sum(short))} location(s) of the {arm} hand out of reach by up to "
+            f"{float(np.max(solution.shortfall)):.3f} m; moved to the nearest reachable point"
+        )
+        return np.where(short[:, None], solution.wrist, points)
+
+    def arm_lmps(
+        self, compiler: _Compiler, stroke: _Fragment, arm: str, pegs: TimePegs, notes: list[str]
+    ) -> tuple[list[LMP], np.ndarray | None]:
         """The stroke LMPs of one arm, and its wrist position at the end of the stroke."""
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
@@ -696,8 +718,10 @@ class Planner:
         if locations:
             times, values = _timed_values(locations)
             curved_flags = tuple(_curved_into(locations, t) for t in times[1:])
-            points = np.array([np.asarray(v, dtype=float) for v in values])
-            lmps.append(WristPositionLMP(arm, held, points, np.array(times), curved_flags, warnings=()))
+            points = self.within_reach(compiler.behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+            if len(points) > 1:
+                notes.extend(f"{compiler.behavior}: {note}" for note in plan_wrist_trajectory(points, np.array(times), curved=curved_flags).warnings)
+            lmps.append(WristPositionLMP(arm, held, points, np.array(times), curved_flags))
             last_wrist = points[-1]
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
