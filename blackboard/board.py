@@ -59,6 +59,7 @@ class Blackboard:
         self.error: Exception | None = None
         self.feedback: list[BehaviorFeedback] = []
         self.effective_ends: dict[str, float] = {}
+        self.cutoff: float | None = None  # set by an interrupt: when the last retraction ends
         self.lurk_allowed: float = time  # when the previous chunk subsides: this one may take over
         # agenda entries of the scheduler, kept to cancel or move them (interrupts, cut retractions)
         self.feedback_entries: list[int] = []
@@ -100,6 +101,8 @@ class Blackboard:
     @property
     def effective_end(self) -> float:
         """When the last behaviour ends, retractions cut short by a following gesture included."""
+        if self.cutoff is not None:
+            return self.cutoff
         return max([self.strokes_done] + list(self.effective_ends.values()))
 
     def move(self, state: ChunkState, time: float, reason: str = "") -> None:

@@ -9,7 +9,8 @@ planned in a worker thread while the current one plays). For each chunk:
    the chunk's timing is solved (:mod:`blackboard.timing`) and each gesture is planned
    with the motor control. Knowing that a chunk follows sets ``final=False`` for the
    speech and ``next_gesture_follows`` for gestures followed by another on the same arm.
-2. Pending once planned. Lurking as soon as the previous chunk is Subsiding (or
+2. Pending once planned (the next chunk's planning starts when this one is InExec).
+   Lurking as soon as the previous chunk is Subsiding (or
    Completed): its motor programs are activated before any frame at their start is sampled.
 3. InExec when its speech or first behaviour starts; Subsiding once the phrase and every
    stroke are over while a retraction is still running, else straight to Completed;
@@ -147,6 +148,7 @@ class Scheduler:
         self._cancelled: set[int] = set()
         self._counter = itertools.count()
         self._frame_cursor: float | None = None
+        self._time = 0.0  # the scheduler's own time: how far frames and events have been processed
         self._arm_last: dict[str, tuple[Blackboard, PlannedGesture]] = {}
         self._queue: list[_Job] = []
         self._board_jobs: dict[Blackboard, _Job] = {}
@@ -240,8 +242,9 @@ class Scheduler:
         return self._plan(job, index, current)
 
     def _following(self, current: Blackboard | None) -> tuple[_Job | None, int]:
-        if current is not None:
-            job = self._job_of(current)
+        with self._lock:
+            job = self._board_jobs.get(current) if current is not None else None
+        if job is not None:
             if not job.interrupted and job.failed is None and current.index + 1 < len(job.chunks):
                 return job, current.index + 1
         with self._lock:
@@ -249,12 +252,16 @@ class Scheduler:
                 return None, 0
             job = self._queue.pop(0)
             self._active.append(job)
-        now = self.clock.now()
-        job.origin = math.ceil(now * self.motor.fps - _EPS) / self.motor.fps
+        start = self.clock.now() + (self.config.live_margin if self.clock.live else 0.0)
+        if current is not None and current.timing is not None and current.state is not ChunkState.FAILED:
+            start = max(start, current.strokes_done)
+        job.origin = math.ceil(start * self.motor.fps - _EPS) / self.motor.fps
+        job.timeline.origin = job.origin
         with self._lock:
             alone = len(self._active) == 1
         if self._frame_cursor is None or alone:
             self._frame_cursor = max(self._frame_cursor or job.origin, job.origin)
+            self._time = max(self._time, job.origin)
         return job, 0
 
     def _job_of(self, board: Blackboard) -> _Job:
@@ -265,23 +272,23 @@ class Scheduler:
         if board.state is ChunkState.FAILED:
             return self._next_board(None)  # its utterance ends here; the next queued one, if any, goes on
         job = self._job_of(board)
-        self._advance_to(max(self.clock.now(), board.lurk_allowed))
+        self._advance_to(max(self._time, board.lurk_allowed))
         if self._take_interrupt(job):
-            board.move(ChunkState.FAILED, self.clock.now(), "interrupted before it ran")
+            board.move(ChunkState.FAILED, self._time, "interrupted before it ran")
             self._check_done(job)
             return self._next_board(board)
         self._lurk(board)
-        pending = self._submit_next(board)
-        self._advance_to(max(board.exec_start, self.clock.now()))
+        self._advance_to(max(board.exec_start, self._time))
         if board.state is ChunkState.LURKING:
-            board.move(ChunkState.IN_EXEC, self.clock.now())
+            board.move(ChunkState.IN_EXEC, self._time)
+        pending = self._submit_next(board)  # Fig. 6: the next chunk is prepared while this one executes
         if not job.interrupted:
-            self._advance_to(max(board.strokes_done, self.clock.now()))
+            self._advance_to(max(board.strokes_done, self._time))
         following = _result(pending)
         if job.interrupted:
             return following
         if following is not None and following.state is ChunkState.PENDING:
-            self._cut_retractions(following)
+            self._cut_retractions(following.gestures)
         if board.state is ChunkState.IN_EXEC:
             self._subside(board)
         return following
@@ -292,13 +299,15 @@ class Scheduler:
         return self._planner.submit(self._next_board, board)
 
     def _lurk(self, board: Blackboard) -> None:
-        now = self.clock.now()
+        now = self._time
         board.move(ChunkState.LURKING, now)
         job = self._job_of(board)
-        for gesture in board.gestures:
+        for gesture in sorted(board.gestures, key=lambda g: g.program.pegs.start):
+            self._cut_retractions((gesture,))
             self.motor.activate(gesture.program)
-            if gesture.program.pegs.start < now - _EPS:
-                job.timeline.warn(f"{gesture.behavior.id}: activated {now - gesture.program.pegs.start:.3f} s late (planning too slow)")
+            late = self._frame_cursor - gesture.program.pegs.start
+            if late > _EPS:  # frames after its start were sampled without it
+                job.timeline.warn(f"{gesture.behavior.id}: activated {late:.3f} s late (planning too slow)")
             for arm in gesture.demands.arms:
                 self._arm_last[arm] = (board, gesture)
             self._schedule_feedback(board, gesture)
@@ -319,9 +328,9 @@ class Scheduler:
         board.finish_entries[behavior] = self._at(pegs.end, lambda: board.post(behavior, "finished", "end", pegs.end))
         board.feedback_entries.extend(entries)
 
-    def _cut_retractions(self, following: Blackboard) -> None:
+    def _cut_retractions(self, gestures: tuple[PlannedGesture, ...]) -> None:
         """A following gesture that starts preparing before an earlier one's retraction ends cuts it there."""
-        for gesture in following.gestures:
+        for gesture in gestures:
             start = gesture.program.pegs.start
             for arm in gesture.demands.arms:
                 earlier = self._arm_last.get(arm)
@@ -342,7 +351,7 @@ class Scheduler:
                         board.completed_entry = self._at(board.effective_end, lambda b=board: self._complete(b))
 
     def _subside(self, board: Blackboard) -> None:
-        now = self.clock.now()
+        now = self._time
         if board.effective_end > now + _EPS:
             board.move(ChunkState.SUBSIDING, now)
             board.completed_entry = self._at(board.effective_end, lambda: self._complete(board))
@@ -350,7 +359,7 @@ class Scheduler:
             self._complete(board, "no retraction active (skipped by the next gesture, or none planned)")
 
     def _complete(self, board: Blackboard, reason: str = "") -> None:
-        board.move(ChunkState.COMPLETED, self.clock.now(), reason)
+        board.move(ChunkState.COMPLETED, self._time, reason)
         self._check_done(self._job_of(board))
 
     def _check_done(self, job: _Job) -> None:
@@ -374,6 +383,7 @@ class Scheduler:
             next_event = self._agenda[0][0] if self._agenda else math.inf
             stop = min(t, next_event, self._frame_cursor + self.config.frame_window)
             self.clock.sleep_until(stop)
+            self._time = max(self._time, stop)
             self._sample_frames(stop)
             while self._agenda and self._agenda[0][0] <= stop + _EPS:
                 _, key, action = heapq.heappop(self._agenda)
@@ -435,6 +445,7 @@ class Scheduler:
                 board.effective_ends[g.behavior.id] = min(board.effective_ends[g.behavior.id], retracted)
                 board.timeline.behavior(g.behavior.id).phases["end"] = retracted - board.origin
             board.speech_end = min(board.speech_end, now)
+            board.cutoff = retracted
             if state is ChunkState.IN_EXEC:
                 board.move(ChunkState.SUBSIDING, now, "interrupted")
             else:
@@ -631,9 +642,10 @@ class Scheduler:
     # ----------------------------------------------------------------- results
 
     def _finish(self, job: _Job) -> None:
-        ends = [b.effective_end for b in job.boards if b.timing is not None]
+        performed = [b for b in job.boards if b.timing is not None and b.state is not ChunkState.FAILED]
+        ends = [b.effective_end for b in performed]
         job.end = max(ends + [job.origin])
-        audio, rate = self._audio(job)
+        audio, rate = self._audio(job, performed)
         if audio is not None:
             job.end = max(job.end, job.origin + len(audio) / rate)
         job.timeline.duration = job.end - job.origin
@@ -653,9 +665,8 @@ class Scheduler:
                 self._board_jobs.pop(board, None)
         job.done.set()
 
-    def _audio(self, job: _Job) -> tuple[np.ndarray | None, int | None]:
-        pieces = [(b.speech_onset - job.origin, b.speech) for b in job.boards
-                  if b.timing is not None and b.speech is not None and b.speech.audio is not None]
+    def _audio(self, job: _Job, performed: list[Blackboard]) -> tuple[np.ndarray | None, int | None]:
+        pieces = [(b.speech_onset - job.origin, b.speech) for b in performed if b.speech is not None and b.speech.audio is not None]
         if not pieces:
             return None, None
         rate = pieces[0][1].sample_rate

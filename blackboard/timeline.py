@@ -66,6 +66,7 @@ class Timeline:
         self.name = name
         self.fps = fps
         self.duration = 0.0
+        self.origin = 0.0  # clock time of the utterance start (non-zero for queued live utterances)
         self.chunks: list[ChunkEntry] = []
         self.behaviors: list[BehaviorEntry] = []
         self.words: list[dict] = []
@@ -103,7 +104,7 @@ class Timeline:
         return [t.state for t in self.chunk(index).states]
 
     def to_json(self) -> dict:
-        """The viewer's JSON shape (version 1) plus ``stretches``, ``slack`` and ``warnings``."""
+        """The viewer's JSON shape (version 1) plus ``origin``, ``stretches``, ``slack`` and ``warnings``."""
         with self._lock:
             return {
                 "version": JSON_VERSION,
@@ -115,6 +116,7 @@ class Timeline:
                 "words": list(self.words),
                 "phonemes": list(self.phonemes),
                 "time_tags": dict(self.time_tags),
+                "origin": self.origin,
                 "stretches": [
                     {"chunk": s.chunk, "amount": s.amount, "reason": s.reason, "behavior": s.behavior}
                     for s in self.stretches
