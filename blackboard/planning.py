@@ -13,25 +13,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
+from motor.lmp import TimePegs
 from motor.motion import Motion
 from mura.model import BehaviorSpec
-
-try:
-    from motor.lmp import TimePegs
-except ImportError:  # motor/lmp.py is being written; same fields, replaced once it lands
-
-    @dataclass(frozen=True)
-    class TimePegs:  # type: ignore[no-redef]
-        """The seven time pegs of a gesture's phases, seconds on the utterance clock."""
-
-        start: float
-        ready: float
-        stroke_start: float
-        stroke: float
-        stroke_end: float
-        relax: float
-        end: float
-
 
 #: The pegs in phase order, as they appear in the timeline.
 PEG_NAMES: tuple[str, ...] = ("start", "ready", "stroke_start", "stroke", "stroke_end", "relax", "end")
