@@ -42,9 +42,9 @@ _YAW = (13.2, 0.86, 0.11)  # constant, per degree azimuth, per degree target ele
 _MODEL_ARM_CM = 60.0
 
 #: Candidate swivels around the natural one (radians) for the corrections.
-_CANDIDATES = np.deg2rad(np.arange(-120.0, 120.1, 10.0))
+_CANDIDATES = np.deg2rad(np.arange(-120.0, 120.1, 15.0))
 #: A finer search around the best coarse candidate.
-_FINE = np.deg2rad(np.arange(-10.0, 10.1, 2.5))
+_FINE = np.deg2rad(np.arange(-7.5, 7.6, 3.75))
 #: Cost weights: distance from the natural swivel (per radian), wrist deviation and
 #: flexion as fractions of their limits, unachieved hand rotation (per radian), torso
 #: penetration (per centimetre).
@@ -417,13 +417,45 @@ def _cost(
     if hands is None:
         elbow = circle.elbow(psi)
     else:
-        arm = _arm_at(chain, circle, psi, sc_global, hands)
-        elbow = arm.elbow
-        deviation = arm.deviation / np.where(arm.deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
-        flexion = arm.wrist_flexion / np.where(arm.wrist_flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
-        cost = cost + _DEVIATION_WEIGHT * deviation**2 + _FLEXION_WEIGHT * flexion**2 + _RESIDUAL_WEIGHT * arm.residual**2
+        elbow = circle.elbow(psi)
+        deviation, flexion, residual = _wrist_load(chain, circle, psi, elbow, hands)
+        deviation = deviation / np.where(deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
+        flexion = flexion / np.where(flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
+        cost = cost + _DEVIATION_WEIGHT * deviation**2 + _FLEXION_WEIGHT * flexion**2 + _RESIDUAL_WEIGHT * residual**2
     depth = _torso_penetration(chain, circle.shoulder, elbow, torso_q, torso_p)
     return cost + _PENETRATION_WEIGHT * (100.0 * depth) ** 2
+
+
+def _wrist_load(
+    chain: _Chain, circle: _Circle, psi: np.ndarray, elbow: np.ndarray, hands: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Wrist deviation and flexion a hand rotation needs at swivel ``psi (n, K)``, and an
+    estimate of the rotation left unachieved by the joint limits (radians).
+
+    The same quantities :func:`_arm_at` computes, from vectors alone (no rotation
+    matrices): the wrist's swing is the rotation taking the forearm axis, seen from the
+    hand, onto the hand's long axis; the forearm twist is what turns the elbow hinge onto
+    where the hand rotation, undone by that swing, wants it.
+    """
+    hand = hands[:, None, :]
+    forearm = (circle.wrist[:, None, :] - elbow) / chain.fore
+    seen_from_hand = quat.rotate(quat.conjugate(hand), forearm)
+    axis = np.cross(seen_from_hand, chain.fore_rest)
+    sine = np.linalg.norm(axis, axis=-1)
+    angle = np.arctan2(sine, np.sum(seen_from_hand * chain.fore_rest, axis=-1))
+    rotvec = axis * (angle / np.maximum(sine, 1e-12))[..., None]
+    flexion = rotvec @ chain.flexion_axis
+    deviation = rotvec @ chain.deviation_axis
+    swing = quat.from_rotation_vector(rotvec)
+    wanted_hinge = quat.rotate(quat.multiply(hand, quat.conjugate(swing)), chain.hinge_rest)
+    hinge = quat.normalize(np.cross(circle.direction(psi), circle.axis[:, None, :]))
+    twist_axis = forearm * float(chain.pronation_axis @ chain.fore_rest)
+    twist = np.arctan2(np.sum(np.cross(hinge, wanted_hinge) * twist_axis, axis=-1), np.sum(hinge * wanted_hinge, axis=-1))
+    excess = lambda value, limits: value - np.clip(value, *limits)
+    residual = np.sqrt(
+        excess(flexion, chain.wrist_flexion) ** 2 + excess(deviation, chain.wrist_deviation) ** 2 + excess(twist, chain.twist_range) ** 2
+    )
+    return deviation, flexion, residual
 
 
 def _torso_penetration(chain: _Chain, shoulder: np.ndarray, elbow: np.ndarray, torso_q: np.ndarray, torso_p: np.ndarray) -> np.ndarray:
