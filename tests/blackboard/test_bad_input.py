@@ -11,7 +11,7 @@ from mura.model import Affiliate, Utterance
 from mura.murml import parse_utterance
 from tts import SpeechError
 
-from conftest import FailingSpeech, FakeMotor, RecordingSpeech, utterance
+from blackboard_fakes import FailingSpeech, FakeMotor, RecordingSpeech, utterance
 
 FOUR_CHUNKS = """<definition><utterance><specification>
   First <time id="a1"/> this <time id="a2" chunkborder="true"/>

@@ -9,7 +9,7 @@ import pytest
 
 from blackboard import ChunkState, ChunkStateChanged, Scheduler, SchedulerConfig, WallClock
 
-from conftest import UTTERANCES, FakeMotor, RecordingSpeech, utterance
+from blackboard_fakes import UTTERANCES, FakeMotor, RecordingSpeech, utterance
 
 SPEEDUP = 20.0
 CONFIG = SchedulerConfig(live_margin=1.0)  # clock seconds planning may take: 50 ms of wall time at 20×

@@ -10,7 +10,7 @@ import pytest
 from blackboard import ChunkState, FramesReady, Scheduler, SpeechStarted, VirtualClock, plot_timeline
 from mura.murml import load_utterance
 
-from conftest import CORPUS, UTTERANCES, FakeMotor, RecordingSpeech, utterance
+from blackboard_fakes import CORPUS, UTTERANCES, FakeMotor, RecordingSpeech, utterance
 
 ORDER = ["InPrep", "Pending", "Lurking", "InExec", "Subsiding", "Completed"]
 
