@@ -230,13 +230,6 @@ class Avatar:
         upper, fore = self.arm_lengths(side)
         return upper + fore
 
-    def site(self, name: str) -> Site:
-        """A named location; KeyError naming it if the avatar does not define it."""
-        try:
-            return self.sites[name]
-        except KeyError:
-            raise KeyError(f"avatar {self.name!r} has no location {name!r}") from None
-
 
 def check_side(side: str) -> str:
     """The side itself if it is "l" or "r"; ValueError otherwise."""

@@ -28,7 +28,7 @@ from dataclasses import replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import LONG_FINGERS, THUMB_POSTURES, Avatar
+from motor.avatar import LONG_FINGERS, THUMB_POSTURES, Avatar, FingerCalibration, HandFrame
 from mura.errors import SpecError
 from mura.values import BASIC_HANDSHAPES, FINGER_BENDINGS, FINGERS, OPENINGS, THUMB_POSITIONS, HandShape
 
@@ -188,7 +188,7 @@ def hand_rotations(avatar: Avatar, side: str, params: np.ndarray) -> np.ndarray:
     return rotations
 
 
-def _base_rotation(frame, k: int, bend: np.ndarray, splay: np.ndarray, calibration) -> np.ndarray:
+def _base_rotation(frame: HandFrame, k: int, bend: np.ndarray, splay: np.ndarray, calibration: FingerCalibration) -> np.ndarray:
     """The seed-000 finger base joint from bend and splay (radians)."""
     toward_thumb = _TOWARD_THUMB[k]
     b_prime = np.clip(2.0 * bend / np.pi, 0.0, 1.0)
@@ -200,7 +200,7 @@ def _base_rotation(frame, k: int, bend: np.ndarray, splay: np.ndarray, calibrati
     return quat.multiply(quat.multiply(splay_part, bend_part), quat.multiply(taper_part, twist_part))
 
 
-def _cmc_rotation(frame, finger: str, bend: np.ndarray, splay_proportion: np.ndarray) -> np.ndarray:
+def _cmc_rotation(frame: HandFrame, finger: str, bend: np.ndarray, splay_proportion: np.ndarray) -> np.ndarray:
     """Carpometacarpal hinge of the ring or little finger, its axis oblique across the palm."""
     axis = quat.normalize(frame.bend_axis + 0.35 * frame.twist_axis)
     b_prime = np.clip(2.0 * bend / np.pi, 0.0, 1.0)

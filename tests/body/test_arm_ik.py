@@ -203,3 +203,13 @@ def test_wrist_and_twist_stay_in_limits(avatar):
     pose = _pose(avatar, "r", solution)
     reached = pose.orientations[:, avatar.arm_joints("r")[3]]
     assert np.allclose(quat.angle_between(reached, hands), solution.orientation_error, atol=1e-6)
+
+
+@pytest.mark.parametrize("posture", ["rest", "interim_rest"])
+@pytest.mark.parametrize("side", SIDES)
+def test_named_postures_are_reachable(avatar, posture, side):
+    named = avatar.postures[posture][side]
+    solution = solve_arm(avatar, side, named.wrist[None], named.hand_rotation[None])
+    assert solution.shortfall[0] == 0.0
+    assert np.degrees(solution.orientation_error[0]) < 1.0
+    assert solution.penetration[0] == 0.0
