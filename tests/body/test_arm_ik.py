@@ -213,3 +213,18 @@ def test_named_postures_are_reachable(avatar, posture, side):
     assert solution.shortfall[0] == 0.0
     assert np.degrees(solution.orientation_error[0]) < 1.0
     assert solution.penetration[0] == 0.0
+
+
+def test_turning_the_torso_turns_the_solution_with_it(avatar):
+    targets = _signing_space(avatar)[::11]
+    frames = len(targets)
+    turn = quat.from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.4)
+    pivot = avatar.rest_positions[avatar.joint_index("vt1")]
+    moved = quat.rotate(turn, targets)
+    upright = solve_arm(avatar, "r", targets)
+    turned = solve_arm(
+        avatar, "r", moved, torso_rotations=np.tile(turn, (frames, 1)), torso_positions=np.tile(quat.rotate(turn, pivot), (frames, 1))
+    )
+    assert np.allclose(turned.wrist, quat.rotate(turn, upright.wrist), atol=1e-9)
+    assert np.allclose(np.abs(np.sum(turned.rotations * upright.rotations, axis=-1)), 1.0, atol=1e-9)
+    assert np.allclose(turned.shortfall, upright.shortfall, atol=1e-9)
