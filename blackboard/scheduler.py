@@ -49,7 +49,7 @@ from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
 from blackboard.errors import BehaviorError, OverlappingGestures, ScheduleError
 from blackboard.events import EventBus, FramesReady, Observer, SpeechEnded, SpeechStarted
-from blackboard.planning import PEG_NAMES, GestureDemands, MotorControl, TimePegs
+from blackboard.planning import PEG_NAMES, MotorControl, TimePegs
 from blackboard.timeline import BehaviorEntry, ChunkEntry, PlanningSlack, Timeline
 from blackboard.timing import ChunkTiming, GestureRequest, TimingConfig, time_chunk
 
@@ -175,7 +175,11 @@ class Scheduler:
                 raise ScheduleError("run() while a live session plays; use start() to queue the utterance")
             self._queue.append(job)
             self._running = True
-        self._session()
+        try:
+            self._session()
+        finally:
+            with self._lock:
+                self._running = False
         return job.result
 
     def start(self, utterance: Utterance, name: str = "utterance") -> LiveHandle:
@@ -188,6 +192,14 @@ class Scheduler:
                 self._thread = threading.Thread(target=self._guarded_session, name="scheduler", daemon=True)
                 self._thread.start()
         return LiveHandle(self, job)
+
+    def close(self) -> None:
+        """Wait for the live session to end and stop the planning workers."""
+        if self._thread is not None:
+            self._thread.join()
+        for pool in (self._planner, self._contributors):
+            if pool is not None:
+                pool.shutdown()
 
     def _guarded_session(self) -> None:
         try:
@@ -660,7 +672,7 @@ class Scheduler:
             error=failed.error if failed is not None else None,
         )
         with self._lock:
-            self._active.remove(job)
+            (self._active if job in self._active else self._queue).remove(job)
             for board in job.boards:
                 self._board_jobs.pop(board, None)
         job.done.set()

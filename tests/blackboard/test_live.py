@@ -86,3 +86,15 @@ def test_queued_utterances_join_like_chunks():
     assert b_onset >= a_end + 0.25 - 1e-6
     # planned while the first one still played
     assert b["origin"] + b["chunks"][0]["states"][0]["time"] < a["origin"] + a["chunks"][-1]["states"][-1]["time"]
+
+
+def test_interrupting_a_queued_utterance_drops_it_before_it_starts():
+    scheduler = live()
+    first = scheduler.start(utterance("circle_wheel.xml"), name="first")
+    second = scheduler.start(utterance("fig2_take_this_bar.xml"), name="second")
+    second.interrupt()
+    assert first.wait(timeout=10).failed_chunk is None
+    dropped = second.wait(timeout=10)
+    assert dropped.motion is None and dropped.audio is None
+    assert all(c["states"][-1]["state"] == "Failed" for c in dropped.timeline.to_json()["chunks"])
+    scheduler.close()
