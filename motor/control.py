@@ -58,6 +58,10 @@ class MotorControl:
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
+        self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
+        self._last_arm = {arm: _LastRun() for arm in ARMS}
+        self._last_hand = {arm: _LastRun() for arm in ARMS}
+        self._last_swivel = {arm: _LastRun() for arm in ARMS}
         self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
         self._hand_joints = {arm: avatar.hand_joints(AVATAR_SIDE[arm]) for arm in ARMS}
         rest = np.zeros((avatar.joint_count, 4))
@@ -110,7 +114,11 @@ class MotorControl:
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
             self._lmps[channel].append(lmp)
-            self._timelines.pop(channel, None)
+            self._changed(channel)
+
+    def _changed(self, channel: tuple[str, str]) -> None:
+        self._timelines.pop(channel, None)
+        self._swivels[channel[0]].clear()
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
         """The channel's timeline of everything activated so far (built on demand)."""
@@ -138,7 +146,7 @@ class MotorControl:
                 kept = [lmp for lmp in self._lmps[channel] if lmp.pegs.start < at_time]
                 target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(channel[1], rest_handshape())
                 self._lmps[channel] = [*kept, RetractionLMP(channel, pegs, np.asarray(target, dtype=float))]
-                self._timelines.pop(channel, None)
+                self._changed(channel)
 
     def frame_times(self, start: float, end: float) -> np.ndarray:
         """Frame times ``k / fps`` in ``[start, end)``."""
@@ -156,10 +164,13 @@ class MotorControl:
             wrists = _sample(self.timeline((arm, "wrist_position")), times)
             hands = _sample(self.timeline((arm, "hand_rotation")), times)
             params = _sample(self.timeline((arm, "handshape")), times)
-            swivel = self.swivel(arm, times)
-            rotations[:, self._arm_joints[arm]] = _solved_arm(self.avatar, AVATAR_SIDE[arm], wrists, hands, swivel)
-            rotations[:, self._hand_joints[arm]] = _runs_applied(
-                lambda p, side=AVATAR_SIDE[arm]: hand_rotations(self.avatar, side, p), params
+            side = AVATAR_SIDE[arm]
+            inputs = np.concatenate([wrists, hands, self.swivel(arm, times)[:, None]], axis=1)
+            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
+                lambda rows, side=side: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs
+            )
+            rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
+                lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
@@ -181,13 +192,20 @@ class MotorControl:
             return np.zeros(0)
         first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
         last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
-        grid = np.arange(first, last + 1) * SWIVEL_PERIOD
-        wrists = _sample(self.timeline((arm, "wrist_position")), grid)
-        hands = _sample(self.timeline((arm, "hand_rotation")), grid)
-        inputs = np.concatenate([wrists, hands], axis=1)
-        side = AVATAR_SIDE[arm]
-        natural = _runs_applied(lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None], inputs)
-        return _catmull_rom(np.unwrap(natural[:, 0]), first, times / SWIVEL_PERIOD)
+        known = self._swivels[arm]
+        missing = np.array([i for i in range(first, last + 1) if i not in known], dtype=int)
+        if missing.size:
+            grid = missing * SWIVEL_PERIOD
+            wrists = _sample(self.timeline((arm, "wrist_position")), grid)
+            hands = _sample(self.timeline((arm, "hand_rotation")), grid)
+            side = AVATAR_SIDE[arm]
+            solved = self._last_swivel[arm].apply(
+                lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None],
+                np.concatenate([wrists, hands], axis=1),
+            )
+            known.update(zip(missing.tolist(), solved[:, 0].tolist()))
+        natural = np.array([known[i] for i in range(first, last + 1)])
+        return _catmull_rom(np.unwrap(natural), first, times / SWIVEL_PERIOD)
 
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
@@ -219,20 +237,24 @@ def _run_starts(values: np.ndarray) -> np.ndarray:
     return np.concatenate([[0], np.flatnonzero(changed) + 1])
 
 
-def _runs_applied(function, values: np.ndarray) -> np.ndarray:
-    """``function(values)`` evaluated once per run of identical rows, repeated back."""
-    starts = _run_starts(values)
-    if starts.size == 0:
-        return function(values)
-    result = function(values[starts])
-    lengths = np.diff(np.append(starts, values.shape[0]))
-    return np.repeat(result, lengths, axis=0)
+class _LastRun:
+    """Runs of identical input rows evaluated once, remembering the last run of the
+    previous call so that a value held across calls is not evaluated again."""
 
+    def __init__(self) -> None:
+        self.row: np.ndarray | None = None
+        self.result: np.ndarray | None = None
 
-def _solved_arm(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray, swivel: np.ndarray) -> np.ndarray:
-    """Local rotations ``(n, 4, 4)`` of one arm's joints from the IK with a given swivel."""
-    inputs = np.concatenate([wrists, hands, swivel[:, None]], axis=1)
-    return _runs_applied(lambda rows: solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs)
+    def apply(self, function, values: np.ndarray) -> np.ndarray:
+        starts = _run_starts(values)
+        if starts.size == 0:
+            return function(values)
+        unique = values[starts]
+        reuse = self.row is not None and np.array_equal(unique[0], self.row)
+        fresh = function(unique[1:] if reuse else unique) if unique.shape[0] > int(reuse) else None
+        result = fresh if not reuse else (self.result[None] if fresh is None else np.concatenate([self.result[None], fresh]))
+        self.row, self.result = unique[-1].copy(), result[-1].copy()
+        return np.repeat(result, np.diff(np.append(starts, values.shape[0])), axis=0)
 
 
 def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.ndarray:

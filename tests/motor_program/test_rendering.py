@@ -204,10 +204,9 @@ def test_frames_are_vectorized_not_looped(avatar, monkeypatch) -> None:
 
     monkeypatch.setattr(control_module, "solve_arm", counted("solve_arm", control_module.solve_arm))
     monkeypatch.setattr(control_module, "hand_rotations", counted("hand_rotations", control_module.hand_rotations))
-    control, _ = render(avatar, _two_gestures(), end=0.0)
     counts = []
     for fps in (30.0, 300.0):
-        control.fps = fps
+        control, _ = render(avatar, _two_gestures(), fps=fps, end=0.0)
         before = dict(calls)
         motion = control.frames(0.0, 4.0)
         assert motion.frame_count == int(4.0 * fps)

@@ -1,0 +1,133 @@
+"""Motion synthesis speed: frames of the full skeleton per second from activated programs.
+
+Not a test: prints figures. ``run(quick)`` plans a multi-gesture utterance — every gesture
+of the example utterances, one after another with co-articulated hand-overs — activates
+it on a fresh :class:`motor.control.MotorControl` and renders it, at 25 and 60 fps:
+
+* ``frames_per_s_*``: all frames in one ``frames`` call (offline rendering);
+* ``streamed_frames_per_s_*``: the same frames in 0.1 s windows, as the scheduler asks;
+* ``activation_ms_*``: activating every LMP (building the channel timelines), per LMP
+  and not per frame, so timed apart;
+* ``bare_*``: the cost of merely composing every joint rotation of every frame with
+  numpy — forward kinematics of the rendered rotations (a quaternion product and a
+  rotated offset per joint per frame) and a single quaternion product per joint per
+  frame — and the ratio of synthesis time to forward-kinematics time.
+
+Medians of several runs; the design target is ≥ 150,000 frames/s on one core and a ratio
+≤ 10 (DESIGN.md).
+"""
+
+from __future__ import annotations
+
+import json
+import statistics
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.avatar import load_avatar
+from motor.control import MotorControl
+from motor.kinematics import forward_kinematics
+from motor.lmp import TimePegs
+from motor.program import MotorProgram
+from mura.model import BehaviorSpec
+from mura.murml import load_utterance
+
+UTTERANCES = Path(__file__).resolve().parents[1] / "specs" / "utterances"
+#: Seconds from one gesture's start to the next's; the next starts during the retraction.
+SPACING = 2.2
+
+
+def _median_seconds(call: Callable[[], object], repeats: int) -> float:
+    durations = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        call()
+        durations.append(time.perf_counter() - started)
+    return statistics.median(durations)
+
+
+def _gestures() -> list[BehaviorSpec]:
+    return [b for path in sorted(UTTERANCES.glob("*.xml")) for b in load_utterance(path).behaviors if b.gesture is not None]
+
+
+def _programs(control: MotorControl, gestures: list[BehaviorSpec]) -> list[MotorProgram]:
+    programs = []
+    for index, spec in enumerate(gestures):
+        t = 0.3 + SPACING * index
+        programs.append(control.plan(spec, TimePegs(t, t + 0.6, t + 0.7, t + 1.0, t + 1.4, t + 1.7, t + 2.3)))
+    return programs
+
+
+def _fresh(avatar, fps: float, programs: list[MotorProgram]) -> MotorControl:
+    """A control with the programs activated and its channel timelines built (activation
+    is per LMP, not per frame, and is timed apart)."""
+    control = MotorControl(avatar, fps)
+    for program in programs:
+        control.activate(program)
+    for channel in control.activated():
+        control.timeline(channel)
+    return control
+
+
+def _timed_frames(avatar, fps: float, programs: list[MotorProgram], render: Callable[[MotorControl], object], repeats: int) -> float:
+    """Median seconds of ``render`` on freshly activated controls (activation not timed)."""
+    durations = []
+    for _ in range(repeats):
+        control = _fresh(avatar, fps, programs)
+        started = time.perf_counter()
+        render(control)
+        durations.append(time.perf_counter() - started)
+    return statistics.median(durations)
+
+
+def _streamed(control: MotorControl, end: float, window: float = 0.1) -> int:
+    edges = np.arange(0.0, end + window, window)
+    return sum(control.frames(a, b).frame_count for a, b in zip(edges, edges[1:]))
+
+
+def run(quick: bool) -> dict:
+    """Frames per second of motion synthesis and of the bare rotation composition."""
+    avatar = load_avatar("max")
+    repeats = 3 if quick else 7
+    gestures = _gestures()
+    if quick:
+        gestures = gestures[:4]
+    planning_control = MotorControl(avatar)
+    planning = _median_seconds(lambda: _programs(planning_control, gestures), repeats)
+    programs = _programs(planning_control, gestures)
+    end = max(program.pegs.end for program in programs) + 0.3
+    result: dict[str, object] = {
+        "joints": avatar.joint_count,
+        "gestures": len(gestures),
+        "utterance_seconds": round(end, 3),
+        "planning_ms_per_gesture": 1000.0 * planning / len(gestures),
+    }
+    for fps in (25.0, 60.0):
+        label = f"{int(fps)}fps"
+        frames = _fresh(avatar, fps, programs).frames(0.0, end)
+        count = frames.frame_count
+        whole = _timed_frames(avatar, fps, programs, lambda control: control.frames(0.0, end), repeats)
+        streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), 3)
+        activation = _median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
+        rotations = frames.rotations
+        fk = _median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
+        product = _median_seconds(lambda: quat.multiply(rotations, rotations), repeats)
+        result.update({
+            f"frames_{label}": count,
+            f"frames_per_s_{label}": count / whole,
+            f"streamed_frames_per_s_{label}": count / streamed,
+            f"bare_forward_kinematics_frames_per_s_{label}": count / fk,
+            f"bare_quaternion_product_frames_per_s_{label}": count / product,
+            f"synthesis_over_forward_kinematics_{label}": whole / fk,
+            f"activation_ms_{label}": 1000.0 * activation,
+        })  # fmt: skip
+    return result
+
+
+if __name__ == "__main__":
+    print(json.dumps(run(quick="--quick" in sys.argv), indent=2))
