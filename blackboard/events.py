@@ -12,6 +12,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Union
 
+import numpy as np
+
 from motor.motion import Motion
 
 from blackboard.chunk import ChunkState
@@ -41,12 +43,17 @@ class BehaviorFeedback:
     time: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class SpeechStarted:
+    """Chunk ``chunk`` starts speaking ``text`` at ``time``; ``audio`` (int16 mono at
+    ``sample_rate`` Hz) is its speech when the backend produced audio, for live playback."""
+
     utterance: str
     chunk: int
     text: str
     time: float
+    audio: np.ndarray | None = None
+    sample_rate: int | None = None
 
 
 @dataclass(frozen=True)

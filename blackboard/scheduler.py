@@ -325,7 +325,10 @@ class Scheduler:
             self._schedule_feedback(board, gesture)
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
-            self._at(onset, lambda: self.bus.publish(SpeechStarted(job.name, board.index, board.spec.text, onset - job.origin)))
+            speech = board.speech
+            self._at(onset, lambda: self.bus.publish(
+                SpeechStarted(job.name, board.index, board.spec.text, onset - job.origin, speech.audio, speech.sample_rate)
+            ))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
 
     def _schedule_feedback(self, board: Blackboard, gesture: PlannedGesture) -> None:

@@ -1,0 +1,39 @@
+"""``mura demo``: render the seed's Fig. 2 utterance with real speech and print the page's address."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from pathlib import Path
+
+from agent.agent import Agent
+from agent.commands.render import render_one
+from mura.resources import SPECS_DIR
+
+DEMO_UTTERANCE = SPECS_DIR / "utterances" / "fig2_take_this_bar.xml"
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "demo",
+        help="render the demo utterance (seed 004, Fig. 2) and print the page's address",
+        description="Render 'And now take this bar and make it this big.' with espeak-ng speech (the fake "
+        "speech if espeak-ng cannot load) into the output folder, and print the address of the avatar page.",
+    )
+    parser.add_argument("-o", "--output", default="out/demo", metavar="DIR", help="output folder (default: out/demo)")
+    parser.add_argument("--avatar", default="max", help="avatar name (default: max)")
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        agent = Agent(avatar=args.avatar, tts="default")
+    for warning in caught:
+        print(f"mura demo: {warning.message}", file=sys.stderr)
+    status = render_one(agent, DEMO_UTTERANCE, Path(args.output))
+    if status == 0:
+        page = (Path(args.output) / f"{DEMO_UTTERANCE.stem}.html").resolve()
+        print(f"speech: {agent.tts.name}; open the avatar page: {page.as_uri()}")
+    return status

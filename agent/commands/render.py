@@ -1,0 +1,70 @@
+"""``mura render FILE... -o DIR``: perform utterances offline and save WAV, BVH, timeline and page."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from tqdm import tqdm
+
+from agent.agent import Agent, PerformanceError
+from motor.avatar import AvatarError
+from mura.errors import SpecError
+from tts import SpeechError
+
+
+def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake") -> None:
+    """The options every command that builds an :class:`Agent` shares."""
+    parser.add_argument("--tts", default=default_tts, choices=("fake", "espeak", "pyttsx3", "default"),
+                        help=f"speech backend (default: {default_tts}; 'default' is espeak when available, else fake)")
+    parser.add_argument("--avatar", default="max", help="avatar name in specs/avatars or a path to an avatar file (default: max)")
+    parser.add_argument("--fps", type=float, default=60.0, help="frames per second of the motion (default: 60)")
+    parser.add_argument("--voice", default=None, help="voice of the speech backend")
+    parser.add_argument("--rate", type=float, default=1.0, help="relative speaking rate (default: 1.0)")
+
+
+def make_agent(args: argparse.Namespace) -> Agent:
+    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate)
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "render",
+        help="perform utterances offline and save WAV, BVH, timeline JSON and the avatar page",
+        description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json and "
+        "NAME.html into the output folder. Files appear only when complete.",
+    )
+    parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
+    parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
+    add_agent_options(parser)
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        agent = make_agent(args)
+    except (AvatarError, SpeechError) as error:
+        print(f"mura render: {error}", file=sys.stderr)
+        return 2
+    status = 0
+    for path in tqdm(args.files, desc="rendering", unit="utterance", disable=len(args.files) < 2, file=sys.stderr):
+        status |= render_one(agent, Path(path), Path(args.output))
+    return status
+
+
+def render_one(agent: Agent, path: Path, output: Path) -> int:
+    """Render one file; prints what was written or the one-line reason, returns the exit status."""
+    try:
+        performance = agent.render(path)
+        files = performance.save(output)
+    except SpecError as error:
+        print(str(error), file=sys.stderr)
+        return 1
+    except (PerformanceError, SpeechError, ValueError, OSError) as error:
+        print(f"{path}: {error}", file=sys.stderr)
+        return 1
+    print(f"{path}: {performance.duration:.2f} s -> {files.html}")
+    for warning in performance.warnings:
+        print(f"{path}: warning: {warning}", file=sys.stderr)
+    return 0

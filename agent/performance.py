@@ -1,0 +1,114 @@
+"""A rendered utterance and the four files it is saved as.
+
+``Performance.save(directory)`` writes ``NAME.wav`` (the whole utterance's speech,
+pauses included, as long as the timeline), ``NAME.bvh`` (the full skeleton),
+``NAME.timeline.json`` (the scheduler's timeline) and ``NAME.html`` (the avatar page).
+Every file is first written under a temporary name; only when all four are complete are
+they renamed into place, so a failure never leaves files that look finished.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from agent.export.bvh import bvh_text, write_bvh
+from agent.export.html import write_html
+from motor.motion import Motion
+from tts.wav import write_wav
+
+#: Sample rate of the silent track written for an utterance without speech, Hz.
+SILENT_RATE = 22050
+
+
+@dataclass(frozen=True)
+class SavedFiles:
+    """Paths of the files a performance was saved as."""
+
+    wav: Path
+    bvh: Path
+    timeline: Path
+    html: Path
+
+
+@dataclass(frozen=True, eq=False)
+class Performance:
+    """Speech and motion of one utterance, scheduled together.
+
+    Attributes:
+        name: base name of the saved files.
+        timeline: the scheduler's timeline as a JSON-ready dict (seconds on the utterance clock).
+        motion: the whole skeleton's animation from the utterance start to the last retraction.
+        audio: int16 mono speech with the pauses between chunks, or None without speech.
+        sample_rate: of ``audio``, Hz.
+        warnings: what the planners resolved by rule (a slowed stroke, a stretched pause …).
+    """
+
+    name: str
+    timeline: dict
+    motion: Motion
+    audio: np.ndarray | None
+    sample_rate: int
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def duration(self) -> float:
+        """Length of the performance, seconds: the timeline's duration."""
+        return float(self.timeline["duration"])
+
+    def soundtrack(self) -> tuple[np.ndarray, int]:
+        """The audio padded with silence (or cut) to exactly the timeline's duration."""
+        rate = self.sample_rate if self.audio is not None else SILENT_RATE
+        samples = int(round(self.duration * rate))
+        track = np.zeros(samples, dtype=np.int16)
+        if self.audio is not None:
+            length = min(samples, len(self.audio))
+            track[:length] = self.audio[:length]
+        return track, rate
+
+    def save(self, directory: str | os.PathLike[str]) -> SavedFiles:
+        """Write the four files into ``directory`` (created if missing), all or nothing."""
+        folder = Path(directory)
+        folder.mkdir(parents=True, exist_ok=True)
+        final = SavedFiles(
+            folder / f"{self.name}.wav",
+            folder / f"{self.name}.bvh",
+            folder / f"{self.name}.timeline.json",
+            folder / f"{self.name}.html",
+        )
+        track, rate = self.soundtrack()
+        timeline = dict(self.timeline, motion_start_time=self.motion.start_time)
+        writers: list[tuple[Path, Callable[[Path], None]]] = [
+            (final.wav, lambda path: write_wav(path, track, rate)),
+            (final.bvh, lambda path: write_bvh(self.motion, path)),
+            (final.timeline, lambda path: path.write_text(json.dumps(timeline, indent=1), encoding="utf-8")),
+            (
+                final.html,
+                lambda path: write_html(path, name=self.name, bvh_text=bvh_text(self.motion), timeline=timeline, wav_filename=final.wav.name),
+            ),
+        ]
+        _write_all(folder, writers)
+        return final
+
+
+def _write_all(folder: Path, writers: list[tuple[Path, Callable[[Path], None]]]) -> None:
+    staged: list[tuple[Path, Path]] = []
+    try:
+        for target, write in writers:
+            handle, name = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".part")
+            os.close(handle)
+            temporary = Path(name)
+            staged.append((temporary, target))
+            write(temporary)
+    except BaseException:
+        for temporary, _ in staged:
+            temporary.unlink(missing_ok=True)
+        raise
+    for temporary, target in staged:
+        os.replace(temporary, target)
