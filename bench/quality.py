@@ -33,6 +33,8 @@ from motor.motion import Motion
 #: (curvature is noise there), and so are radii above this many metres (straight parts).
 MIN_SPEED_FRACTION = 0.05
 MAX_RADIUS = 1.0
+#: A wrist never faster than this (m/s) has no velocity jumps worth measuring.
+MOVING_SPEED = 0.01
 #: Joint angles beyond a limit by less than this (radians) are rounding, not violations.
 LIMIT_TOLERANCE = 1e-6
 
@@ -146,14 +148,15 @@ def jerk_ratio(positions: np.ndarray, fps: float) -> float:
 
 def velocity_jump(positions: np.ndarray, fps: float, frames: np.ndarray | None = None) -> float:
     """Largest ``|v[i+1] − v[i]|`` over the peak speed, between every pair of consecutive
-    frames or only the pairs starting at ``frames`` (e.g. hand-overs); 0 if never moving.
+    frames or only the pairs starting at ``frames`` (e.g. hand-overs); 0 for a wrist never
+    faster than :data:`MOVING_SPEED` (its jumps would be rounding over rounding).
 
     Velocities here are one-sided (``(x[i+1] − x[i])·fps``) so that a kink is not smeared.
     """
     positions = _checked(positions, fps)
     velocity = np.diff(positions, axis=0) * fps
     peak = float(np.linalg.norm(velocity, axis=1).max())
-    if peak == 0.0:
+    if peak < MOVING_SPEED:
         return 0.0
     jumps = np.linalg.norm(np.diff(velocity, axis=0), axis=1)
     if frames is not None:

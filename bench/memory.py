@@ -1,0 +1,145 @@
+"""Peak memory of rendering: a callable run in a fresh interpreter, its peak RSS reported.
+
+Memory is measured in a subprocess so that nothing the benchmark itself holds counts, and
+so that the peak (``resource.getrusage(RUSAGE_SELF).ru_maxrss`` of that process) belongs
+to one job only. The callable is named ``"module:function"`` and takes string arguments;
+the child prints one JSON line with its peak RSS, the run time and the callable's result.
+
+The one-hour case: :func:`long_utterance` builds an utterance of about an hour of speech
+by repeating the seed's Fig. 2 utterance (two chunks, a deictic and an iconic gesture)
+with fresh time tags and ids, each repetition its own pair of chunks.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import resource
+import subprocess
+import sys
+import time
+from importlib import import_module
+from pathlib import Path
+
+from lxml import etree
+
+from bench.machine import REPO_ROOT
+
+FIG2 = REPO_ROOT / "specs" / "utterances" / "fig2_take_this_bar.xml"
+#: Seconds of performance one repetition of Fig. 2 adds with the fake speech when
+#: repetitions follow each other (measured: 12 repetitions performed in 46.6 s).
+FIG2_SECONDS = 3.9
+#: The utterance length the memory target is stated for, and the one ``--quick`` uses.
+HOUR_SECONDS = 3600.0
+QUICK_SECONDS = 30.0
+_MARKER = "bench-memory-result:"
+
+
+class MeasurementError(RuntimeError):
+    """The measured callable failed; the message carries the child's last error line."""
+
+
+def peak_rss(target: str, *args: str, timeout: float = 3600.0) -> dict[str, object]:
+    """Run ``target`` (``"module:function"``) with ``args`` in a fresh Python and return
+    ``{"peak_rss_mb", "seconds", "result"}``; MeasurementError if it fails or times out."""
+    module, _, function = target.partition(":")
+    if not module or not function:
+        raise ValueError(f"target must be 'module:function', got {target!r}")
+    try:
+        done = subprocess.run(
+            [sys.executable, "-m", "bench.memory", target, *args],
+            cwd=REPO_ROOT, capture_output=True, text=True, timeout=timeout, check=False,
+        )  # fmt: skip
+    except subprocess.TimeoutExpired:
+        raise MeasurementError(f"{target}: still running after {timeout:.0f} s") from None
+    lines = [line for line in done.stdout.splitlines() if line.startswith(_MARKER)]
+    if done.returncode != 0 or not lines:
+        last = (done.stderr.strip().splitlines() or [f"exit status {done.returncode}, no output"])[-1]
+        raise MeasurementError(f"{target}: {last}")
+    return json.loads(lines[-1][len(_MARKER) :])
+
+
+def _run_in_this_process(target: str, args: list[str]) -> None:
+    module, _, function = target.partition(":")
+    callable_ = getattr(import_module(module), function)
+    started = time.perf_counter()
+    result = callable_(*args)
+    seconds = time.perf_counter() - started
+    peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # kilobytes on Linux
+    print(_MARKER + json.dumps({"peak_rss_mb": peak_kb / 1024.0, "seconds": seconds, "result": result}))
+
+
+def long_utterance(seconds: float, source: Path = FIG2) -> str:
+    """An utterance XML of about ``seconds`` of speech and gesture: the ``source``
+    utterance repeated with renamed time tags and behaviour ids, a chunk border between
+    repetitions."""
+    if not seconds > 0:
+        raise ValueError(f"seconds must be positive, got {seconds}")
+    tree = etree.parse(str(source), etree.XMLParser(resolve_entities=False, no_network=True))
+    utterance = tree.getroot().find("utterance")
+    specification = utterance.find("specification")
+    behaviors = utterance.findall("behaviorspec")
+    repeats = max(1, math.ceil(seconds / FIG2_SECONDS))
+    new_specification = etree.Element("specification")
+    new_specification.text = specification.text
+    new_behaviors = []
+    for k in range(repeats):
+        part = copy.deepcopy(specification)
+        for tag in part.iter("time"):
+            tag.set("id", f"{tag.get('id')}_{k}")
+        times = part.findall("time")
+        if k < repeats - 1 and times:
+            times[-1].set("chunkborder", "true")
+        if k > 0 and part.text:
+            previous = new_specification[-1] if len(new_specification) else None
+            if previous is not None:
+                previous.tail = (previous.tail or "") + " " + part.text.strip() + " "
+        new_specification.extend(list(part))
+        for behavior in behaviors:
+            clone = copy.deepcopy(behavior)
+            clone.set("id", f"{behavior.get('id')}_{k}")
+            for affiliate in clone.iter("affiliate"):
+                for end in ("onset", "end"):
+                    affiliate.set(end, f"{affiliate.get(end)}_{k}")
+            new_behaviors.append(clone)
+    utterance.replace(specification, new_specification)
+    for behavior in behaviors:
+        utterance.remove(behavior)
+    utterance.extend(new_behaviors)
+    return etree.tostring(tree.getroot(), encoding="unicode")
+
+
+def render_with_agent(seconds: str) -> dict[str, float]:
+    """Render a :func:`long_utterance` of ``seconds`` with ``agent.Agent().render`` (the
+    ``max`` avatar, fake speech, 60 fps); returns the performed duration and frame count."""
+    from agent.agent import Agent
+
+    performance = Agent().render(long_utterance(float(seconds)), name="long")
+    return {"duration_s": performance.duration, "frames": performance.motion.frame_count}
+
+
+def run(quick: bool) -> dict:
+    """Peak RSS of the interpreter alone and of rendering about an hour of speech (30 s
+    when ``quick``) through the agent API, each in its own process; the render is reported
+    as not yet measurable when the agent API cannot be imported."""
+    seconds = QUICK_SECONDS if quick else HOUR_SECONDS
+    figures: dict[str, object] = {"baseline_peak_rss_mb": peak_rss("bench.memory:idle")["peak_rss_mb"]}
+    try:
+        import_module("agent.agent")
+    except ImportError as error:
+        figures["render"] = {"status": "not yet measurable", "reason": f"agent API not importable: {error}"}
+        return figures
+    measured = peak_rss("bench.memory:render_with_agent", str(seconds))
+    figures["render"] = {"requested_s": seconds, **measured["result"], "peak_rss_mb": measured["peak_rss_mb"], "seconds": measured["seconds"]}
+    if not quick:
+        figures["one_hour_peak_rss_mb"] = measured["peak_rss_mb"]
+    return figures
+
+
+def idle() -> None:
+    """Nothing: the interpreter's own peak, the baseline of every measurement."""
+
+
+if __name__ == "__main__":
+    _run_in_this_process(sys.argv[1], sys.argv[2:])
