@@ -207,6 +207,11 @@ class MotorControl:
         natural = np.array([known[i] for i in range(first, last + 1)])
         return _catmull_rom(np.unwrap(natural), first, times / SWIVEL_PERIOD)
 
+    def warnings(self) -> tuple[str, ...]:
+        """What the LMPs changed when they activated (a squeezed preparation, a slowed
+        stroke), channel by channel in time order."""
+        return tuple(w for channel in self._lmps for w in self.timeline(channel).warnings)
+
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
         return {channel: tuple(lmps) for channel, lmps in self._lmps.items()}

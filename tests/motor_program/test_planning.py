@@ -210,6 +210,11 @@ def test_impossible_timing_and_places_are_resolved_with_warnings(control, constr
     assert np.all(np.isfinite(motion.rotations))
 
 
+def test_activation_warnings_are_collected(control) -> None:
+    control.activate(control.plan(behavior(line(0.1)), pegs(0.0, 0.05, 0.1, 0.6)))
+    assert any("preparation" in note and "squeezed" in note for note in control.warnings())
+
+
 def test_rotation_and_shape_lmps_reach_their_first_key_at_ready(control) -> None:
     spec = behavior(Parallel((
         Static("HandShape", HandShape("fist"), scope=Arm.RIGHT),
