@@ -1,0 +1,185 @@
+"""Sign LMPs: a hand channel moving through timed moves, each along a manner profile.
+
+Seed 000 (sections 4.5, 4.6) times every movement of a sign by the biocontrol manner
+tables and interpolates the posture between its ends: the position linearly *along the
+path by distance*, the orientation by slerp, the hand shape by its joint parameters. A
+:class:`Move` is one such movement of one channel: its values along the way (a polyline
+of positions, a chain of quaternions or of hand-parameter vectors) over ``[start, end]``
+seconds, and the manner whose table ``f: [0, 1] → [0, 1]`` maps the time fraction to the
+fraction of the way travelled. Between moves the channel holds.
+
+:class:`SignChannelLMP` carries the moves of one channel for one sign and plugs into
+:class:`motor.lmp.ChannelTimeline` like any LMP: at activation (its ``start`` peg, the end
+of the previous sign) it adds the *transition* from wherever the channel is to the
+sign's first value, in the transition manner (lax between signs, targetted into a static
+sign, seed 000).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.biocontrol import TimeProfile, profile
+from motor.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
+
+#: Step of the differences that estimate a channel's velocity, seconds.
+_STEP = 1e-4
+_SAME = 1e-12
+
+
+@dataclass(frozen=True, eq=False)
+class Move:
+    """One timed movement of a channel.
+
+    Attributes:
+        start, end: seconds (``end > start``).
+        manner: a :data:`motor.biocontrol.MANNERS` name, the time profile of the move.
+        values: ``(m, D)`` values along the way, ``m ≥ 2``: positions of a path (metres,
+            travelled by distance), or quaternions / hand parameters at evenly spaced
+            fractions of the way.
+    """
+
+    start: float
+    end: float
+    manner: str
+    values: np.ndarray
+
+    def __post_init__(self) -> None:
+        values = np.asarray(self.values, dtype=float)
+        if values.ndim != 2 or values.shape[0] < 2 or not np.all(np.isfinite(values)):
+            raise ValueError(f"move values must be finite (m ≥ 2, D), got shape {values.shape}")
+        if not self.end > self.start:
+            raise ValueError(f"move must end after it starts, got [{self.start}, {self.end}]")
+        profile(self.manner)
+        object.__setattr__(self, "values", values)
+
+    def shifted(self, offset: float) -> Move:
+        return replace(self, start=self.start + offset, end=self.end + offset)
+
+
+def path_fractions(values: np.ndarray, by_distance: bool) -> np.ndarray:
+    """Fraction of the way ``(m,)`` at each value: by arc length (positions) or evenly."""
+    count = values.shape[0]
+    if not by_distance:
+        return np.linspace(0.0, 1.0, count)
+    cumulative = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(values, axis=0), axis=1))])
+    if cumulative[-1] < _SAME:
+        return np.linspace(0.0, 1.0, count)
+    return cumulative / cumulative[-1]
+
+
+def continuous_quaternions(quaternions: np.ndarray) -> np.ndarray:
+    """Quaternions with signs flipped so that consecutive ones share a hemisphere."""
+    q = np.array(quaternions, dtype=float)
+    for i in range(1, len(q)):
+        if q[i] @ q[i - 1] < 0.0:
+            q[i] = -q[i]
+    return q
+
+
+@dataclass(frozen=True, eq=False)
+class _Track:
+    """A realized channel: moves with their profiles and fractions, holds between."""
+
+    rotation: bool
+    initial: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    values: tuple[np.ndarray, ...]
+    fractions: tuple[np.ndarray, ...]
+    profiles: tuple[TimeProfile, ...]
+    warnings: tuple[str, ...] = ()
+
+    def sample(self, times: np.ndarray) -> np.ndarray:
+        t = np.asarray(times, dtype=float)
+        out = np.empty((t.size, self.initial.size))
+        out[:] = self.initial
+        if not self.values:
+            return out
+        # holds: the value at the end of the last move begun
+        owner = np.searchsorted(self.starts, t, side="right") - 1
+        for index in range(max(int(owner.min(initial=0)), 0), int(owner.max(initial=-1)) + 1):
+            mask = owner == index
+            if not np.any(mask):
+                continue
+            u = (t[mask] - self.starts[index]) / (self.ends[index] - self.starts[index])
+            out[mask] = self._along(index, self.profiles[index].fraction(u))
+        return out
+
+    def _along(self, index: int, s: np.ndarray) -> np.ndarray:
+        values, fractions = self.values[index], self.fractions[index]
+        segment = np.clip(np.searchsorted(fractions, s, side="right") - 1, 0, fractions.size - 2)
+        width = fractions[segment + 1] - fractions[segment]
+        local = np.clip((s - fractions[segment]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
+        if self.rotation:
+            return quat.slerp(values[segment], values[segment + 1], local)
+        return values[segment] + local[:, None] * (values[segment + 1] - values[segment])
+
+    def state(self, time: float) -> ChannelState:
+        """Value and velocity (angular velocity for rotations) looking back from ``time``."""
+        t = np.array([time - 2 * _STEP, time - _STEP, time])
+        v = self.sample(t)
+        if self.rotation:
+            one = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1])))
+            two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[0])))
+            velocity = (4.0 * one - two) / (2.0 * _STEP)
+        else:
+            velocity = (3.0 * v[2] - 4.0 * v[1] + v[0]) / (2.0 * _STEP)
+        return ChannelState(v[2], velocity, float(time))
+
+
+@dataclass(frozen=True, eq=False)
+class SignChannelLMP:
+    """The moves of one channel during one sign, after a transition into it.
+
+    Attributes:
+        channel: ``(arm, "wrist_position" | "hand_rotation" | "handshape")``.
+        pegs: ``start`` = the transition begins, ``ready`` = the sign's first posture is
+            reached, ``stroke_start``/``stroke_end`` = the sign's movement, ``end``.
+        first: the sign's first value on this channel, reached at ``ready``.
+        moves: the sign's moves on the utterance clock, in order, inside
+            ``[ready, end]``.
+        transition: the manner of the transition.
+    """
+
+    channel: Channel
+    pegs: TimePegs
+    first: np.ndarray
+    moves: tuple[Move, ...] = ()
+    transition: str = "lax"
+
+    def __post_init__(self) -> None:
+        if not self.pegs.ready > self.pegs.start:
+            raise ValueError(f"{self.channel}: the transition needs time (start {self.pegs.start}, ready {self.pegs.ready})")
+        previous = self.pegs.ready
+        for move in self.moves:
+            if move.start < previous - 1e-9:
+                raise ValueError(f"{self.channel}: moves overlap or start before ready at {move.start:.4f} s")
+            previous = move.end
+
+    def activate(self, state: ChannelState) -> _Track:
+        rotation = self.channel[1] in ROTATION_CHANNELS
+        here = np.asarray(state.value, dtype=float)
+        first = np.asarray(self.first, dtype=float)
+        if rotation and here @ first < 0.0:
+            first = -first
+        chain = [Move(state.time, self.pegs.ready, self.transition, np.stack([here, first]))]
+        previous = first
+        for move in self.moves:
+            values = move.values
+            if rotation:
+                values = continuous_quaternions(np.concatenate([previous[None], values]))[1:]
+            chain.append(replace(move, values=values))
+            previous = values[-1]
+        return _Track(
+            rotation=rotation,
+            initial=here,
+            starts=np.array([m.start for m in chain]),
+            ends=np.array([m.end for m in chain]),
+            values=tuple(m.values for m in chain),
+            fractions=tuple(path_fractions(m.values, self.channel[1] == "wrist_position") for m in chain),
+            profiles=tuple(profile(m.manner) for m in chain),
+        )
