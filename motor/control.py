@@ -38,6 +38,9 @@ from mura.model import BehaviorSpec
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 #: Period of the grid on which the natural swivel is computed, seconds (module docstring).
 SWIVEL_PERIOD = 0.1
+#: How far back (s) from the start of the latest window the LMP history is kept; covers
+#: the swivel grid's margin.
+HISTORY = 1.0
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -172,6 +175,8 @@ class MotorControl:
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
+        if count:
+            self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
             raise FloatingPointError(f"non-finite joint rotation at t = {bad:.4f} s")
@@ -184,6 +189,26 @@ class MotorControl:
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
             start_time=float(times[0]) if count else float(start),
         )
+
+    def _forget_before(self, horizon: float) -> None:
+        """Drop LMPs that lost control before ``horizon`` (module docstring)."""
+        for channel in self._lmps:
+            timeline = self.timeline(channel)
+            keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
+            if keep <= 0:
+                continue
+            start = float(timeline.starts[keep])
+            state = timeline.realizations[keep - 1].state(start)
+            initial = ChannelState(np.asarray(state.value, dtype=float), np.asarray(state.velocity, dtype=float), start)
+            self._timelines[channel] = ChannelTimeline(
+                channel, initial, timeline.lmps[keep:], timeline.realizations[keep:], timeline.starts[keep:]
+            )
+            self._initial[channel] = initial
+            self._lmps[channel] = list(timeline.lmps[keep:])
+        limit = math.floor(horizon / SWIVEL_PERIOD) - 2
+        for grid in self._swivels.values():
+            for index in [i for i in grid if i < limit]:
+                del grid[index]
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The natural swivel (radians) at ``times``: IK on the :data:`SWIVEL_PERIOD` grid,

@@ -182,8 +182,11 @@ def test_every_utterance_plans_and_renders_within_reach_without_nan(avatar, path
 @pytest.mark.parametrize("fps", [25.0, 60.0])
 def test_streaming_windows_equal_one_call(avatar, fps) -> None:
     control, whole = render(avatar, _two_gestures(), fps=fps, end=4.0)
+    activated = sum(len(lmps) for lmps in control.activated().values())
     edges = [0.0, 0.013, 0.5, 0.51, 1.37, 2.0, 2.0, 3.3, 4.0]
     parts = [control.frames(a, b) for a, b in zip(edges, edges[1:])]
+    # streaming forgets LMPs that lost control long ago, without changing any frame
+    assert sum(len(lmps) for lmps in control.activated().values()) < activated
     assert sum(p.frame_count for p in parts) == whole.frame_count
     np.testing.assert_array_equal(np.concatenate([p.rotations for p in parts]), whole.rotations)
     np.testing.assert_allclose(np.concatenate([p.times for p in parts]), whole.times, atol=1e-12)
