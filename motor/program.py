@@ -206,11 +206,13 @@ class _Fragment:
     def placed(self, offset: float, length: float) -> _Fragment:
         """The fragment stretched onto ``[offset, offset + length]``; a zero-duration
         fragment (static keys) holds over the whole interval."""
-        if self.duration <= 0.0:
-            move = lambda key: replace(key, start=offset, end=offset + length)  # noqa: E731
-        else:
-            scale = length / self.duration
-            move = lambda key: replace(key, start=offset + key.start * scale, end=offset + key.end * scale)  # noqa: E731
+        scale = length / self.duration if self.duration > 0.0 else 0.0
+
+        def move(key: _Key) -> _Key:
+            if self.duration <= 0.0:
+                return replace(key, start=offset, end=offset + length)
+            return replace(key, start=offset + key.start * scale, end=offset + key.end * scale)
+
         tracks = {track: tuple(move(key) for key in keys) for track, keys in self.tracks.items()}
         return _Fragment(length, tracks, self.warnings)
 
