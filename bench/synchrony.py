@@ -7,8 +7,9 @@ wrist's speed profile and compared with the timing the seed asks for: the stroke
 The detector. A movement unit of the wrist is delimited by *boundaries* of its speed
 profile (speed by central differences):
 
-* an **arrival** — the first frame of a still run (speed below :data:`STILL_SPEED`) entered
-  from movement; a **departure** — the last frame of a still run left into movement;
+* an **arrival** — the first frame of a still run (the wrist moves slower than
+  :data:`STILL_SPEED` from it to the next frame) entered from movement; a **departure** —
+  the last frame of a still run left into movement;
 * a **dip** — a local speed minimum that is not still; a *deep* dip is at most
   :data:`DIP_RATIO` of the lower of the speed peaks within :data:`PEAK_REACH` on either
   side (shallower minima can be the curvature–speed law at work inside one stroke);
@@ -102,14 +103,20 @@ class StrokeError:
     end_error: float | None
 
 
-def boundaries(speed: np.ndarray, fps: float) -> list[Boundary]:
-    """Arrivals, departures, dips and kinks of a speed profile ``(n,)`` in m/s, in frame order."""
+def boundaries(speed: np.ndarray, fps: float, still: np.ndarray | None = None) -> list[Boundary]:
+    """Arrivals, departures, dips and kinks of a speed profile ``(n,)`` in m/s, in frame order.
+
+    ``still`` ``(n,)`` says which frames the hand rests in; by default where ``speed`` is
+    below :data:`STILL_SPEED`. :func:`detect_stroke` passes the forward-difference test
+    (the hand does not move from this frame to the next), which puts an arrival on the
+    first frame at the hold position and a departure on the last one.
+    """
     speed = np.asarray(speed, dtype=float)
     if speed.ndim != 1:
         raise ValueError(f"speed must have shape (n,), got {speed.shape}")
     if not fps > 0:
         raise ValueError(f"fps must be positive, got {fps}")
-    still = speed < STILL_SPEED
+    still = speed < STILL_SPEED if still is None else np.asarray(still, dtype=bool)
     found = [Boundary(int(i), "arrival") for i in np.flatnonzero(still[1:] & ~still[:-1]) + 1]
     found += [Boundary(int(i), "departure") for i in np.flatnonzero(still[:-1] & ~still[1:])]
     if speed.size >= 3:
@@ -151,7 +158,8 @@ def detect_stroke(positions: np.ndarray, fps: float, start_time: float, phases: 
     dynamic = stroke.shape[0] > 1 and float(np.linalg.norm(np.diff(stroke, axis=0), axis=1).sum()) > DYNAMIC_PATH
     first, expected = frame(phases["start"]), frame(expected_onset)
     peak = first + int(np.argmax(speed[first : max(expected, first) + 1]))
-    found = boundaries(speed, fps)
+    step = np.linalg.norm(np.diff(positions, axis=0), axis=1) * fps
+    found = boundaries(speed, fps, np.append(step, step[-1]) < STILL_SPEED)
     onset = next((b.frame for b in found if b.frame > peak and b.kind in ("arrival", "dip", "kink")), None)
     if onset is not None and phases["stroke_start"] - phases["ready"] > 1.5 / fps:
         onset = next((b.frame for b in found if b.frame > onset and b.kind in ("departure", "dip", "kink")), None)

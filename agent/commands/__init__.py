@@ -1,5 +1,5 @@
 """Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
 
-from agent.commands import check, demo, play, render, say
+from agent.commands import bench, check, demo, play, render, say
 
-COMMANDS = (check, say, render, play, demo)
+COMMANDS = (check, say, render, play, demo, bench)
