@@ -166,12 +166,12 @@ def format_figure(figure: float | None, unit: str = "") -> str:
     return f"{text} {unit}".strip()
 
 
-def format_table(report: Mapping) -> str:
+def format_table(report: Mapping, targets: Sequence[Target] = TARGETS) -> str:
     """The terminal view: machine, targets with figures, and every module's figures."""
     machine = report["machine"]
     lines = [f"machine: {machine['cpu']}, {machine['cores']} cores, Python {machine['python']}, numpy {machine['numpy']}, "
              f"scipy {machine['scipy']}, lxml {machine['lxml']}, espeak-ng {machine['espeak_ng']}, commit {machine['git_commit']}", ""]  # fmt: skip
-    rows = judge(report["results"])
+    rows = judge(report["results"], targets)
     width = max(len(r["what"]) for r in rows)
     for row in rows:
         status = row["status"] + (f" ({row['note']})" if row["note"] else "")
@@ -191,7 +191,7 @@ def _short(value: object) -> str:
     return str(value)
 
 
-def readme_section(report: Mapping) -> str:
+def readme_section(report: Mapping, targets: Sequence[Target] = TARGETS) -> str:
     """Markdown: the targets with the latest figures, the command and the machine."""
     machine = report["machine"]
     lines = [
@@ -204,7 +204,7 @@ def readme_section(report: Mapping) -> str:
         "| what | figure | target | met |",
         "|---|---|---|---|",
     ]
-    for row in judge(report["results"]):
+    for row in judge(report["results"], targets):
         met = {"met": "yes", "missed": "**no**"}.get(row["status"], f"not measured: {row['note']}")
         lines.append(f"| {row['what']} | {format_figure(row['figure'], row['unit'])} | {row['target']} | {met.replace('|', '/')} |")
     return "\n".join(lines) + "\n"
