@@ -17,7 +17,7 @@ from blackboard.events import (
 )
 from blackboard.planning import PEG_NAMES, GestureDemands, MotorControl, MotorProgramLike, TimePegs
 from blackboard.scheduler import LiveHandle, ScheduledUtterance, Scheduler, SchedulerConfig, validate
-from blackboard.timeline import Timeline, plot_timeline
+from blackboard.timeline import Timeline
 from blackboard.timing import ChunkTiming, GestureRequest, GestureTiming, PauseStretch, TemporalNetwork, TimingConfig, time_chunk
 
 __all__ = [
@@ -27,5 +27,5 @@ __all__ = [
     "MotorProgramLike", "OverlappingGestures", "PauseStretch", "PlannedGesture", "ScheduleError",
     "ScheduledUtterance", "Scheduler", "SchedulerConfig", "SpeechEnded", "SpeechStarted", "TemporalNetwork",
     "TimePegs", "Timeline", "TimingConfig", "TimingConflict", "Transition", "VirtualClock", "WallClock",
-    "plot_timeline", "time_chunk", "validate",
+    "time_chunk", "validate",
 ]

@@ -2,14 +2,13 @@
 
 Every time is on the utterance clock (0 = the utterance's start), seconds. The scheduler
 fills a :class:`Timeline` as it plans and runs; :meth:`Timeline.to_json` is the shape the
-viewer reads, :func:`plot_timeline` draws the seed's Fig. 6 from it.
+viewer reads and that ``agent.plots.plot_timeline`` draws as the seed's Fig. 6.
 """
 
 from __future__ import annotations
 
 import threading
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from blackboard.chunk import ChunkState, Transition
 from blackboard.timing import PauseStretch
@@ -153,74 +152,3 @@ def _behavior_json(b: BehaviorEntry) -> dict:
         "retraction_skipped": b.retraction_skipped,
         "next_gesture_follows": b.next_gesture_follows,
     }
-
-
-_STATE_COLOURS = {
-    "InPrep": "#9ecae1", "Pending": "#c6dbef", "Lurking": "#fdd0a2", "InExec": "#74c476",
-    "Subsiding": "#fdae6b", "Completed": "#d9d9d9", "Failed": "#fb6a4a",
-}
-_PHASE_COLOURS = {"preparation": "#6baed6", "stroke": "#de2d26", "hold": "#fc9272", "retraction": "#bdbdbd"}
-
-
-def plot_timeline(timeline: Timeline, path: str | Path) -> Path:
-    """Draw the seed's Fig. 6 for ``timeline`` into a PNG at ``path``: per chunk a lane with its
-    states, its speech words and its gestures' phases (preparation, stroke, hold, retraction)
-    with the affiliate, on one time axis; stretched pauses are shaded."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    data = timeline.to_json()
-    chunks = data["chunks"]
-    end = max([data["duration"], 1.0] + [s["time"] for c in chunks for s in c["states"]])
-    lanes = max(1, len(chunks))
-    fig, ax = plt.subplots(figsize=(max(8.0, end * 2.5), 1.0 + 1.6 * lanes))
-    for lane, chunk in enumerate(chunks):
-        base = (lanes - 1 - lane) * 3.0
-        _draw_states(ax, chunk, base + 2.0, end)
-        for word in (w for w in data["words"] if w["chunk"] == chunk["index"]):
-            ax.broken_barh([(word["start"], word["end"] - word["start"])], (base + 1.0, 0.8), color="#fff7bc", edgecolor="#999")
-            ax.text((word["start"] + word["end"]) / 2, base + 1.4, word["text"], ha="center", va="center", fontsize=7)
-        behaviors = [b for b in data["behaviors"] if b["chunk"] == chunk["index"]]
-        for k, behavior in enumerate(behaviors):
-            _draw_phases(ax, behavior, base + 0.1 + k * 0.8 / max(1, len(behaviors)), 0.7 / max(1, len(behaviors)))
-        ax.text(-0.05, base + 1.5, f"chunk {chunk['index']}", ha="right", va="center", fontsize=8)
-    for stretch in data["stretches"]:
-        onset = next(c["speech_onset"] for c in chunks if c["index"] == stretch["chunk"])
-        ax.axvspan(onset - stretch["amount"], onset, color="#fee0d2", alpha=0.5, zorder=0)
-    ax.set_xlim(-0.1, end + 0.1)
-    ax.set_ylim(-0.2, lanes * 3.0)
-    ax.set_yticks([])
-    ax.set_xlabel("time (s)")
-    ax.set_title(f"{data['name']}: incremental chunk processing")
-    fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=100)
-    plt.close(fig)
-    return out
-
-
-def _draw_states(ax, chunk: dict, y: float, end: float) -> None:
-    states = chunk["states"]
-    for current, following in zip(states, states[1:] + [None]):
-        stop = following["time"] if following else (current["time"] if current["state"] in ("Completed", "Failed") else end)
-        width = max(stop - current["time"], 0.01)
-        ax.broken_barh([(current["time"], width)], (y, 0.8), color=_STATE_COLOURS[current["state"]], edgecolor="#666")
-        ax.text(current["time"] + width / 2, y + 0.4, current["state"], ha="center", va="center", fontsize=6)
-
-
-def _draw_phases(ax, behavior: dict, y: float, height: float) -> None:
-    p = behavior["phases"]
-    spans = {
-        "preparation": (p["start"], p["stroke_start"]),
-        "stroke": (p["stroke_start"], p["stroke_end"]),
-        "hold": (p["stroke_end"], p["relax"]),
-        "retraction": (p["relax"], p["end"]),
-    }
-    for phase, (a, b) in spans.items():
-        if b > a:
-            ax.broken_barh([(a, b - a)], (y, height), color=_PHASE_COLOURS[phase])
-    if behavior["affiliate"]:
-        ax.plot([behavior["affiliate"]["onset"], behavior["affiliate"]["end"]], [y + height / 2] * 2, color="k", lw=1)
-    ax.text(p["start"], y + height / 2, behavior["id"], ha="right", va="center", fontsize=6)

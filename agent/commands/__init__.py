@@ -1,5 +1,5 @@
 """Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
 
-from agent.commands import bench, check, demo, play, render, say
+from agent.commands import bench, check, demo, play, plot, render, say
 
-COMMANDS = (check, say, render, play, demo, bench)
+COMMANDS = (check, say, render, play, plot, demo, bench)

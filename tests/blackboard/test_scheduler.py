@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from blackboard import ChunkState, FramesReady, Scheduler, SpeechStarted, VirtualClock, plot_timeline
+from blackboard import ChunkState, FramesReady, Scheduler, SpeechStarted, VirtualClock
 from mura.murml import load_utterance
 
 from blackboard_fakes import CORPUS, UTTERANCES, FakeMotor, RecordingSpeech, utterance
@@ -151,12 +151,6 @@ def test_gesture_only_utterances_render_without_speech(path):
         assert b["phases"]["stroke_start"] == pytest.approx(spec.timing.onset, abs=1e-6)
         assert b["phases"]["relax"] == pytest.approx(spec.timing.end, abs=1e-6)
     assert result.motion.frame_count > 0
-
-
-def test_plot_timeline_writes_a_png(tmp_path):
-    result, _, _ = render(UTTERANCES[0])
-    out = plot_timeline(result.timeline, tmp_path / "fig6.png")
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_json_has_the_viewer_shape():

@@ -1,0 +1,75 @@
+"""``mura plot FILE -o DIR``: the seed's Fig. 5 (wrist paths and speed profiles) and Fig. 6
+(incremental chunk processing) for an utterance, as PNG."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from agent.agent import read_utterance
+from agent.commands.render import add_agent_options
+from agent.plots import plot_timeline, plot_wrist_paths
+from blackboard.clock import VirtualClock
+from blackboard.scheduler import Scheduler, SchedulerConfig
+from motor.avatar import AvatarError, load_avatar
+from motor.control import MotorControl
+from motor.program import MotorProgram
+from mura.errors import SpecError
+from tts import SpeechError, make_synthesizer
+
+
+class _RecordingMotorControl(MotorControl):
+    """The motor control, keeping every program the scheduler activates, for Fig. 5."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.programs: list[MotorProgram] = []
+
+    def activate(self, program: MotorProgram) -> None:
+        self.programs.append(program)
+        super().activate(program)
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "plot",
+        help="draw the wrist paths and speed profiles (Fig. 5) and the chunk timeline (Fig. 6) as PNG",
+        description="Perform the utterance offline and write NAME.wrist.png (per gesture and arm: the wrist path "
+        "in 3D and its speed with the breakpoints, seed 004 Fig. 5) and NAME.timeline.png (chunks, their states, "
+        "speech and gesture phases on one time axis, Fig. 6).",
+    )
+    parser.add_argument("file", metavar="FILE", help="MURML utterance file")
+    parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
+    add_agent_options(parser)
+    parser.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        utterance, name = read_utterance(args.file)
+        avatar = load_avatar(args.avatar)
+        motor = _RecordingMotorControl(avatar, args.fps)
+        scheduler = Scheduler(make_synthesizer(args.tts), motor, VirtualClock(), SchedulerConfig(voice=args.voice, rate=args.rate))
+        result = scheduler.run(utterance, name)
+        scheduler.close()
+    except SpecError as error:
+        print(str(error), file=sys.stderr)
+        return 1
+    except (AvatarError, SpeechError, ValueError) as error:
+        print(f"{args.file}: {error}", file=sys.stderr)
+        return 1
+    output = Path(args.output)
+    output.mkdir(parents=True, exist_ok=True)
+    timeline_png = plot_timeline(result.timeline.to_json(), output / f"{name}.timeline.png")
+    print(f"{args.file}: {timeline_png}")
+    if result.motion is None or not any(_moves_a_wrist(p) for p in motor.programs):
+        print(f"{args.file}: no gesture moves a wrist; no wrist plot", file=sys.stderr)
+        return 0
+    wrist_png = plot_wrist_paths(avatar, result.motion, motor.programs, output / f"{name}.wrist.png")
+    print(f"{args.file}: {wrist_png}")
+    return 0
+
+
+def _moves_a_wrist(program: MotorProgram) -> bool:
+    return any(type(lmp).__name__ == "WristPositionLMP" for lmp in program.lmps)
