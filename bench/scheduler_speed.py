@@ -1,76 +1,78 @@
-"""Scheduler speed: planning latency per chunk (fake and espeak speech, the tests' fake
-motor) and the real-time factor of rendering a whole utterance offline.
+"""Scheduler speed: planning latency per chunk (fake and espeak speech, the real motor
+control on avatar ``max`` at 60 fps), time to first frame, and the real-time factor of
+rendering a whole utterance offline.
 
-Not a test: prints figures. ``run(quick)`` returns ``{backend: {...}}``. Planning
-latency is the wall time between a chunk's InPrep and Pending events (speech synthesis
-with audio, timing, motor planning); the real-time factor is utterance duration over the
+Not a test: prints figures. ``run(quick)`` returns ``{backend: {...}}`` plus
+``time_to_first_frame_ms``. Planning latency is the wall time between a chunk's InPrep and
+Pending events (speech synthesis with audio, timing, motor planning); time to first frame
+is the wall time from ``Scheduler.run`` to the first ``FramesReady`` event (fake speech,
+median over the example utterances); the real-time factor is utterance duration over the
 wall time of ``Scheduler.run`` on a virtual clock (frames included).
 """
 
 from __future__ import annotations
 
-import importlib.util
 import statistics
-import sys
 import time
 from pathlib import Path
 
-from blackboard import ChunkState, ChunkStateChanged, Scheduler, VirtualClock
+from blackboard import ChunkState, ChunkStateChanged, FramesReady, Scheduler, VirtualClock
+from motor.avatar import load_avatar
+from motor.control import MotorControl
 from mura.murml import load_utterance
 from tts import BACKENDS
 
 REPO = Path(__file__).resolve().parents[1]
 UTTERANCES = sorted((REPO / "specs" / "utterances").glob("*.xml"))
+_AVATAR = load_avatar("max")
 
 
-def _fakes():
-    """The fake motor control of tests/blackboard (the real composition is not wired in yet)."""
-    path = REPO / "tests" / "blackboard" / "blackboard_fakes.py"
-    spec = importlib.util.spec_from_file_location("blackboard_fakes", path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
-def _render(synthesizer, motor_class, path: Path) -> tuple[list[float], float, float]:
-    """Planning latencies (s) of every chunk, the utterance duration and the wall time of the run."""
+def _render(synthesizer, path: Path) -> tuple[list[float], float, float, float]:
+    """Planning latencies (s) of every chunk, the utterance duration, the wall time of the
+    run and the wall time to its first frame (s)."""
     started: dict[int, float] = {}
     latencies: list[float] = []
+    first_frame: list[float] = []
 
     def observe(event):
         if isinstance(event, ChunkStateChanged) and event.state is ChunkState.IN_PREP:
             started[event.chunk] = time.perf_counter()
         elif isinstance(event, ChunkStateChanged) and event.state is ChunkState.PENDING:
             latencies.append(time.perf_counter() - started[event.chunk])
+        elif isinstance(event, FramesReady) and not first_frame:
+            first_frame.append(time.perf_counter())
 
-    scheduler = Scheduler(synthesizer, motor_class(), VirtualClock())
+    utterance = load_utterance(path)
+    scheduler = Scheduler(synthesizer, MotorControl(_AVATAR, fps=60), VirtualClock())
     scheduler.subscribe(observe)
     t0 = time.perf_counter()
-    result = scheduler.run(load_utterance(path), name=path.stem)
+    result = scheduler.run(utterance, name=path.stem)
     wall = time.perf_counter() - t0
     if result.failed_chunk is not None:
         raise RuntimeError(f"{path.name}: chunk {result.failed_chunk} failed: {result.error}")
-    return latencies, result.timeline.duration, wall
+    return latencies, result.timeline.duration, wall, first_frame[0] - t0
 
 
 def run(quick: bool) -> dict:
-    """Per speech backend: median and max planning latency per chunk, and the real-time factor."""
-    motor_class = _fakes().FakeMotor
+    """Per speech backend: median and max planning latency per chunk, and the real-time factor;
+    the median time to first frame with fake speech."""
     paths = UTTERANCES[:2] if quick else UTTERANCES
     repeats = 1 if quick else 5
-    results: dict[str, dict] = {}
+    results: dict[str, dict | float] = {}
+    first_frames: list[float] = []
     for name in ("fake", "espeak"):
         synthesizer = BACKENDS[name]()
         reason = getattr(synthesizer, "unavailable_reason", lambda: None)()
         if reason is not None:
             results[name] = {"unavailable": reason}
             continue
-        _render(synthesizer, motor_class, paths[0])  # warm up: load libraries, fill caches
+        _render(synthesizer, paths[0])  # warm up: load libraries, fill caches
         latencies, duration, wall = [], 0.0, 0.0
         for _ in range(repeats):
             for path in paths:
-                chunk_latencies, seconds, spent = _render(synthesizer, motor_class, path)
+                chunk_latencies, seconds, spent, first = _render(synthesizer, path)
+                if name == "fake":
+                    first_frames.append(first)
                 latencies += chunk_latencies
                 duration += seconds
                 wall += spent
@@ -81,11 +83,14 @@ def run(quick: bool) -> dict:
             "utterance_seconds": duration,
             "realtime_factor": duration / wall,
         }
+    results["time_to_first_frame_ms"] = 1000 * statistics.median(first_frames)
     return results
 
 
 if __name__ == "__main__":
-    for backend_name, figures in run(quick=False).items():
+    figures_by_backend = run(quick=False)
+    print(f"time to first frame: {figures_by_backend.pop('time_to_first_frame_ms'):.1f} ms (median, fake speech)")
+    for backend_name, figures in figures_by_backend.items():
         if "unavailable" in figures:
             print(f"{backend_name:7s} unavailable: {figures['unavailable']}")
             continue
