@@ -1,4 +1,4 @@
-"""A fake motor control with trivial math, and fake speech backends (also used by bench/scheduler_speed.py).
+"""A fake motor control with trivial math, and fake speech backends, for the blackboard tests.
 
 The fake motor moves each arm along one number, its "distance from rest": preparation goes
 to the gesture's preparation distance, the stroke holds there, the retraction returns to 0
