@@ -11,28 +11,17 @@ frames per second of the whole pipeline.
 from __future__ import annotations
 
 import json
-import statistics
 import sys
-import time
-from collections.abc import Callable
 
 import numpy as np
 
+from bench.timing import median_seconds
 from motor.arm_ik import solve_arm
 from motor.avatar import load_avatar
 from motor.hand import hand_rotations, handshape_params
 from motor.hand_orientation import hand_rotations_from_vectors
 from motor.kinematics import forward_kinematics, identity_rotations
 from mura.values import HandShape
-
-
-def _median_seconds(call: Callable[[], object], repeats: int) -> float:
-    durations = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        call()
-        durations.append(time.perf_counter() - started)
-    return statistics.median(durations)
 
 
 def run(quick: bool) -> dict:
@@ -69,13 +58,13 @@ def run(quick: bool) -> dict:
 
     rotations = identity_rotations(avatar, frames)
     per_frame = lambda seconds: 1e6 * seconds / frames
-    fk = _median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
-    ik = _median_seconds(lambda: solve_arm(avatar, "r", targets["r"]), repeats)
-    ik_oriented = _median_seconds(lambda: solve_arm(avatar, "r", targets["r"], hands["r"]), repeats)
-    ik_fixed = _median_seconds(lambda: solve_arm(avatar, "r", targets["r"], hands["r"], swivel=np.zeros(frames)), repeats)
-    hand = _median_seconds(lambda: hand_rotations(avatar, "r", params), repeats)
-    body = _median_seconds(lambda: pose_body(False), repeats)
-    body_oriented = _median_seconds(lambda: pose_body(True), repeats)
+    fk = median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
+    ik = median_seconds(lambda: solve_arm(avatar, "r", targets["r"]), repeats)
+    ik_oriented = median_seconds(lambda: solve_arm(avatar, "r", targets["r"], hands["r"]), repeats)
+    ik_fixed = median_seconds(lambda: solve_arm(avatar, "r", targets["r"], hands["r"], swivel=np.zeros(frames)), repeats)
+    hand = median_seconds(lambda: hand_rotations(avatar, "r", params), repeats)
+    body = median_seconds(lambda: pose_body(False), repeats)
+    body_oriented = median_seconds(lambda: pose_body(True), repeats)
     return {
         "frames": frames,
         "joints": avatar.joint_count,

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bench.timing import median_seconds
 from motor import quaternion as quat
 from motor.avatar import load_avatar
 from motor.control import MotorControl
@@ -40,15 +41,6 @@ from mura.murml import load_utterance
 UTTERANCES = Path(__file__).resolve().parents[1] / "specs" / "utterances"
 #: Seconds from one gesture's start to the next's; the next starts during the retraction.
 SPACING = 2.2
-
-
-def _median_seconds(call: Callable[[], object], repeats: int) -> float:
-    durations = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        call()
-        durations.append(time.perf_counter() - started)
-    return statistics.median(durations)
 
 
 def _gestures() -> list[BehaviorSpec]:
@@ -98,7 +90,7 @@ def run(quick: bool) -> dict:
     if quick:
         gestures = gestures[:4]
     planning_control = MotorControl(avatar)
-    planning = _median_seconds(lambda: _programs(planning_control, gestures), repeats)
+    planning = median_seconds(lambda: _programs(planning_control, gestures), repeats)
     programs = _programs(planning_control, gestures)
     end = max(program.pegs.end for program in programs) + 0.3
     result: dict[str, object] = {
@@ -113,10 +105,10 @@ def run(quick: bool) -> dict:
         count = frames.frame_count
         whole = _timed_frames(avatar, fps, programs, lambda control: control.frames(0.0, end), repeats)
         streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), 3)
-        activation = _median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
+        activation = median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
         rotations = frames.rotations
-        fk = _median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
-        product = _median_seconds(lambda: quat.multiply(rotations, rotations), repeats)
+        fk = median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
+        product = median_seconds(lambda: quat.multiply(rotations, rotations), repeats)
         result.update({
             f"frames_{label}": count,
             f"frames_per_s_{label}": count / whole,

@@ -10,27 +10,22 @@ the timeline.
 from __future__ import annotations
 
 import json
-import statistics
 import sys
-import time
-from collections.abc import Callable
 
 import numpy as np
 
+from bench.timing import median_seconds
 from motor.guiding_strokes import curve_breakpoints, ellipse_breakpoints
-from motor.lmp import ChannelState, ChannelTimeline, RetractionLMP, TimePegs, WristPositionLMP
+from motor.lmp import (
+    ChannelState,
+    ChannelTimeline,
+    RetractionLMP,
+    TimePegs,
+    WristPositionLMP,
+)
 from motor.trajectory import plan_wrist_trajectory
 
 REST = np.array([0.2, 0.9, 0.1])
-
-
-def _median_seconds(call: Callable[[], object], repeats: int) -> float:
-    durations = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        call()
-        durations.append(time.perf_counter() - started)
-    return statistics.median(durations)
 
 
 def _timeline(gestures: int) -> ChannelTimeline:
@@ -54,12 +49,12 @@ def run(quick: bool) -> dict:
     trajectory = plan_wrist_trajectory(points, start=0.0, end=3.6)
     times = np.linspace(-0.1, 3.7, frames)
     gestures = 20
-    planning = _median_seconds(lambda: _timeline(gestures), repeats)
+    planning = median_seconds(lambda: _timeline(gestures), repeats)
     timeline = _timeline(gestures)
     timeline_times = np.linspace(0.0, 1.5 * gestures + 1.0, frames)
-    position = _median_seconds(lambda: trajectory.position(times), repeats)
-    velocity = _median_seconds(lambda: trajectory.velocity(times), repeats)
-    sampled = _median_seconds(lambda: timeline.sample(timeline_times), repeats)
+    position = median_seconds(lambda: trajectory.position(times), repeats)
+    velocity = median_seconds(lambda: trajectory.velocity(times), repeats)
+    sampled = median_seconds(lambda: timeline.sample(timeline_times), repeats)
     return {
         "frames": frames,
         "wrist_trajectory_position_samples_per_s": frames / position,

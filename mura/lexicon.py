@@ -28,7 +28,6 @@ from types import MappingProxyType
 
 from lxml import etree
 
-from mura.errors import SpecError
 from mura.resources import SPECS_DIR
 from mura.xml_source import XmlSource
 

@@ -16,7 +16,7 @@ from enum import Enum
 from typing import Union
 
 from mura.errors import SourceLocation
-from mura.values import Direction, Location, SlotValue
+from mura.values import Direction, SlotValue
 
 #: Slots that a static or dynamic constraint may name; arm slots are realized by ``motor/``.
 ARM_SLOTS: tuple[str, ...] = ("HandShape", "PalmOrientation", "ExtFingerOrientation", "HandLocation")

@@ -14,7 +14,6 @@ entity expansion, and inputs over :data:`MAX_SIGML_BYTES` are refused.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 

@@ -26,7 +26,6 @@ from tts.speech import (
     SpeechRequest,
     SpeechTiming,
     UnknownVoice,
-    Word,
     frozen_marks,
 )
 from tts.text import validate
