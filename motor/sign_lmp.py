@@ -143,6 +143,8 @@ class SignChannelLMP:
         moves: the sign's moves on the utterance clock, in order, inside
             ``[ready, end]``.
         transition: the manner of the transition.
+        via: ``(k, D)`` values the transition passes through on its way (a wrist path
+            kept clear of the torso), or None for the direct way.
     """
 
     channel: Channel
@@ -150,6 +152,7 @@ class SignChannelLMP:
     first: np.ndarray
     moves: tuple[Move, ...] = ()
     transition: str = "lax"
+    via: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         if not self.pegs.ready > self.pegs.start:
@@ -166,7 +169,8 @@ class SignChannelLMP:
         first = np.asarray(self.first, dtype=float)
         if rotation and here @ first < 0.0:
             first = -first
-        chain = [Move(state.time, self.pegs.ready, self.transition, np.stack([here, first]))]
+        way = [here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first]
+        chain = [Move(state.time, self.pegs.ready, self.transition, np.stack(way))]
         previous = first
         for move in self.moves:
             values = move.values

@@ -1,0 +1,852 @@
+"""A sign planned into timed hand moves (seed 000, sections 4.1–4.6).
+
+:func:`plan_sign` turns a :class:`mura.signs.Sign` into a :class:`SignPlan`: for each
+hand, the first posture (wrist, global hand rotation, hand parameters) and the sign's
+moves on its own clock ``[0, duration]``, one :class:`motor.sign_lmp.Move` per channel.
+
+**Where the hand is.** A location names where the *palm centre* goes (the avatar's
+``palm`` site of that hand); the wrist is placed so that it gets there with the hand in
+its orientation and shape. Locations come from :func:`motor.locations.resolve_location`:
+body sites with their proximity and side, the signing-space grid, and sites on the other
+arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
+a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
+Site names the resolver does not know are read as documented in :data:`SITE_ALIASES` and
+:data:`PROXIMITY_ALIASES`; the bare ``contact`` site keeps the hand where it is.
+
+**Two hands.** Under ``lr`` symmetry the non-dominant hand's path is the dominant hand's
+mirrored across the symmetry's planes (the sagittal plane ``x = 0`` at least), its
+orientation mirrored across the sagittal plane, its shape the same; under ``par``
+symmetry the path is translated, not mirrored. Alternating symmetry plays the
+non-dominant hand's path displacements reversed (one hand goes down while the other goes
+up). Leaves scoped to one arm move that hand only. A hand constellation puts the
+non-dominant hand at the pair's location and the dominant hand so that its named site
+meets the non-dominant hand's (touch, close …). A dominant hand located on the other hand
+or arm in a one-handed sign brings the other hand up as a passive base
+(:data:`PASSIVE_POSTURE`).
+
+**Movements.** Straight moves go ``SIZE_FRACTIONS`` of the arm's length (small, normal,
+large); arcs bulge by :data:`ARC_EXTENT` of the chord to the side their name gives;
+wavy and zigzag paths come from :mod:`motor.guiding_strokes`; circles and ellipses have
+radii ``CIRCLE_FRACTIONS`` of the arm's length and start where the hand is (clock
+positions choose where on the circle). Local movements: nodding and swinging turn the
+wrist by :data:`LOCAL_ANGLE` (down–up, side to side), twisting turns the forearm, finger
+play bends alternate fingers, stirring is a small horizontal circle. Durations are
+:func:`motor.biocontrol.movement_duration` of the movement kind in the sign's manner,
+independent of size. Time profiles: targetted for the sign's movements, linear for
+circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
+the fast/slow/tense tables for those manners. A static sign holds its posture for
+:data:`STATIC_HOLD` seconds.
+
+**Repetition.** ``fromstart``: back to the start (lax) and again; ``continue``: on from
+where the pass ended; ``reverse``: back along the same path (targetted), then forward.
+
+**Body.** Wrist positions inside the torso's elliptic cylinder (grown by
+:data:`TORSO_MARGIN`) are pushed out radially to its surface; positions the arm cannot
+reach are moved to the nearest it reaches (warning). The upper arm is kept out of the
+torso by the IK's swivel (:mod:`motor.arm_ik`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.arm_ik import solve_arm
+from motor.avatar import Avatar
+from motor.biocontrol import movement_duration
+from motor.guiding_strokes import curve_breakpoints, default_normal, ellipse_breakpoints, wavy, zigzag
+from motor.hand import hand_rotations, handshape_params
+from motor.hand_orientation import hand_rotations_from_vectors
+from motor.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.locations import ARM_SITES, FINGER_SITES, resolve_location
+from motor.program import ARMS, AVATAR_SIDE
+from motor.sign_lmp import Move, continuous_quaternions
+from motor.symmetry import mirror_directions
+from mura.errors import SpecError
+from mura.model import Arm, Constraint, Dynamic, iter_leaves, Parallel, Repetition, Segment, SegmentKind, Sequence, Static, Symmetrical, Symmetry
+from mura.signs import HandPosture, Sign
+from mura.values import (
+    AXES,
+    BetweenLocation,
+    BodySite,
+    Direction,
+    FingerBend,
+    GridLocation,
+    HandShape,
+    Location,
+    PalmOrientation,
+    PointLocation,
+)
+
+#: Length of a straight movement by HamNoSys size, fractions of the arm's length.
+SIZE_FRACTIONS: dict[str, float] = {"small": 0.12, "normal": 0.25, "large": 0.4}
+#: Radius of a circle by size, fractions of the arm's length; stirring is "small".
+CIRCLE_FRACTIONS: dict[str, float] = {"small": 0.05, "normal": 0.09, "large": 0.15}
+#: Bulge of an arc over its chord; amplitude of wavy and zigzag paths over their length.
+ARC_EXTENT = 0.3
+WAVE_AMPLITUDE = 0.12
+WAVES = 2
+ZIGS = 4
+#: Wrist turn of nodding and swinging, forearm turn of twisting, radians.
+LOCAL_ANGLE = 0.45
+#: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
+STATIC_HOLD = 0.5
+#: Clearance of the wrist from the torso surface, metres.
+TORSO_MARGIN = 0.04
+#: How far (m) the IK may fall short before a position is moved within reach.
+REACH_TOLERANCE = 1e-3
+#: Upper-arm penetration (m, IK diagnostics) that moves a position back from across the
+#: body, in steps of CROSS_STEP metres, at most CROSS_STEPS of them.
+PENETRATION_TOLERANCE = 1e-3
+CROSS_STEP = 0.02
+CROSS_STEPS = 12
+#: Neutral signing space of the right hand (mirrored for the left).
+NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
+#: Extended-finger direction and palm of a hand whose sign leaves them open.
+NEUTRAL_FINGERS = (0.0, 0.0, 1.0)
+#: The passive non-dominant hand that a one-handed sign touches: flat, palm up, in front.
+PASSIVE_POSTURE = HandPosture(
+    HandShape("flathand"),
+    Direction((0.0, 0.0, 1.0)),
+    PalmOrientation((0.0, 1.0, 0.0)),
+    GridLocation("LocStomach", "LocCCenterLeft", "LocNorm"),
+)
+#: Sites the parser writes that the resolver does not name, read as the nearest it does.
+SITE_ALIASES: dict[str, str] = {"finger": "fingerpad", "thumb": "thumb"}
+#: Proximities outside the resolver's table: at arm's length is far; behind the body is
+#: read as near; crossing and interlocking fingers are contact.
+PROXIMITY_ALIASES: dict[str, str] = {"armextended": "far", "behind": "near", "brushing": "touch", "cross": "touch", "interlock": "touch"}
+#: HamNoSys manners to (duration manner, profile manner) of the biocontrol tables.
+MANNERS: dict[str, str] = {"targetted": "targetted", "fast": "fast", "slow": "slow", "tense": "tense", "halt": "sudden_stop", "rest": "sudden_stop"}
+_PATH_POINTS = 8
+_CIRCLE_POINTS = 32
+_SAME = 1e-6
+_CHANNELS = ("wrist_position", "hand_rotation", "handshape")
+
+
+class SignPlanningError(ValueError):
+    """A sign that cannot be realized; the message names the sign and the reason."""
+
+
+@dataclass(frozen=True, eq=False)
+class HandPose:
+    """A hand's posture in numbers: wrist ``(3,)`` m, global rotation ``(4,)``, parameters."""
+
+    wrist: np.ndarray
+    rotation: np.ndarray
+    shape: np.ndarray
+
+    def channel(self, name: str) -> np.ndarray:
+        return {"wrist_position": self.wrist, "hand_rotation": self.rotation, "handshape": self.shape}[name]
+
+
+@dataclass(frozen=True, eq=False)
+class SignPlan:
+    """A sign ready to be placed on the clock.
+
+    Attributes:
+        gloss: the sign's name.
+        duration: length of the sign's own movement, seconds (0 < duration).
+        first: each active hand's first posture.
+        moves: ``(arm, channel)`` → moves on the sign's clock ``[0, duration]``.
+        static: the sign has no movement (the transition into it is then targetted).
+        nonmanual: the sign's nonmanual tiers, as parsed.
+        warnings: what was assumed or changed to realize it.
+    """
+
+    gloss: str
+    duration: float
+    first: Mapping[str, HandPose]
+    moves: Mapping[tuple[str, str], tuple[Move, ...]]
+    static: bool
+    nonmanual: Mapping[str, tuple] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def arms(self) -> tuple[str, ...]:
+        return tuple(arm for arm in ARMS if arm in self.first)
+
+
+@dataclass(frozen=True, eq=False)
+class _Hand:
+    """A hand's state while planning: palm-centre location, EFD and palm vectors, shape."""
+
+    location: np.ndarray
+    fingers: np.ndarray
+    palm: np.ndarray
+    shape: HandShape
+    params: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class _HandMove:
+    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys."""
+
+    start: float
+    end: float
+    manner: str
+    locations: np.ndarray
+    rotations: np.ndarray
+    shapes: np.ndarray
+
+
+@dataclass(eq=False)
+class _Change:
+    """What one leaf does to one hand: new state fields and explicit keys along the way."""
+
+    hand: _Hand
+    path: np.ndarray | None = None
+    rotations: np.ndarray | None = None
+    shapes: np.ndarray | None = None
+
+
+@dataclass(eq=False)
+class _Step:
+    duration: float
+    manner: str
+    changes: dict[str, _Change]
+
+
+def plan_sign(avatar: Avatar, sign: Sign) -> SignPlan:
+    """The sign's hand moves on its own clock; raises :class:`SignPlanningError` with the
+    gloss and the reason when it cannot be realized."""
+    try:
+        return _SignCompiler(avatar, sign).plan()
+    except (SpecError, ValueError, KeyError) as error:
+        if isinstance(error, SignPlanningError):
+            raise
+        raise SignPlanningError(f"sign {sign.gloss!r}: {error}") from None
+
+
+class _SignCompiler:
+    def __init__(self, avatar: Avatar, sign: Sign) -> None:
+        self.avatar = avatar
+        self.sign = sign
+        self.dominant = sign.dominant.side
+        self.other = sign.dominant.other.side
+        self.arm_length = avatar.arm_length("r")
+        self.warnings: list[str] = []
+        self.hands: dict[str, _Hand] = {}
+        self.moves: dict[str, list[_HandMove]] = {}
+        self.clock = 0.0
+        symmetry = sign.symmetry
+        self.symmetric = symmetry is not None
+        self.alternating = bool(symmetry and symmetry.alternating)
+        planes = frozenset() if symmetry is None or symmetry.kind == "par" else symmetry.planes | {"S"}
+        self.path_mirror = Symmetry(planes, "path")
+        self.sagittal = Symmetry(frozenset({"S"}), "SymMS")
+        self._offsets: dict[tuple, np.ndarray] = {}
+
+    def note(self, message: str) -> None:
+        self.warnings.append(f"{self.sign.gloss}: {message}")
+
+    # -- the whole sign ----------------------------------------------------------------
+
+    def plan(self) -> SignPlan:
+        self.initial_postures()
+        start = {arm: hand for arm, hand in self.hands.items()}
+        static = self.sign.movement is None
+        if static:
+            self.hold(STATIC_HOLD, self.sign.manner if self.sign.manner in MANNERS else "targetted")
+        else:
+            self.compile(self.sign.movement)
+            if self.clock <= 0.0:
+                self.hold(STATIC_HOLD, "targetted")
+        first = {arm: self.pose(arm, hand) for arm, hand in start.items()}
+        for arm, pose in first.items():
+            wrist = within_reach(self.avatar, arm, outside_torso(self.avatar, pose.wrist[None]))[0][0]
+            first[arm] = HandPose(wrist, pose.rotation, pose.shape)
+        moves = self.channel_moves(first)
+        return SignPlan(self.sign.gloss, self.clock, first, moves, static, dict(self.sign.nonmanual), tuple(self.warnings))
+
+    def hold(self, duration: float, manner: str) -> None:
+        scale = movement_duration("straight", MANNERS.get(manner, "targetted")) / movement_duration("straight")
+        self.apply(_Step(duration * scale, "targetted", {arm: _Change(hand) for arm, hand in self.hands.items()}))
+
+    # -- postures ------------------------------------------------------------------------
+
+    def initial_postures(self) -> None:
+        sign = self.sign
+        dominant = sign.posture
+        leaves = iter_leaves(sign.movement) if sign.movement is not None else ()
+        touched = _on_other_hand(dominant.location) or any(_on_other_hand(_leaf_location(leaf)) for leaf in leaves)
+        needs_base = sign.two_handed or touched
+        if needs_base:
+            self.hands[self.other] = self.other_hand()
+        self.hands[self.dominant] = self.hand_from(self.dominant, dominant, self.hands.get(self.other))
+        if sign.constellation is not None and self.other in self.hands:
+            self.place_constellation()
+
+    def other_hand(self) -> _Hand:
+        posture = self.other_posture()
+        hand = self.hand_from(self.other, posture, None)
+        own = self.sign.nondominant
+        if not self.symmetric or (own is not None and own.ext_finger is not None):
+            return hand
+        # the non-dominant hand mirrors the dominant hand's orientation
+        dominant = self.sign.posture
+        fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
+        palm = self.palm_vector(self.dominant, fingers, dominant.palm)
+        mirrored = replace(hand, fingers=mirror_directions(fingers, self.sagittal), palm=mirror_directions(palm, self.sagittal))
+        return replace(mirrored, location=self.locate(self.other, posture.location, mirrored, None))
+
+    def other_posture(self) -> HandPosture:
+        """The non-dominant hand's posture: its own fields, else the mirrored dominant's
+        (symmetric signs), else the passive base's."""
+        own = self.sign.nondominant or HandPosture()
+        if self.symmetric:
+            base = self.sign.posture
+            if _on_other_hand(base.location):
+                base = replace(base, location=None)
+        elif self.sign.two_handed and self.sign.nondominant is not None:
+            base = replace(PASSIVE_POSTURE, shape=self.sign.posture.shape or PASSIVE_POSTURE.shape)
+        else:
+            base = PASSIVE_POSTURE
+        return HandPosture(
+            own.shape or base.shape,
+            own.ext_finger or base.ext_finger,
+            own.palm or base.palm,
+            own.location if own.location is not None else base.location,
+        )
+
+    def hand_from(self, arm: str, posture: HandPosture, other: _Hand | None) -> _Hand:
+        shape = posture.shape or HandShape("flathand")
+        fingers = np.asarray(posture.ext_finger.vector if posture.ext_finger else NEUTRAL_FINGERS, dtype=float)
+        palm = self.palm_vector(arm, fingers, posture.palm)
+        params = handshape_params(shape)
+        hand = _Hand(np.zeros(3), fingers, palm, shape, params)
+        return replace(hand, location=self.locate(arm, posture.location, hand, other))
+
+    def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
+        if palm is None:
+            inward = np.array([1.0 if arm == "right" else -1.0, 0.0, 0.0])
+            return inward
+        direction = np.asarray(palm.direction, dtype=float)
+        if palm.relative:
+            direction = quat.rotate(quat.between_vectors(np.array([0.0, 0.0, 1.0]), fingers / np.linalg.norm(fingers)), direction)
+        return direction
+
+    def neutral(self, arm: str) -> np.ndarray:
+        location = NEUTRAL_LOCATION if arm == "right" else replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
+        return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
+
+    def locate(self, arm: str, location: Location | None, hand: _Hand, other: _Hand | None, here: np.ndarray | None = None) -> np.ndarray:
+        """Palm-centre point ``(3,)`` for ``location`` (see the module docstring)."""
+        if location is None:
+            return self.neutral(arm) if here is None else here
+        if isinstance(location, BetweenLocation):
+            first = self.locate(arm, location.first, hand, other, here)
+            second = self.locate(arm, location.second, hand, other, here)
+            return (1.0 - location.fraction) * first + location.fraction * second
+        if not isinstance(location, BodySite):
+            return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
+        site = _normalized(location)
+        if site.site == "contact":
+            return self.neutral(arm) if here is None else here
+        if _on_other_hand(site):
+            other_arm = "left" if arm == "right" else "right"
+            other_hand = other or self.hands.get(other_arm)
+            if other_hand is None:
+                self.note(f"location {location.site!r} on the other hand, which takes no part; neutral space")
+                return self.neutral(arm) if here is None else here
+            pose = self.arm_pose(other_arm, other_hand)
+            return resolve_location(self.avatar, site, AVATAR_SIDE[arm], pose)
+        return resolve_location(self.avatar, site, AVATAR_SIDE[arm])
+
+    def place_constellation(self) -> None:
+        """Put the hands relative to each other (module docstring)."""
+        constellation = self.sign.constellation
+        assert constellation is not None
+        other = self.hands[self.other]
+        if constellation.location is not None:
+            other = replace(other, location=self.locate(self.other, constellation.location, other, None))
+        other_site = _hand_site(constellation.nondominant, constellation.contact)
+        own_site = _hand_site(constellation.dominant, "touch")
+        if _is_hand_site(other_site):
+            pose = self.arm_pose(self.other, other)
+            meeting = resolve_location(self.avatar, other_site, AVATAR_SIDE[self.dominant], pose)
+        else:
+            meeting = other.location
+        dominant = self.hands[self.dominant]
+        palm = self.offset(self.dominant, dominant, BodySite("palm", proximity="touch"))
+        own = self.offset(self.dominant, dominant, own_site) if _is_hand_site(own_site) else palm
+        self.hands[self.other] = other
+        self.hands[self.dominant] = replace(dominant, location=meeting - own + palm)
+
+    # -- the hand's geometry -------------------------------------------------------------
+
+    def rotation(self, arm: str, hand: _Hand) -> np.ndarray:
+        return hand_rotations_from_vectors(self.avatar, AVATAR_SIDE[arm], hand.fingers[None], hand.palm[None])[0]
+
+    def offset(self, arm: str, hand: _Hand, site: BodySite) -> np.ndarray:
+        """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
+        return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
+
+    def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
+        return hand.location - self.offset(arm, hand, BodySite("palm", proximity="touch"))
+
+    def arm_pose(self, arm: str, hand: _Hand) -> Pose:
+        """The whole body with this arm in the hand's posture (rest elsewhere), one frame."""
+        side = AVATAR_SIDE[arm]
+        rotation = self.rotation(arm, hand)
+        solution = solve_arm(self.avatar, side, self.wrist(arm, hand)[None], rotation[None])
+        rotations = identity_rotations(self.avatar, 1)
+        rotations[0, self.avatar.arm_joints(side)] = solution.rotations[0]
+        rotations[0, self.avatar.hand_joints(side)] = hand_rotations(self.avatar, side, hand.params[None])[0]
+        return forward_kinematics(self.avatar, rotations)
+
+    def pose(self, arm: str, hand: _Hand) -> HandPose:
+        return HandPose(self.wrist(arm, hand), self.rotation(arm, hand), hand.params)
+
+    # -- the movement tree ---------------------------------------------------------------
+
+    def compile(self, node: Constraint) -> None:
+        if isinstance(node, Sequence):
+            for child in node.children:
+                self.compile(child)
+        elif isinstance(node, Parallel):
+            self.parallel(node)
+        elif isinstance(node, Repetition):
+            self.repetition(node)
+        elif isinstance(node, Symmetrical):
+            self.compile(node.child)
+        else:
+            self.apply(self.leaf(node, dict(self.hands)))
+
+    def parallel(self, node: Parallel) -> None:
+        children = _flattened(node)
+        leaves = [child for child in children if isinstance(child, (Static, Dynamic))]
+        if len(leaves) != len(children):
+            self.note("a parallel group with compound parts is performed one part after another")
+            for child in children:
+                self.compile(child)
+            return
+        base = dict(self.hands)
+        steps = [self.leaf(leaf, base) for leaf in leaves]
+        self.apply(_merge_steps(steps, base))
+
+    def repetition(self, node: Repetition) -> None:
+        if node.alternating and self.other in self.hands:
+            self.alternating = True
+        start_hands, start_clock = dict(self.hands), self.clock
+        first = {arm: len(moves) for arm, moves in self.moves.items()}
+        self.compile(node.child)
+        passed = {arm: self.moves.get(arm, [])[first.get(arm, 0):] for arm in self.hands}
+        end_hands, length = dict(self.hands), self.clock - start_clock
+        if length <= 0.0:
+            return
+        for index in range(1, node.count):
+            if node.mode == "continue":
+                self.compile(node.child)
+            elif node.mode == "reverse" and index % 2 == 1:
+                backward = {arm: [_reversed(m, start_clock, start_clock + length) for m in reversed(moves)] for arm, moves in passed.items()}
+                self.replay(backward, length)
+                self.hands = dict(start_hands)
+            else:
+                if node.mode == "reverse":
+                    self.replay(passed, length)
+                else:
+                    back = {arm: _Change(hand) for arm, hand in start_hands.items()}
+                    self.apply(_Step(movement_duration("straight", "targetted"), "lax", back))
+                    self.replay(passed, length)
+                self.hands = dict(end_hands)
+
+    def replay(self, moves: Mapping[str, list[_HandMove]], length: float) -> None:
+        """The recorded moves of one pass again, from the current clock."""
+        starts = [m.start for ms in moves.values() for m in ms]
+        origin = min(starts) if starts else self.clock
+        for arm, ms in moves.items():
+            self.moves.setdefault(arm, []).extend(replace(m, start=m.start - origin + self.clock, end=m.end - origin + self.clock) for m in ms)
+        self.clock += length
+
+    def apply(self, step: _Step) -> None:
+        """Append one step's moves (all hands it changes) and advance the clock."""
+        end = self.clock + max(step.duration, _SAME)
+        for arm, change in step.changes.items():
+            before = self.hands[arm]
+            after = change.hand
+            path = change.path if change.path is not None else np.stack([before.location, after.location])
+            rotations = change.rotations if change.rotations is not None else np.stack([self.rotation(arm, before), self.rotation(arm, after)])
+            shapes = change.shapes if change.shapes is not None else np.stack([before.params, after.params])
+            self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
+            self.hands[arm] = after
+        self.clock = end
+
+    # -- leaves --------------------------------------------------------------------------
+
+    def arms_of(self, leaf: Static | Dynamic) -> tuple[str, ...]:
+        scope = leaf.scope
+        if scope in (Arm.RIGHT, Arm.LEFT, "right_arm", "left_arm"):
+            arm = Arm(scope).side if isinstance(scope, str) else scope.side
+            if arm not in self.hands:
+                self.hands[arm] = self.other_hand() if arm == self.other else self.hand_from(arm, self.sign.posture, None)
+            return (arm,)
+        if self.symmetric and self.other in self.hands:
+            return (self.dominant, self.other)
+        return (self.dominant,)
+
+    def leaf(self, leaf: Static | Dynamic, hands: Mapping[str, _Hand]) -> _Step:
+        arms = self.arms_of(leaf)
+        if isinstance(leaf, Static):
+            segment = Segment(SegmentKind.LINEAR, end=leaf.value, manner="targetted")
+        else:
+            if not leaf.segments:
+                raise SignPlanningError(f"sign {self.sign.gloss!r}: dynamic {leaf.slot} without segments")
+            if len(leaf.segments) > 1:
+                self.note(f"{leaf.slot}: {len(leaf.segments)} segments performed as one movement each after the first's timing")
+            segment = leaf.segments[0]
+        manner = MANNERS.get(segment.manner or "targetted")
+        if manner is None:
+            self.note(f"unknown manner {segment.manner!r}; targetted")
+            manner = "targetted"
+        lead = arms[0]
+        hands = {arm: self.hands[arm] for arm in arms}
+        if leaf.slot == "HandLocation":
+            change, kind, profile = self.path(lead, hands[lead], segment, manner)
+            changes = {lead: change}
+            if len(arms) > 1:
+                changes[arms[1]] = self.follower_path(arms[1], hands[arms[1]], change, hands[lead])
+        elif leaf.slot in ("HandShape", "ExtFingerOrientation", "PalmOrientation"):
+            kind, profile = "straight", manner
+            changes = {arm: self.posture_change(arm, hands[arm], leaf.slot, segment, arm != lead) for arm in arms}
+        else:
+            self.note(f"slot {leaf.slot} is not realized by the hands")
+            return _Step(0.0, manner, {})
+        return _Step(movement_duration(kind, manner), profile, changes)
+
+    def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
+        """The palm-centre path of one HandLocation segment, its kind and time profile."""
+        start = hand.location
+        size = segment.size if segment.size in SIZE_FRACTIONS else "normal"
+        contact = any(m.startswith("contact=") and m != "contact=close" for m in segment.modifiers)
+        if segment.end is not None:
+            end = self.locate(arm, segment.end, hand, None, here=start)
+            contact = contact or _touches(segment.end)
+        elif segment.direction is not None:
+            end = start + _unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
+        else:
+            end = start
+        kind = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}[segment.kind]
+        if segment.kind is SegmentKind.CIRCLE:
+            points = self.circle(start, segment)
+        elif segment.kind is SegmentKind.CURVE and np.linalg.norm(end - start) > _SAME:
+            points = self.curve(start, end, segment)
+        else:
+            if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
+                self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
+            points = np.linspace(start, end, _PATH_POINTS)
+        if manner == "sudden_stop":
+            profile = "sudden_stop"
+        elif segment.kind is SegmentKind.CIRCLE:
+            profile = "linear"
+        elif contact:
+            profile = "hard_contact"
+        else:
+            profile = manner
+        return _Change(replace(hand, location=points[-1]), path=points), kind, profile
+
+    def curve(self, start: np.ndarray, end: np.ndarray, segment: Segment) -> np.ndarray:
+        chord = end - start
+        normal = None if segment.normal is None else np.asarray(segment.normal.vector, dtype=float)
+        if segment.shape == "wavy":
+            return wavy(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), WAVES, normal)
+        if segment.shape == "zigzag":
+            return zigzag(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), ZIGS, normal)
+        letter = (segment.shape or "arcu").removeprefix("arc")
+        bulge = np.asarray(AXES.get(letter, AXES["u"]), dtype=float)
+        across = bulge - (bulge @ chord) / (chord @ chord) * chord
+        if np.linalg.norm(across) < 1e-6:
+            self.note(f"arc {segment.shape!r} bulges along its own chord; bulging in the default plane")
+            plane = default_normal(chord)
+        else:
+            plane = np.cross(chord, across)  # LeftC bulges toward plane × chord = across
+        return curve_breakpoints(start, end, plane, "LeftC", ARC_EXTENT).points
+
+    def circle(self, start: np.ndarray, segment: Segment) -> np.ndarray:
+        """A circle (or ellipse, or arc between clock positions) starting at ``start``."""
+        stirring = segment.shape in ("stircw", "stirccw")
+        if segment.normal is not None:
+            axis = _unit(segment.normal.vector)
+        else:
+            axis = np.array([0.0, -1.0 if segment.shape == "stircw" else 1.0, 0.0]) if stirring else np.array([0.0, 0.0, 1.0])
+        size = "small" if stirring else (segment.size if segment.size in CIRCLE_FRACTIONS else "normal")
+        radius = CIRCLE_FRACTIONS[size] * self.arm_length
+        modifiers = dict(m.split("=", 1) for m in segment.modifiers if "=" in m)
+        e1, e2 = _circle_axes(axis)
+        begin = _clock_angle(modifiers.get("start"), axis, e1, e2, default=np.pi)
+        sweep = 2.0 * np.pi
+        if modifiers.get("end") not in (None, "full"):
+            finish = _clock_angle(modifiers["end"], axis, e1, e2, default=begin)
+            sweep = (finish - begin) % (2.0 * np.pi) or 2.0 * np.pi
+        ellipse = modifiers.get("ellipse")
+        semi = (radius, radius * 0.55) if ellipse else (radius, radius)
+        major = {"h": AXES["l"], "v": AXES["u"], "ur": (-0.7071, 0.7071, 0.0), "ul": (0.7071, 0.7071, 0.0)}.get(ellipse or "", e1)
+        points = ellipse_breakpoints(np.zeros(3), semi, axis, None if ellipse is None else major, begin, sweep, _CIRCLE_POINTS)
+        if ellipse is None:
+            points = ellipse_breakpoints(np.zeros(3), semi, axis, e1, begin, sweep, _CIRCLE_POINTS)
+        return points - points[0] + start
+
+    def follower_path(self, arm: str, hand: _Hand, lead: _Change, lead_hand: _Hand) -> _Change:
+        """The non-dominant hand's path under symmetry: the dominant's displacements
+        mirrored (lr) or translated (par), reversed when alternating."""
+        assert lead.path is not None
+        displacement = mirror_directions(lead.path - lead.path[0], self.path_mirror)
+        if self.alternating:
+            displacement = -displacement
+        path = hand.location + displacement
+        return _Change(replace(hand, location=path[-1]), path=path)
+
+    def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
+        """A change of shape or orientation (``replace``) or a local movement in place."""
+        local = segment.shape
+        if local in ("nodding", "swinging", "twisting"):
+            return self.local_turn(arm, hand, local)
+        if local == "fingerplay":
+            return self.fingerplay(hand)
+        value = segment.end if segment.end is not None else segment.start
+        if value is None:
+            self.note(f"{slot} change without a target is held")
+            return _Change(hand)
+        if slot == "HandShape":
+            if not isinstance(value, HandShape):
+                raise SignPlanningError(f"sign {self.sign.gloss!r}: HandShape change to {value!r}")
+            return _Change(replace(hand, shape=value, params=handshape_params(value)))
+        if slot == "ExtFingerOrientation":
+            if not isinstance(value, Direction):
+                raise SignPlanningError(f"sign {self.sign.gloss!r}: extended-finger change to {value!r}")
+            fingers = np.asarray(value.vector, dtype=float)
+            if mirrored:
+                fingers = mirror_directions(fingers, self.sagittal)
+            return _Change(replace(hand, fingers=fingers))
+        if not isinstance(value, PalmOrientation):
+            raise SignPlanningError(f"sign {self.sign.gloss!r}: palm change to {value!r}")
+        palm = self.palm_vector(arm, hand.fingers if not mirrored else mirror_directions(hand.fingers, self.sagittal), value)
+        if mirrored:
+            palm = mirror_directions(palm, self.sagittal)
+        return _Change(replace(hand, palm=palm))
+
+    def local_turn(self, arm: str, hand: _Hand, kind: str) -> _Change:
+        """Nodding (wrist flexion), swinging (side to side) or twisting (forearm), there
+        and back, about the hand's own axes."""
+        rotation = self.rotation(arm, hand)
+        frame = self.avatar.hand_frames[AVATAR_SIDE[arm]]
+        local_axis = {"nodding": frame.bend_axis, "swinging": frame.splay_axis, "twisting": frame.finger_axis}[kind]
+        axis = quat.rotate(rotation, local_axis)
+        angles = np.array([0.0, LOCAL_ANGLE, 0.0, -LOCAL_ANGLE, 0.0]) if kind != "nodding" else np.array([0.0, LOCAL_ANGLE, 0.0])
+        turns = quat.from_axis_angle(np.broadcast_to(axis, (angles.size, 3)), angles)
+        return _Change(hand, rotations=continuous_quaternions(quat.multiply(turns, rotation)))
+
+    def fingerplay(self, hand: _Hand) -> _Change:
+        """Fingers bending in turn: index and ring, then middle and pinky, then back."""
+        shape = hand.shape
+        first = handshape_params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("index", "ring"), "halfbent"),)))
+        second = handshape_params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("middle", "pinky"), "halfbent"),)))
+        return _Change(hand, shapes=np.stack([hand.params, first, second, first, hand.params]))
+
+    # -- from hand moves to channel moves ------------------------------------------------
+
+    def channel_moves(self, first: Mapping[str, HandPose]) -> dict[tuple[str, str], tuple[Move, ...]]:
+        result: dict[tuple[str, str], tuple[Move, ...]] = {}
+        for arm in first:
+            moves = self.moves.get(arm, [])
+            palm = BodySite("palm", proximity="touch")
+            wrists = []
+            for move in moves:
+                start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
+                end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
+                fractions = _arc_fractions(move.locations)[:, None]
+                wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
+            wrists = self.reachable(arm, [self.outside_torso(w) for w in wrists], first[arm])
+            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
+            result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
+            result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
+        return result
+
+    def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
+        side = AVATAR_SIDE[arm]
+        key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
+        if key not in self._offsets:
+            rotations = identity_rotations(self.avatar, 1)
+            rotations[0, self.avatar.joint_index(f"{side}_wrist")] = rotation
+            rotations[0, self.avatar.hand_joints(side)] = hand_rotations(self.avatar, side, np.asarray(params)[None])[0]
+            pose = forward_kinematics(self.avatar, rotations)
+            wrist = pose.positions[0, self.avatar.joint_index(f"{side}_wrist")]
+            self._offsets[key] = resolve_location(self.avatar, site, "l" if side == "r" else "r", pose) - wrist
+        return self._offsets[key]
+
+    def outside_torso(self, points: np.ndarray) -> np.ndarray:
+        return outside_torso(self.avatar, points)
+
+    def reachable(self, arm: str, paths: list[np.ndarray], first: HandPose) -> list[np.ndarray]:
+        if not paths:
+            return paths
+        stacked = np.concatenate(paths)
+        fixed, short, worst = within_reach(self.avatar, arm, stacked)
+        if short:
+            self.note(f"{short} position(s) of the {arm} hand out of reach (by up to {worst:.3f} m) or too far across the body; moved")
+        return np.split(fixed, np.cumsum([len(p) for p in paths])[:-1])
+
+
+def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
+    """Wrist positions ``(n, 3)`` inside the torso's elliptic cylinder (grown by
+    :data:`TORSO_MARGIN`) pushed out radially onto its surface; the others unchanged."""
+    torso = avatar.torso
+    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
+    dx = points[:, 0] - torso.center[0]
+    dz = points[:, 2] - torso.center[2]
+    radius = np.sqrt((dx / a) ** 2 + (dz / b) ** 2)
+    inside = (radius < 1.0) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+    if not np.any(inside):
+        return points
+    out = points.copy()
+    safe = np.where(radius > 1e-9, radius, 1.0)
+    # a point on the axis goes straight forward
+    out[:, 0] = np.where(inside, torso.center[0] + np.where(radius > 1e-9, dx / safe, 0.0), out[:, 0])
+    out[:, 2] = np.where(inside, torso.center[2] + np.where(radius > 1e-9, dz / safe, b), out[:, 2])
+    return out
+
+
+def within_reach(avatar: Avatar, arm: str, points: np.ndarray) -> tuple[np.ndarray, int, float]:
+    """Wrist positions ``(n, 3)`` the arm reaches without its upper arm in the torso.
+
+    Positions out of reach go to the nearest the arm reaches; positions so far across the
+    body that no swivel keeps the upper arm out of the torso (the IK reports penetration)
+    step back toward the arm's own side by :data:`CROSS_STEP` until it does. Also returns
+    how many positions moved and the largest shortfall (m)."""
+    side = AVATAR_SIDE[arm]
+    outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 0.0]) * CROSS_STEP
+    fixed = np.asarray(points, dtype=float)
+    moved = np.zeros(len(fixed), dtype=bool)
+    worst = 0.0
+    for _ in range(CROSS_STEPS):
+        solution = solve_arm(avatar, side, fixed)
+        short = solution.shortfall > REACH_TOLERANCE
+        crossing = solution.penetration > PENETRATION_TOLERANCE
+        if not (np.any(short) or np.any(crossing)):
+            break
+        worst = max(worst, float(solution.shortfall.max()))
+        fixed = np.where(short[:, None], solution.wrist, fixed) + crossing[:, None] * outward
+        moved |= short | crossing
+    return fixed, int(moved.sum()), worst
+
+
+def _flattened(node: Parallel) -> list[Constraint]:
+    """The children of nested parallel groups, as one group."""
+    children: list[Constraint] = []
+    for child in node.children:
+        children.extend(_flattened(child) if isinstance(child, Parallel) else [child])
+    return children
+
+
+def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
+    """Parallel leaves: one step as long as the longest, each hand's fields from the leaf
+    that changes them."""
+    steps = [s for s in steps if s.changes]
+    if not steps:
+        return _Step(0.0, "targetted", {})
+    longest = max(steps, key=lambda s: s.duration)
+    merged: dict[str, _Change] = {}
+    for step in steps:
+        for arm, change in step.changes.items():
+            before = base[arm]
+            current = merged.get(arm, _Change(before))
+            hand = current.hand
+            if not np.allclose(change.hand.location, before.location):
+                hand = replace(hand, location=change.hand.location)
+            if not (np.allclose(change.hand.fingers, before.fingers) and np.allclose(change.hand.palm, before.palm)):
+                hand = replace(hand, fingers=change.hand.fingers, palm=change.hand.palm)
+            if not np.allclose(change.hand.params, before.params):
+                hand = replace(hand, shape=change.hand.shape, params=change.hand.params)
+            merged[arm] = _Change(
+                hand,
+                change.path if change.path is not None else current.path,
+                change.rotations if change.rotations is not None else current.rotations,
+                change.shapes if change.shapes is not None else current.shapes,
+            )
+    return _Step(longest.duration, longest.manner, merged)
+
+
+def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
+    """A move of a pass played backwards within the pass (the return stroke of a reversed
+    repetition), targetted."""
+    return _HandMove(
+        pass_start + pass_end - move.end, pass_start + pass_end - move.start, "targetted",
+        move.locations[::-1], move.rotations[::-1], move.shapes[::-1],
+    )
+
+
+def _arc_fractions(points: np.ndarray) -> np.ndarray:
+    lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    return lengths / lengths[-1] if lengths[-1] > _SAME else np.linspace(0.0, 1.0, len(points))
+
+
+def _unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:
+    v = np.asarray(vector, dtype=float)
+    norm = float(np.linalg.norm(v))
+    if norm < 1e-9:
+        raise ValueError("direction of zero length")
+    return v / norm
+
+
+def _circle_axes(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """In-plane axes: up (forward for a vertical axis) projected, and axis × e1."""
+    up, forward = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
+    reference = up if abs(axis @ up) <= abs(axis @ forward) else forward
+    e1 = reference - (reference @ axis) * axis
+    e1 /= np.linalg.norm(e1)
+    return e1, np.cross(axis, e1)
+
+
+def _clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.ndarray, default: float) -> float:
+    """Angle on the circle of a clock position (direction letters from the centre)."""
+    if not letters or any(letter not in AXES for letter in letters):
+        return default
+    direction = np.sum([AXES[letter] for letter in letters], axis=0)
+    direction = direction - (direction @ axis) * axis
+    if np.linalg.norm(direction) < 1e-9:
+        return default
+    # the hand starts at that clock position: the angle of the point from the centre
+    return float(np.arctan2(direction @ e2, direction @ e1))
+
+
+def _normalized(site: BodySite) -> BodySite:
+    name = site.site.split(":")[0]
+    name = SITE_ALIASES.get(name, name)
+    proximity = PROXIMITY_ALIASES.get(site.proximity or "", site.proximity)
+    return replace(site, site=name, proximity=proximity)
+
+
+def _on_other_hand(location: Location | None) -> bool:
+    if isinstance(location, BetweenLocation):
+        return _on_other_hand(location.first) or _on_other_hand(location.second)
+    if not isinstance(location, BodySite):
+        return False
+    return _is_hand_site(_normalized(location))
+
+
+def _leaf_location(leaf: Static | Dynamic) -> Location | None:
+    """The location a HandLocation leaf moves to, if it names one."""
+    if leaf.slot != "HandLocation":
+        return None
+    if isinstance(leaf, Static):
+        return leaf.value if isinstance(leaf.value, (BodySite, BetweenLocation)) else None
+    return next((s.end for s in leaf.segments if isinstance(s.end, (BodySite, BetweenLocation))), None)
+
+
+def _is_hand_site(site: BodySite) -> bool:
+    return site.site in ARM_SITES or site.site in FINGER_SITES or site.site == "thumb"
+
+
+def _hand_site(location: Location | None, contact: str | None) -> BodySite:
+    """A constellation's site of one hand (the palm when none is named), at the contact."""
+    proximity = {"touch": "touch", "close": "close", "interlock": "touch", "cross": "touch"}.get(contact or "", "close")
+    if isinstance(location, BodySite):
+        return replace(_normalized(location), proximity=proximity)
+    return BodySite("palm", proximity=proximity)
+
+
+def _touches(location: Location) -> bool:
+    return isinstance(location, BodySite) and location.proximity in ("touch", "interlock", "cross")

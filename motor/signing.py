@@ -1,0 +1,278 @@
+"""Signs realized by the motor core: SiGML/HamNoSys signs in a row → :class:`Motion`.
+
+Each sign is planned on its own clock (:func:`motor.sign_planning.plan_sign`) and placed
+on the utterance clock one after the other: the avatar stands in its ``rest`` posture for
+:data:`REST_LEAD` seconds, each sign begins with a *transition* from wherever the hands
+are to its first posture — lax, or targetted into a static sign (seed 000, 4.5) — lasting
+the longer of :func:`motor.biocontrol.movement_duration` and Fitts' law for the distance
+the wrists travel, then performs its moves; after the last sign the hands return to rest
+along the lax profile in :func:`motor.program.retraction_duration` and stay there for
+:data:`REST_TAIL` seconds. A hand a sign does not use goes back to rest during that sign.
+
+The sign LMPs (:class:`motor.sign_lmp.SignChannelLMP`, one per channel of each arm and
+sign) are activated on :class:`motor.control.MotorControl`, which samples them and solves
+both arms (analytic IK with the natural swivel, torso avoidance included) and hands for
+every frame. Non-manual tiers that name a head movement (nod, shake, tilt) turn the head
+(``skullbase``) during their sign; other tiers are kept in the timing table only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.avatar import Avatar
+from motor.biocontrol import movement_duration, profile
+from motor.control import MotorControl
+from motor.kinematics import forward_kinematics
+from motor.lmp import LMP, RetractionLMP, TimePegs
+from motor.motion import Motion
+from motor.program import ARMS, AVATAR_SIDE, rest_handshape, retraction_duration
+from motor.sign_lmp import SignChannelLMP
+from motor.arm_ik import solve_arm
+from motor.sign_planning import HandPose, SignPlan, outside_torso, plan_sign, within_reach
+from motor.trajectory import fitts_duration
+from mura.signs import Sign
+
+#: Standing at rest before the first sign and after the last, seconds.
+REST_LEAD = 0.3
+REST_TAIL = 0.3
+#: Interior points of a transition's wrist path (checked against torso and reach).
+TRANSITION_POINTS = 6
+#: Depth (m) of the upper arm's axis inside the torso cylinder tolerated before a frame's
+#: arm is solved again (the shoulder joint itself sits at the torso's edge).
+UPPER_ARM_TOLERANCE = 0.01
+#: Channels of one arm that a sign drives.
+CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
+#: Head movements read from non-manual items: a word in the item's tag or attribute
+#: values → (axis in the avatar frame, peak angle in radians, swings).
+HEAD_MOVEMENTS: dict[str, tuple[tuple[float, float, float], float, int]] = {
+    "nod": ((1.0, 0.0, 0.0), 0.25, 2),
+    "shake": ((0.0, 1.0, 0.0), 0.3, 3),
+    "tilt": ((0.0, 0.0, 1.0), 0.2, 1),
+}
+_HEAD_CODES = {"NO": "nod", "SH": "shake", "TL": "tilt", "TR": "tilt"}
+
+
+@dataclass(frozen=True)
+class SignTiming:
+    """When a sign happens on the utterance clock, seconds: its transition starts at
+    ``start``, its first posture is reached at ``ready`` and its movement ends at ``end``."""
+
+    gloss: str
+    start: float
+    ready: float
+    end: float
+    nonmanual: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class SignedMotion:
+    """Signs realized as a :class:`Motion`, with their timing and what planning noted."""
+
+    motion: Motion
+    timings: tuple[SignTiming, ...]
+    warnings: tuple[str, ...]
+    control: MotorControl = field(repr=False)
+
+    @property
+    def duration(self) -> float:
+        return self.motion.duration
+
+
+@dataclass(frozen=True, eq=False)
+class SignProgram:
+    """The LMPs of one sign, in the form :meth:`MotorControl.activate` takes."""
+
+    behavior: str
+    lmps: tuple[LMP, ...]
+
+
+def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float = 25.0) -> SignedMotion:
+    """Signs (or their plans) one after another as one motion at ``fps`` frames/s.
+
+    Raises :class:`motor.sign_planning.SignPlanningError` for a sign that cannot be
+    planned (plan signs first with :func:`plan_sign` to skip such signs one by one).
+    """
+    plans = [item if isinstance(item, SignPlan) else plan_sign(avatar, item) for item in signs]
+    control = MotorControl(avatar, fps)
+    rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
+    here = dict(rest)
+    clock = REST_LEAD
+    timings: list[SignTiming] = []
+    warnings: list[str] = []
+    for plan in plans:
+        targets = {arm: plan.first.get(arm, rest[arm]) for arm in ARMS}
+        transition = _transition_time(here, targets)
+        ready = clock + transition
+        end = ready + plan.duration
+        pegs = TimePegs(clock, ready, ready, ready + 0.5 * plan.duration, end, end, end)
+        manner = "targetted" if plan.static else "lax"
+        lmps: list[LMP] = []
+        for arm in ARMS:
+            for channel in CHANNELS:
+                moves = tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ()))
+                via = _transition_way(avatar, arm, here[arm].wrist, targets[arm].wrist) if channel == "wrist_position" else None
+                lmps.append(SignChannelLMP((arm, channel), pegs, targets[arm].channel(channel), moves, manner, via))
+            here[arm] = _last_pose(plan, arm, targets[arm])
+        control.activate(SignProgram(plan.gloss, tuple(lmps)))
+        timings.append(SignTiming(plan.gloss, clock, ready, end, tuple(sorted(plan.nonmanual))))
+        warnings.extend(plan.warnings)
+        clock = end
+    back = max(retraction_duration(float(np.linalg.norm(here[arm].wrist - rest[arm].wrist))) for arm in ARMS)
+    retract = TimePegs.movement(clock, clock + back)
+    control.activate(SignProgram("rest", tuple(
+        RetractionLMP((arm, channel), retract, rest[arm].channel(channel)) for arm in ARMS for channel in CHANNELS
+    )))  # fmt: skip
+    motion = control.frames(0.0, clock + back + REST_TAIL)
+    motion = _elbows_outside(avatar, control, motion)
+    motion = _with_head(avatar, motion, plans, timings)
+    return SignedMotion(motion, tuple(timings), tuple(warnings), control)
+
+
+def _rest_pose(avatar: Avatar, arm: str) -> HandPose:
+    posture = avatar.postures["rest"][AVATAR_SIDE[arm]]
+    return HandPose(np.asarray(posture.wrist, dtype=float), np.asarray(posture.hand_rotation, dtype=float), rest_handshape())
+
+
+def _last_pose(plan: SignPlan, arm: str, first: HandPose) -> HandPose:
+    values = {}
+    for channel in CHANNELS:
+        moves = plan.moves.get((arm, channel), ())
+        values[channel] = moves[-1].values[-1] if moves else first.channel(channel)
+    return HandPose(values["wrist_position"], values["hand_rotation"], values["handshape"])
+
+
+def _transition_way(avatar: Avatar, arm: str, here: np.ndarray, there: np.ndarray) -> np.ndarray:
+    """Interior points of the straight transition of a wrist, kept outside the torso and
+    within reach (the transition is not a path the sign chose)."""
+    inner = np.linspace(here, there, TRANSITION_POINTS + 2)[1:-1]
+    return within_reach(avatar, arm, outside_torso(avatar, inner))[0]
+
+
+def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
+    """Frames whose upper arm entered the torso solved again with the per-frame natural
+    swivel of :func:`motor.arm_ik.solve_arm` (whose torso avoidance keeps it out).
+
+    The control's swivel is sampled on a coarse grid and interpolated; where the natural
+    swivel jumps between grid points (the wrist crossing the midline near the body),
+    the interpolated elbow can pass through the trunk.
+    """
+    depth = upper_arm_depths(avatar, motion)
+    for arm in ARMS:
+        flagged = depth[arm] > UPPER_ARM_TOLERANCE
+        if not np.any(flagged):
+            continue
+        side = AVATAR_SIDE[arm]
+        times = motion.times[flagged]
+        wrists = control.timeline((arm, "wrist_position")).sample(times)
+        hands = control.timeline((arm, "hand_rotation")).sample(times)
+        motion.rotations[np.flatnonzero(flagged)[:, None], avatar.arm_joints(side)[None, :]] = solve_arm(avatar, side, wrists, hands).rotations
+    return motion
+
+
+def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose]) -> float:
+    """Lax straight movement time, or Fitts' law for the farthest wrist if longer."""
+    distance = max(float(np.linalg.norm(targets[arm].wrist - here[arm].wrist)) for arm in ARMS)
+    return max(movement_duration("straight", "lax"), float(fitts_duration(distance)))
+
+
+def head_movement(items: Sequence) -> str | None:
+    """The head movement a sign's non-manual items name (nod, shake, tilt), or None."""
+    for item in items:
+        words = [item.tag, *(value for _, value in item.attributes)]
+        for word in words:
+            text = str(word)
+            if text.upper() in _HEAD_CODES:
+                return _HEAD_CODES[text.upper()]
+            for name in HEAD_MOVEMENTS:
+                if name in text.lower():
+                    return name
+    return None
+
+
+def _with_head(avatar: Avatar, motion: Motion, plans: Sequence[SignPlan], timings: Sequence[SignTiming]) -> Motion:
+    """The motion with the head turned during signs whose non-manual tiers ask for it."""
+    if "skullbase" not in avatar.joint_names:
+        return motion
+    head = avatar.joint_index("skullbase")
+    times = motion.times
+    rotations = motion.rotations
+    for plan, timing in zip(plans, timings):
+        items = [item for tier in plan.nonmanual.values() for item in tier]
+        movement = head_movement(items)
+        if movement is None:
+            continue
+        axis, angle, swings = HEAD_MOVEMENTS[movement]
+        inside = (times >= timing.ready) & (times <= timing.end)
+        if not np.any(inside):
+            continue
+        u = (times[inside] - timing.ready) / max(timing.end - timing.ready, 1e-9)
+        envelope = np.sin(np.pi * profile("lax").fraction(u))
+        angles = angle * envelope * (np.sin(np.pi * swings * u) if swings > 1 else 1.0)
+        turn = quat.from_axis_angle(np.broadcast_to(np.asarray(axis), (angles.size, 3)), angles)
+        rotations[inside, head] = quat.multiply(rotations[inside, head], turn)
+    return motion
+
+
+@dataclass(frozen=True)
+class MotionCheck:
+    """Body checks of a rendered motion.
+
+    Attributes:
+        frames: frames checked.
+        non_finite: frames with a NaN or infinite rotation.
+        max_shortfall: largest distance (m) between a wrist reached (forward kinematics)
+            and the wrist position the sign asked for.
+        max_upper_arm_depth: deepest point (m) of either upper arm (shoulder → elbow)
+            inside the torso's elliptic cylinder.
+    """
+
+    frames: int
+    non_finite: int
+    max_shortfall: float
+    max_upper_arm_depth: float
+
+
+#: Points along the upper arm (fractions from shoulder to elbow) checked against the torso;
+#: the shoulder itself sits on the torso's edge, so the check starts a little way out.
+_UPPER_ARM_SAMPLES = np.linspace(0.25, 1.0, 7)
+
+
+def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
+    """Per arm, per frame: how deep (m, along the torso's radial direction) the upper arm's
+    axis (shoulder → elbow) is inside the torso's elliptic cylinder; 0 outside."""
+    pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
+    torso = avatar.torso
+    depths = {}
+    for arm in ARMS:
+        _, shoulder, elbow, _ = avatar.arm_joints(AVATAR_SIDE[arm])
+        s = pose.positions[:, shoulder][:, None, :]
+        e = pose.positions[:, elbow][:, None, :]
+        points = s + _UPPER_ARM_SAMPLES[None, :, None] * (e - s)
+        offsets = points - torso.center
+        radius = np.sqrt((offsets[..., 0] / torso.half_width) ** 2 + (offsets[..., 2] / torso.half_depth) ** 2)
+        within = (points[..., 1] > torso.bottom) & (points[..., 1] < torso.top) & (radius < 1.0)
+        distance = np.hypot(offsets[..., 0], offsets[..., 2])
+        gap = distance * (1.0 / np.maximum(radius, 1e-9) - 1.0)
+        depths[arm] = np.max(np.where(within, gap, 0.0), axis=1)
+    return depths
+
+
+def check_motion(avatar: Avatar, signed: SignedMotion) -> MotionCheck:
+    """NaN, reach and torso checks of every frame, by forward kinematics (no root offset)."""
+    motion = signed.motion
+    rotations = motion.rotations
+    finite = np.all(np.isfinite(rotations), axis=(1, 2))
+    pose = forward_kinematics(avatar, np.where(np.isfinite(rotations), rotations, quat.IDENTITY))
+    times = motion.times
+    shortfall = 0.0
+    for arm in ARMS:
+        wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
+        asked = signed.control.timeline((arm, "wrist_position")).sample(times)
+        shortfall = max(shortfall, float(np.max(np.linalg.norm(pose.positions[:, wrist] - asked, axis=1), initial=0.0)))
+    depth = max(float(np.max(d, initial=0.0)) for d in upper_arm_depths(avatar, motion).values())
+    return MotionCheck(motion.frame_count, int(np.sum(~finite)), shortfall, depth)
