@@ -29,6 +29,7 @@ utterance (no text) is one chunk without speech. Other behaviours than gestures 
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
 import itertools
 import math
@@ -63,6 +64,9 @@ class SchedulerConfig:
     ``frame_window``: seconds of frames sampled at a time. ``live_margin``: in a live
     run, how far ahead of the moment planning starts the planned chunk may begin, s (the
     time planning may take). ``voice``/``rate``/``with_audio`` go to the speech requests.
+    ``keep_output``: collect the frames and audio into the result; when False they reach
+    observers only (``FramesReady``, ``SpeechStarted``), each chunk's audio is dropped once
+    published, and memory stays flat however long the utterance.
     """
 
     timing: TimingConfig = TimingConfig()
@@ -71,13 +75,15 @@ class SchedulerConfig:
     voice: str | None = None
     rate: float = 1.0
     with_audio: bool = True
+    keep_output: bool = True
 
 
 @dataclass(frozen=True)
 class ScheduledUtterance:
     """A performed utterance: its timeline, the audio (int16 mono, pauses included, None when
     the speech backend gave none), the motion from the utterance start to the end of the last
-    retraction, warnings, and, when a chunk failed, its index and the error."""
+    retraction, warnings, and, when a chunk failed, its index and the error. Without
+    ``SchedulerConfig.keep_output`` the audio and motion are None (``sample_rate`` stays)."""
 
     timeline: Timeline
     audio: np.ndarray | None
@@ -98,6 +104,8 @@ class _Job:
     boards: list[Blackboard] = field(default_factory=list)
     absolute: list[BehaviorSpec] = field(default_factory=list)
     frames: list[Motion] = field(default_factory=list)
+    audio_end: int = 0  # without keep_output: samples from the utterance start to the end of the last audio
+    sample_rate: int | None = None
     failed: Blackboard | None = None
     interrupted: bool = False
     done: threading.Event = field(default_factory=threading.Event)
@@ -325,11 +333,19 @@ class Scheduler:
             self._schedule_feedback(board, gesture)
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
-            speech = board.speech
-            self._at(onset, lambda: self.bus.publish(
-                SpeechStarted(job.name, board.index, board.spec.text, onset - job.origin, speech.audio, speech.sample_rate)
-            ))
+            self._at(onset, lambda: self._start_speech(job, board, onset))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
+
+    def _start_speech(self, job: _Job, board: Blackboard, onset: float) -> None:
+        speech = board.speech
+        self.bus.publish(SpeechStarted(job.name, board.index, board.spec.text, onset - job.origin, speech.audio, speech.sample_rate))
+        if self.config.keep_output or speech.audio is None:
+            return
+        if job.sample_rate is not None and speech.sample_rate != job.sample_rate:
+            raise ScheduleError(f"{job.name}: chunks came back at different sample rates")
+        job.sample_rate = speech.sample_rate
+        job.audio_end = max(job.audio_end, int(round((onset - job.origin) * speech.sample_rate)) + len(speech.audio))
+        board.speech = dataclasses.replace(speech, audio=None)
 
     def _schedule_feedback(self, board: Blackboard, gesture: PlannedGesture) -> None:
         pegs = gesture.program.pegs
@@ -420,7 +436,8 @@ class Scheduler:
         with self._lock:
             jobs = [j for j in self._active if not j.done.is_set()]
         for job in jobs:
-            job.frames.append(motion)
+            if self.config.keep_output:
+                job.frames.append(motion)
             self.bus.publish(FramesReady(job.name, start - job.origin, until - job.origin, motion))
 
     # ----------------------------------------------------------------- interrupts
@@ -660,9 +677,11 @@ class Scheduler:
         performed = [b for b in job.boards if b.timing is not None and b.state is not ChunkState.FAILED]
         ends = [b.effective_end for b in performed]
         job.end = max(ends + [job.origin])
-        audio, rate = self._audio(job, performed)
+        audio, rate = self._audio(job, performed) if self.config.keep_output else (None, job.sample_rate)
         if audio is not None:
             job.end = max(job.end, job.origin + len(audio) / rate)
+        elif job.audio_end:
+            job.end = max(job.end, job.origin + job.audio_end / rate)
         job.timeline.duration = job.end - job.origin
         failed = job.failed
         job.result = ScheduledUtterance(

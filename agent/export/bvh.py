@@ -14,13 +14,20 @@ The file follows the layout Blender and three.js ``BVHLoader`` read:
   which is scipy's intrinsic ``"ZXY"`` sequence.
 * ``Frame Time`` is ``1 / fps``. BVH has no start time: frame 0 is written as if at
   ``motion.start_time``, which the caller keeps track of.
+
+A motion too long to hold goes through :class:`StreamingBvh`: windows of frames are
+converted as they come, their lines kept in a scratch file, and the header (whose
+``Frames:`` count is known only at the end) is written before them when the file is made.
+The bytes are the same as :func:`write_bvh` writes for the whole motion.
 """
 
 from __future__ import annotations
 
 import io
 import os
+import shutil
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -39,6 +46,8 @@ END_SITE_FALLBACK_CM = 2.0
 VALUE_FORMAT = "%.6f"
 FRAMES_PER_BLOCK = 2048
 """Frames formatted by one string operation when writing the MOTION block."""
+COPY_BLOCK_CHARS = 1 << 20
+"""Characters of frame lines copied or yielded at a time by :class:`StreamingBvh`."""
 
 
 def bvh_text(motion: Motion) -> str:
@@ -65,20 +74,106 @@ def write_bvh(motion: Motion, path: str | os.PathLike[str]) -> None:
         raise
 
 
+class StreamingBvh:
+    """A BVH file made from windows of frames whose total is known only at the end.
+
+    ``add(window)`` converts the window's frames (a block at a time) into lines appended to
+    ``scratch``, a text file the caller owns; ``write(stream)`` then writes the header and
+    copies the lines after it, and ``text_blocks()`` yields the same text in pieces (for a
+    page that embeds it). Memory holds at most :data:`FRAMES_PER_BLOCK` frames.
+    """
+
+    def __init__(self, scratch: str | os.PathLike[str]) -> None:
+        self.scratch = Path(scratch)
+        self.frame_count = 0
+        self._skeleton: Motion | None = None
+        self._pending: list[Motion] = []
+        self._pending_frames = 0
+        self._lines = open(self.scratch, "w", encoding="ascii", newline="\n")
+
+    @property
+    def skeleton(self) -> Motion | None:
+        """The first window added: its joints, offsets and fps head the file."""
+        return self._skeleton
+
+    def add(self, window: Motion) -> None:
+        """Append ``window``'s frames (same skeleton and fps as the first window)."""
+        if self._skeleton is None:
+            _check_skeleton(window)
+            self._skeleton = window
+        else:
+            _check_same_skeleton(self._skeleton, window, self.frame_count + self._pending_frames)
+        _check_values(window, self.frame_count + self._pending_frames)
+        self._pending.append(window)
+        self._pending_frames += window.frame_count
+        if self._pending_frames >= FRAMES_PER_BLOCK:
+            self._flush()
+
+    def close(self) -> None:
+        """Write the frames still buffered and close the scratch file (no more windows)."""
+        if self._lines.closed:
+            return
+        self._flush()
+        self._lines.close()
+
+    def header(self) -> str:
+        """Everything before the frame lines, ``Frames:`` being the count added so far."""
+        if self._skeleton is None:
+            raise ValueError("BVH export: no frames were added, so there is no skeleton to write")
+        return bvh_header(self._skeleton, self.frame_count)
+
+    def write(self, stream: io.TextIOBase) -> None:
+        """The whole file: header, then the frame lines copied from the scratch file in blocks."""
+        self.close()
+        stream.write(self.header())
+        with open(self.scratch, encoding="ascii", newline="\n") as lines:
+            shutil.copyfileobj(lines, stream, COPY_BLOCK_CHARS)
+
+    def text_blocks(self) -> Iterator[str]:
+        """The whole file as pieces of text: the header first, then blocks of frame lines."""
+        self.close()
+        yield self.header()
+        with open(self.scratch, encoding="ascii", newline="\n") as lines:
+            while block := lines.read(COPY_BLOCK_CHARS):
+                yield block
+
+    def _flush(self) -> None:
+        if not self._pending:
+            return
+        rotations = np.concatenate([m.rotations for m in self._pending])
+        translation = np.concatenate([m.root_translation for m in self._pending])
+        order = _depth_first_order(_children(self._skeleton.parents))
+        _write_frames(_channel_values_of(rotations, translation, order), self._lines)
+        self.frame_count += self._pending_frames
+        self._pending, self._pending_frames = [], 0
+
+
+def bvh_header(motion: Motion, frame_count: int) -> str:
+    """The BVH text before the frame lines for ``motion``'s skeleton and ``frame_count`` frames."""
+    _check_skeleton(motion)
+    buffer = io.StringIO()
+    buffer.write("HIERARCHY\n")
+    _write_hierarchy(motion, _children(motion.parents), buffer)
+    buffer.write("MOTION\n")
+    buffer.write(f"Frames: {frame_count}\n")
+    buffer.write(f"Frame Time: {1.0 / motion.fps:.8f}\n")
+    return buffer.getvalue()
+
+
 def _write(motion: Motion, stream: io.TextIOBase) -> None:
     _check(motion)
-    children = _children(motion.parents)
-    order = _depth_first_order(children)
-    stream.write("HIERARCHY\n")
-    _write_hierarchy(motion, children, stream)
-    stream.write("MOTION\n")
-    stream.write(f"Frames: {motion.frame_count}\n")
-    stream.write(f"Frame Time: {1.0 / motion.fps:.8f}\n")
-    _write_frames(_channel_values(motion, order), stream)
+    stream.write(bvh_header(motion, motion.frame_count))
+    _write_frames(_channel_values(motion, _depth_first_order(_children(motion.parents))), stream)
 
 
 def _check(motion: Motion) -> None:
     """Reject what BVH cannot express, naming the joint at fault."""
+    _check_skeleton(motion)
+    _check_values(motion, 0)
+
+
+def _check_skeleton(motion: Motion) -> None:
+    """One root first, parents before children, joint names that are single tokens."""
     roots = [index for index, parent in enumerate(motion.parents) if parent < 0]
     if roots != [0]:
         raise ValueError(f"BVH export: needs exactly one root joint at index 0, found roots at {roots}")
@@ -89,19 +184,37 @@ def _check(motion: Motion) -> None:
             raise ValueError(
                 f"BVH export: joint {index} ({name}) has parent {parent}; parents must come before children"
             )
-    for label, array in (
-        ("offsets", motion.offsets),
-        ("rotations", motion.rotations),
-        ("root_translation", motion.root_translation),
+
+
+def _check_same_skeleton(first: Motion, window: Motion, frame: int) -> None:
+    same = (
+        window.joint_names == first.joint_names
+        and window.parents == first.parents
+        and window.fps == first.fps
+        and np.array_equal(window.offsets, first.offsets)
+    )
+    if not same:
+        raise ValueError(f"BVH export: the frames from frame {frame} on have another skeleton or frame rate than frame 0")
+
+
+def _check_values(motion: Motion, first_frame: int) -> None:
+    """Finite offsets, rotations and root positions and no zero quaternion; frames are
+    reported counted from ``first_frame`` (where this window starts in the whole motion)."""
+    for label, array, frames in (
+        ("offsets", motion.offsets, False),
+        ("rotations", motion.rotations, True),
+        ("root_translation", motion.root_translation, True),
     ):
         if not np.all(np.isfinite(array)):
             frame_or_joint = np.argwhere(~np.isfinite(array))[0].tolist()
+            if frames:
+                frame_or_joint[0] += first_frame
             raise ValueError(f"BVH export: non-finite value in {label} at index {frame_or_joint}")
     norms = np.linalg.norm(motion.rotations, axis=-1)
     if np.any(norms < 1e-9):
         frame, joint = np.argwhere(norms < 1e-9)[0]
         raise ValueError(
-            f"BVH export: zero quaternion at frame {frame}, joint {joint} ({motion.joint_names[joint]})"
+            f"BVH export: zero quaternion at frame {first_frame + frame}, joint {joint} ({motion.joint_names[joint]})"
         )
 
 
@@ -165,10 +278,16 @@ def _format_vector(vector: np.ndarray) -> str:
 
 def _channel_values(motion: Motion, order: list[int]) -> np.ndarray:
     """``(n, 6 + 3 (J-1))`` channel values in file order: root position (cm), then ZXY degrees."""
-    frames = motion.frame_count
-    ordered = motion.rotations[:, order, :].reshape(-1, 4)
+    return _channel_values_of(motion.rotations, motion.root_translation, order)
+
+
+def _channel_values_of(rotations: np.ndarray, root_translation: np.ndarray, order: list[int]) -> np.ndarray:
+    frames = rotations.shape[0]
+    if frames == 0:
+        return np.zeros((0, 3 + 3 * len(order)))
+    ordered = rotations[:, order, :].reshape(-1, 4)
     euler = Rotation.from_quat(ordered).as_euler(EULER_SEQUENCE, degrees=True).reshape(frames, 3 * len(order))
-    position = motion.root_translation * CENTIMETRES_PER_METRE
+    position = root_translation * CENTIMETRES_PER_METRE
     return np.concatenate([position, euler], axis=1)
 
 

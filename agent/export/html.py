@@ -5,6 +5,9 @@ the BVH text and the timeline JSON, and refers to the WAV by a relative file nam
 works opened straight from the output folder (``file://``) and fetches nothing from the
 network. Query parameters the page honours: ``?t=SECONDS`` opens it paused at that time;
 ``?live=1`` follows a server's event stream instead (see ``viewer/src/live.js``).
+
+:func:`write_html_stream` writes the same page to an open stream with the BVH text given
+in pieces, so that an hour of motion never has to be one string.
 """
 
 from __future__ import annotations
@@ -14,7 +17,9 @@ import json
 import os
 import re
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
+from typing import TextIO
 from urllib.parse import quote
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -67,8 +72,51 @@ def write_html(
 
 def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None) -> str:
     """The page :func:`write_html` writes, as a string."""
+    _check_bvh_start(bvh_text)
+    head, tail = _page_around_bvh(name, timeline, wav_filename)
+    return head + _script_json(json.dumps(bvh_text)) + tail
+
+
+def write_html_stream(
+    stream: TextIO,
+    *,
+    name: str,
+    bvh_blocks: Iterable[str],
+    timeline: dict,
+    wav_filename: str | None,
+) -> None:
+    """Write the page :func:`render_html` makes to ``stream``, the BVH text coming in pieces.
+
+    ``bvh_blocks`` concatenated is the whole BVH file; its first piece must hold the header
+    up to ``MOTION`` (as ``StreamingBvh.text_blocks`` yields it). Each piece is escaped on
+    its own (JSON string escaping works character by character), so the bytes equal
+    :func:`write_html`'s. Raises as :func:`write_html` does, before writing anything.
+    """
+    blocks = iter(bvh_blocks)
+    first = next(blocks, "")
+    _check_bvh_start(first)
+    head, tail = _page_around_bvh(name, timeline, wav_filename)
+    stream.write(head)
+    stream.write('"')
+    stream.write(_script_json(_json_string_body(first)))
+    for block in blocks:
+        stream.write(_script_json(_json_string_body(block)))
+    stream.write('"')
+    stream.write(tail)
+
+
+def _check_bvh_start(bvh_text: str) -> None:
     if not bvh_text.lstrip().startswith("HIERARCHY") or "\nMOTION" not in bvh_text:
         raise ValueError("write_html: bvh_text is not a BVH file (expected HIERARCHY ... MOTION ...)")
+
+
+def _json_string_body(text: str) -> str:
+    """``text`` as the inside of a JSON string literal (without the quotes)."""
+    return json.dumps(text)[1:-1]
+
+
+def _page_around_bvh(name: str, timeline: dict, wav_filename: str | None) -> tuple[str, str]:
+    """The page before and after the embedded BVH JSON string, checking the arguments."""
     if not isinstance(timeline, dict):
         raise ValueError(f"write_html: timeline must be a dict (a JSON object), got {type(timeline).__name__}")
     try:
@@ -81,17 +129,21 @@ def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str |
             raise ValueError(f"write_html: wav_filename must be relative to the page, got {wav_filename!r}")
         audio = f'<audio id="mura-audio" src="{html.escape(quote(wav_filename))}" preload="auto"></audio>'
     title = html.escape(name)
-    return (
+    head = (
         "<!doctype html>\n"
         '<html lang="en">\n<head>\n<meta charset="utf-8">\n'
         '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
         f"<title>mura — {title}</title>\n</head>\n<body>\n"
         f'<div id="mura-app" data-name="{title}">{audio}</div>\n'
-        f'<script type="application/json" id="mura-bvh">{_script_json(json.dumps(bvh_text))}</script>\n'
+        '<script type="application/json" id="mura-bvh">'
+    )
+    tail = (
+        "</script>\n"
         f'<script type="application/json" id="mura-timeline">{_script_json(timeline_json)}</script>\n'
         f"<script>\n{_script_code(_viewer_bundle())}\n</script>\n"
         "</body>\n</html>\n"
     )
+    return head, tail
 
 
 def _viewer_bundle() -> str:
