@@ -40,6 +40,7 @@ from typing import Protocol
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from motor import quaternion as quat
 from motor.biocontrol import TimeProfile, minimum_jerk, profile
 from motor.trajectory import Accent, WristTrajectory, fitts_duration, plan_wrist_trajectory, time_breakpoints
 
@@ -192,30 +193,39 @@ class VectorKeyframes:
 
 @dataclass(frozen=True, eq=False)
 class RotationKeyframes:
-    """A rotation channel slerping through key orientations along a time profile."""
+    """A rotation channel slerping through key orientations along a time profile.
+
+    Sampling runs on raw quaternion arrays (:mod:`motor.quaternion`); the keys as unit
+    quaternions and the rotation vector of each segment are prepared once, at activation.
+    """
 
     knots: np.ndarray
     rotations: Rotation
     incoming: np.ndarray
     time_profile: TimeProfile
     warnings: tuple[str, ...] = ()
+    _keys: np.ndarray = field(init=False, repr=False)
+    _steps: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        keys = self.rotations.as_quat().reshape(-1, 4)
+        object.__setattr__(self, "_keys", keys)
+        object.__setattr__(self, "_steps", quat.to_rotation_vector(quat.canonical(quat.multiply(quat.conjugate(keys[:-1]), keys[1:]))))
 
     def sample(self, times: np.ndarray) -> np.ndarray:
         segment, u, _ = _locate(self.knots, times)
-        steps = (self.rotations[:-1].inv() * self.rotations[1:]).as_rotvec()
         s = self.time_profile.fraction(u)[:, None]
-        planned = self.rotations[segment] * Rotation.from_rotvec(s * steps[segment])
+        planned = quat.multiply(self._keys[segment], quat.from_rotation_vector(s * self._steps[segment]))
         weight, _ = _blend(times, self.knots[0], self.knots[1] - self.knots[0])
-        return (Rotation.from_rotvec(weight[:, None] * self.incoming) * planned).as_quat()
+        return quat.multiply(quat.from_rotation_vector(weight[:, None] * self.incoming), planned)
 
     def state(self, time: float) -> ChannelState:
         """Rotation and angular velocity: second-order one-sided differences, looking back
         (the motion just before ``time``) except at activation, where they look ahead."""
         h = -_DIFFERENCE_STEP if time - 2 * _DIFFERENCE_STEP >= self.knots[0] else _DIFFERENCE_STEP
-        q = Rotation.from_quat(self.sample(np.array([time, time + h, time + 2 * h])))
-        one = (q[1] * q[0].inv()).as_rotvec()
-        two = (q[2] * q[0].inv()).as_rotvec()
-        return ChannelState(q[0].as_quat(), (4.0 * one - two) / (2.0 * h), float(time))
+        q = quat.normalize(self.sample(np.array([time, time + h, time + 2 * h])))
+        turns = quat.to_rotation_vector(quat.canonical(quat.multiply(q[1:], quat.conjugate(q[0]))))
+        return ChannelState(q[0], (4.0 * turns[0] - turns[1]) / (2.0 * h), float(time))
 
 
 def _check_activation(channel: Channel, state: ChannelState, first_target: float) -> None:

@@ -71,6 +71,15 @@ def from_rotation_vector(rotvec: np.ndarray) -> np.ndarray:
     return np.concatenate((rotvec * scale[..., None], np.cos(half)[..., None]), axis=-1)
 
 
+def canonical(q: np.ndarray) -> np.ndarray:
+    """The sign of each quaternion that scipy's ``Rotation`` takes as canonical: ``w > 0``,
+    or on a tie at zero the first non-zero of ``x, y, z`` positive. A half-turn (``w = 0``)
+    thus gets the rotation vector scipy gives it."""
+    w, x, y, z = q[..., 3], q[..., 0], q[..., 1], q[..., 2]
+    flip = (w < 0.0) | ((w == 0.0) & ((x < 0.0) | ((x == 0.0) & ((y < 0.0) | ((y == 0.0) & (z < 0.0))))))
+    return np.where(flip[..., None], -q, q)
+
+
 def to_rotation_vector(q: np.ndarray) -> np.ndarray:
     """Rotation vector (axis times angle in ``[0, π]``) of unit quaternions."""
     q = np.where(q[..., 3:4] < 0.0, -q, q)
