@@ -103,6 +103,8 @@ REACH_TOLERANCE = 1e-3
 PENETRATION_TOLERANCE = 1e-3
 CROSS_STEP = 0.02
 CROSS_STEPS = 12
+#: Half the gap between symmetric hands sent to one central site, metres.
+SIDE_BY_SIDE = 0.05
 #: Neutral signing space of the right hand (mirrored for the left).
 NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
 #: Extended-finger direction and palm of a hand whose sign leaves them open.
@@ -279,6 +281,8 @@ class _SignCompiler:
         self.hands[self.dominant] = self.hand_from(self.dominant, dominant, self.hands.get(self.other))
         if sign.constellation is not None and self.other in self.hands:
             self.place_constellation()
+        elif self.symmetric and self.other in self.hands:
+            self.side_by_side()
 
     def other_hand(self) -> _Hand:
         posture = self.other_posture()
@@ -355,6 +359,16 @@ class _SignCompiler:
             pose = self.arm_pose(other_arm, other_hand)
             return resolve_location(self.avatar, site, AVATAR_SIDE[arm], pose)
         return resolve_location(self.avatar, site, AVATAR_SIDE[arm])
+
+    def side_by_side(self) -> None:
+        """Symmetric hands sent to the same central site go to either side of it."""
+        mine, theirs = self.hands[self.dominant], self.hands[self.other]
+        if np.linalg.norm(mine.location - theirs.location) > SIDE_BY_SIDE:
+            return
+        shift = np.array([SIDE_BY_SIDE, 0.0, 0.0])
+        sign = 1.0 if self.dominant == "left" else -1.0
+        self.hands[self.dominant] = replace(mine, location=mine.location + sign * shift)
+        self.hands[self.other] = replace(theirs, location=theirs.location - sign * shift)
 
     def place_constellation(self) -> None:
         """Put the hands relative to each other (module docstring)."""
