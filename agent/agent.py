@@ -1,7 +1,8 @@
 """The agent-facing API: give it an utterance, get speech and motion.
 
 ``Agent.render(xml)`` performs an utterance offline on a virtual clock and returns a
-:class:`Performance` (deterministic with the fake speech backend). ``Agent.say(xml)``
+:class:`Performance` (deterministic with the fake speech backend); ``Agent.render_files``
+writes the same performance straight to files in bounded memory, for any length. ``Agent.say(xml)``
 performs it live on the wall clock: speech plays through the audio device when one is
 there, frames go to whoever subscribed (the browser page of ``mura play``), utterances
 said while one plays are queued and join it fluently, and ``interrupt()`` ends the
@@ -19,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from agent.performance import Performance
+from agent.performance import Performance, SavedFiles
 from blackboard.clock import VirtualClock, WallClock
 from blackboard.events import Event, SpeechStarted
 from blackboard.scheduler import LiveHandle, ScheduledUtterance, Scheduler, SchedulerConfig
@@ -89,6 +90,14 @@ class Agent:
         finally:
             scheduler.close()
         return _performance(result, name or default_name, self.avatar, self.fps)
+
+    def render_files(self, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None) -> SavedFiles:
+        """Perform ``utterance`` offline straight into NAME.wav, .bvh, .timeline.json and .html
+        in ``directory``, in memory that does not grow with its length; the files equal
+        ``render(...).save(directory)``'s. Raises as :meth:`render` does (``partial`` None)."""
+        from agent.streaming import render_to_files  # agent.streaming builds on this module
+
+        return render_to_files(self, utterance, directory, name)
 
     def subscribe(self, observer: Callable[[Event], None]) -> None:
         """Receive every event of live utterances (chunk states, feedback, frames)."""

@@ -3,7 +3,8 @@
 ``Performance.save(directory)`` writes ``NAME.wav`` (the whole utterance's speech,
 pauses included, as long as the timeline), ``NAME.bvh`` (the full skeleton),
 ``NAME.timeline.json`` (the scheduler's timeline) and ``NAME.html`` (the avatar page).
-Every file is first written under a temporary name; only when all four are complete are
+(``agent.streaming.render_to_files`` writes the same files without holding the whole
+performance in memory.) Every file is first written under a temporary name; only when all four are complete are
 they renamed into place, so a failure never leaves files that look finished.
 """
 
@@ -29,12 +30,14 @@ SILENT_RATE = 22050
 
 @dataclass(frozen=True)
 class SavedFiles:
-    """Paths of the files a performance was saved as."""
+    """Paths of the files a performance was saved as, with its duration (s) and warnings."""
 
     wav: Path
     bvh: Path
     timeline: Path
     html: Path
+    duration: float = 0.0
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,6 +84,8 @@ class Performance:
             folder / f"{self.name}.bvh",
             folder / f"{self.name}.timeline.json",
             folder / f"{self.name}.html",
+            self.duration,
+            self.warnings,
         )
         track, rate = self.soundtrack()
         timeline = dict(self.timeline, motion_start_time=self.motion.start_time)

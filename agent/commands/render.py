@@ -54,17 +54,17 @@ def run(args: argparse.Namespace) -> int:
 
 
 def render_one(agent: Agent, path: Path, output: Path) -> int:
-    """Render one file; prints what was written or the one-line reason, returns the exit status."""
+    """Render one file straight to disk (memory bounded for any length); prints what was
+    written or the one-line reason, returns the exit status."""
     try:
-        performance = agent.render(path)
-        files = performance.save(output)
+        files = agent.render_files(path, output)
     except SpecError as error:
         print(str(error), file=sys.stderr)
         return 1
     except (PerformanceError, SpeechError, ValueError, OSError) as error:
         print(f"{path}: {error}", file=sys.stderr)
         return 1
-    print(f"{path}: {performance.duration:.2f} s -> {files.html}")
-    for warning in performance.warnings:
+    print(f"{path}: {files.duration:.2f} s -> {files.html}")
+    for warning in files.warnings:
         print(f"{path}: warning: {warning}", file=sys.stderr)
     return 0

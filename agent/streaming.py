@@ -1,0 +1,236 @@
+"""Rendering straight to files, in memory that does not grow with the utterance's length.
+
+:func:`render_to_files` runs the scheduler without collecting its output
+(``SchedulerConfig.keep_output=False``) and writes what its events carry as they come:
+each chunk's speech into the WAV (silence up to its onset first), each window of frames
+into BVH lines in a scratch file. When the utterance is over it writes the timeline, puts
+the BVH header (``Frames: N``) before the frame lines, and streams the avatar page with
+the BVH embedded piece by piece. The four files are byte for byte what
+:meth:`Performance.save` writes for the same utterance; like it, they are written under
+temporary names and renamed only when all four are complete, and removed on failure.
+
+Memory holds one chunk's audio, at most ``FRAMES_PER_BLOCK`` frames and the timeline
+(words and phonemes: a few hundred bytes per second of speech).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import tempfile
+import wave
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, TextIO
+
+import numpy as np
+
+from agent.export.bvh import StreamingBvh
+from agent.export.html import write_html_stream
+from agent.performance import SILENT_RATE, SavedFiles
+from blackboard.clock import VirtualClock
+from blackboard.events import Event, FramesReady, SpeechStarted
+from blackboard.scheduler import Scheduler
+from motor.control import MotorControl
+
+if TYPE_CHECKING:
+    from agent.agent import Agent, UtteranceSource
+
+#: Samples of silence written at a time, so a long pause never becomes one big array.
+SILENCE_BLOCK = 1 << 16
+
+
+class StreamingWav:
+    """An int16 mono WAV track written as the chunks' speech arrives.
+
+    ``add(time, audio, rate)`` places a chunk's samples at ``round(time · rate)``; speech
+    that overlaps the previous chunk's is summed with it and clipped to int16, as the
+    scheduler mixes it. Only the latest chunk is held in memory (the next one may still
+    overlap it); everything before it is on disk. ``finish(duration)`` pads with silence
+    (or cuts) to ``round(duration · rate)`` samples and closes the file; the ``wave``
+    module patches the header's sizes then. A track without speech is silent at
+    :data:`SILENT_RATE`.
+    """
+
+    def __init__(self, path: str | os.PathLike[str]) -> None:
+        self.path = Path(path)
+        self.sample_rate: int | None = None
+        self._out: wave.Wave_write | None = None
+        self._written = 0
+        self._pending = np.zeros(0, dtype=np.int32)
+        self._pending_start = 0
+
+    def add(self, time: float, audio: np.ndarray, sample_rate: int) -> None:
+        """Chunk speech ``audio`` (int16 mono at ``sample_rate`` Hz) starting at ``time`` s."""
+        if self.sample_rate is None:
+            self._open(sample_rate)
+        elif sample_rate != self.sample_rate:
+            raise ValueError(f"{self.path.name}: speech at {sample_rate} Hz after speech at {self.sample_rate} Hz")
+        start = int(round(time * sample_rate))
+        if start < self._pending_start:
+            raise ValueError(f"{self.path.name}: speech at {time:.3f} s arrived after speech that starts later")
+        if start >= self._pending_start + len(self._pending):
+            self._flush()
+            self._pending = audio.astype(np.int32)
+            self._pending_start = start
+            return
+        offset = start - self._pending_start
+        mixed = np.zeros(max(len(self._pending), offset + len(audio)), dtype=np.int32)
+        mixed[: len(self._pending)] = self._pending
+        mixed[offset : offset + len(audio)] += audio
+        self._pending = mixed
+
+    def finish(self, duration: float) -> None:
+        """Pad (or cut) the track to ``duration`` seconds and close the file."""
+        if self.sample_rate is None:
+            self._open(SILENT_RATE)
+        total = int(round(duration * self.sample_rate))
+        keep = max(0, min(len(self._pending), total - self._pending_start))
+        self._pending = self._pending[:keep]
+        self._flush()
+        self._silence(total - self._written)
+        self.close()
+
+    def close(self) -> None:
+        """Close the file (also after a failure; the caller removes it then)."""
+        if self._out is not None:
+            self._out.close()
+            self._out = None
+
+    def _open(self, sample_rate: int) -> None:
+        if sample_rate <= 0:
+            raise ValueError(f"{self.path.name}: sample rate must be positive, got {sample_rate}")
+        self.sample_rate = int(sample_rate)
+        self._out = wave.open(str(self.path), "wb")
+        self._out.setnchannels(1)
+        self._out.setsampwidth(2)
+        self._out.setframerate(self.sample_rate)
+
+    def _flush(self) -> None:
+        if len(self._pending) == 0:
+            return
+        self._silence(self._pending_start - self._written)
+        self._out.writeframesraw(np.clip(self._pending, -32768, 32767).astype("<i2").tobytes())
+        self._written = self._pending_start + len(self._pending)
+        self._pending = np.zeros(0, dtype=np.int32)
+
+    def _silence(self, samples: int) -> None:
+        while samples > 0:
+            block = min(samples, SILENCE_BLOCK)
+            self._out.writeframesraw(bytes(2 * block))
+            self._written += block
+            samples -= block
+
+
+class _Recorder:
+    """The observer that hands one utterance's speech and frames to the file writers."""
+
+    def __init__(self, name: str, wav: StreamingWav, bvh: StreamingBvh) -> None:
+        self.name = name
+        self.wav = wav
+        self.bvh = bvh
+        self.first_frame_time: float | None = None  # session clock
+
+    def __call__(self, event: Event) -> None:
+        if getattr(event, "utterance", None) != self.name:
+            return
+        if isinstance(event, FramesReady):
+            if self.first_frame_time is None:
+                self.first_frame_time = event.motion.start_time
+            self.bvh.add(event.motion)
+        elif isinstance(event, SpeechStarted) and event.audio is not None:
+            self.wav.add(event.time, event.audio, event.sample_rate)
+
+
+class _Staging:
+    """Files written under temporary names in one folder: all renamed, or all removed."""
+
+    def __init__(self, folder: Path) -> None:
+        self.folder = folder
+        self._staged: list[tuple[Path, Path | None]] = []
+
+    def temporary(self, target: Path, suffix: str = ".part") -> Path:
+        """A fresh hidden file beside ``target``, renamed to it by :meth:`publish`."""
+        return self._make(target, target, suffix)
+
+    def scratch(self, target: Path, suffix: str) -> Path:
+        """A fresh hidden file named after ``target``, removed by both :meth:`publish` and :meth:`discard`."""
+        return self._make(target, None, suffix)
+
+    def publish(self) -> None:
+        for temporary, target in self._staged:
+            if target is not None:
+                os.replace(temporary, target)
+        self.discard()
+
+    def discard(self) -> None:
+        for temporary, _ in self._staged:
+            temporary.unlink(missing_ok=True)
+        self._staged = []
+
+    def _make(self, name_from: Path, target: Path | None, suffix: str) -> Path:
+        handle, name = tempfile.mkstemp(dir=self.folder, prefix=f".{name_from.name}.", suffix=suffix)
+        os.close(handle)
+        self._staged.append((Path(name), target))
+        return Path(name)
+
+
+def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None) -> SavedFiles:
+    """Perform ``utterance`` offline with ``agent`` and write NAME.wav, NAME.bvh,
+    NAME.timeline.json and NAME.html into ``directory`` (created if missing) as the
+    performance runs, in bounded memory; the files equal :meth:`Performance.save`'s.
+
+    Raises :class:`SpecError` for a bad spec and :class:`PerformanceError` (``partial`` is
+    None) when a chunk fails; on any failure no file is left under the final names.
+    """
+    from agent.agent import PerformanceError, read_utterance, rest_motion
+
+    model, default_name = read_utterance(utterance)
+    name = name or default_name
+    folder = Path(directory)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = SavedFiles(folder / f"{name}.wav", folder / f"{name}.bvh", folder / f"{name}.timeline.json", folder / f"{name}.html")
+    staging = _Staging(folder)
+    wav = bvh = None
+    try:
+        wav = StreamingWav(staging.temporary(paths.wav))
+        bvh = StreamingBvh(staging.scratch(paths.bvh, ".frames.part"))
+        recorder = _Recorder(name, wav, bvh)
+        config = dataclasses.replace(agent.config, keep_output=False)
+        scheduler = Scheduler(agent.tts, MotorControl(agent.avatar, agent.fps), VirtualClock(), config)
+        scheduler.subscribe(recorder)
+        try:
+            result = scheduler.run(model, name)
+        finally:
+            scheduler.close()
+        if result.error is not None:
+            raise PerformanceError(f"chunk {result.failed_chunk} failed: {result.error}", None)
+        timeline = result.timeline.to_json()
+        wav.finish(float(timeline["duration"]))
+        motion_start = 0.0
+        if recorder.first_frame_time is None:
+            bvh.add(rest_motion(agent.avatar, agent.fps))
+        else:
+            motion_start = recorder.first_frame_time - result.timeline.origin
+        timeline = dict(timeline, motion_start_time=motion_start)
+        _write_text(staging.temporary(paths.bvh), bvh.write)
+        _write_text(staging.temporary(paths.timeline), lambda stream: stream.write(json.dumps(timeline, indent=1)), "utf-8")
+        _write_text(
+            staging.temporary(paths.html),
+            lambda stream: write_html_stream(stream, name=name, bvh_blocks=bvh.text_blocks(), timeline=timeline, wav_filename=paths.wav.name),
+            "utf-8",
+        )
+    except BaseException:
+        for writer in (wav, bvh):
+            if writer is not None:
+                writer.close()
+        staging.discard()
+        raise
+    staging.publish()
+    return dataclasses.replace(paths, duration=float(timeline["duration"]), warnings=tuple(result.warnings))
+
+
+def _write_text(path: Path, write: Callable[[TextIO], None], encoding: str = "ascii") -> None:
+    with open(path, "w", encoding=encoding, newline="\n") as stream:
+        write(stream)
