@@ -24,6 +24,7 @@ optionally global hand rotations), for every frame at once:
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -114,7 +115,9 @@ class _Chain:
     torso_joint_rest: np.ndarray
 
 
+@functools.lru_cache(maxsize=32)
 def _chain(avatar: Avatar, side: str) -> _Chain:
+    """The arm's constants, computed once per avatar and side (avatars are immutable)."""
     sc, shoulder, elbow, wrist = avatar.arm_joints(side)
     upper_rest = quat.normalize(avatar.offsets[elbow])
     hand = avatar.hand_frames[side]
@@ -127,7 +130,7 @@ def _chain(avatar: Avatar, side: str) -> _Chain:
         clavicle=avatar.offsets[shoulder],
         sc_offset=avatar.offsets[sc],
         upper_rest=upper_rest,
-        hinge_rest=quat.normalize(np.cross(upper_rest, [0.0, 0.0, 1.0])),
+        hinge_rest=quat.normalize(quat.cross(upper_rest, [0.0, 0.0, 1.0])),
         fore_rest=quat.normalize(avatar.offsets[wrist]),
         pronation_axis=hand.twist_axis,
         flexion_axis=hand.bend_axis,
@@ -200,15 +203,15 @@ def _clavicle(chain: _Chain, torso_q: np.ndarray, sc_position: np.ndarray, targe
     """Local sternoclavicular rotation turning the shoulder toward a far reach (seed 000)."""
     clavicle = quat.rotate(torso_q, chain.clavicle)
     reach = targets - (sc_position + clavicle)
-    distance = np.linalg.norm(reach, axis=-1)
+    distance = quat.norm(reach)
     low, high = _CLAVICLE_REACH
     t = np.clip((distance / (chain.upper + chain.fore) - low) / (high - low), 0.0, 1.0)
     amount = t * t * (3.0 - 2.0 * t)
-    axis = np.cross(clavicle, reach)
-    axis_norm = np.linalg.norm(axis, axis=-1)
+    axis = quat.cross(clavicle, reach)
+    axis_norm = quat.norm(axis)
     # the shoulder moves across the clavicle toward the reach; fade out only when the
     # reach runs almost along the clavicle (no defined direction to move in)
-    sine = axis_norm / np.maximum(np.linalg.norm(clavicle, axis=-1) * distance, 1e-12)
+    sine = axis_norm / np.maximum(quat.norm(clavicle) * distance, 1e-12)
     across = np.clip(sine / 0.3, 0.0, 1.0)
     axis = axis / np.maximum(axis_norm, 1e-12)[:, None]
     world = quat.from_axis_angle(axis, chain.clavicle_max * amount * across)
@@ -233,7 +236,7 @@ class _Circle:
     def of(chain: _Chain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray) -> _Circle:
         upper, fore = chain.upper, chain.fore
         reach = targets - shoulder
-        distance = np.linalg.norm(reach, axis=-1)
+        distance = quat.norm(reach)
         fallback = quat.rotate(torso_q, np.array([0.0, -1.0, 0.0]))
         axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
         low, high = chain.flexion_range
@@ -247,8 +250,8 @@ class _Circle:
         down = reference - np.sum(reference * axis, axis=-1, keepdims=True) * axis
         down_norm = np.linalg.norm(down, axis=-1, keepdims=True)
         sideways = quat.rotate(torso_q, np.array([chain.side_sign, 0.0, 0.0]))
-        down = np.where(down_norm > 1e-6, down / np.maximum(down_norm, 1e-12), np.cross(axis, sideways))
-        out = chain.side_sign * np.cross(axis, down)
+        down = np.where(down_norm > 1e-6, down / np.maximum(down_norm, 1e-12), quat.cross(axis, sideways))
+        out = chain.side_sign * quat.cross(axis, down)
         return _Circle(
             shoulder=shoulder,
             axis=axis,
@@ -281,7 +284,7 @@ def _natural_swivel(chain: _Chain, circle: _Circle, shoulder: np.ndarray, target
     """Swivel of the elbow the Soechting & Flanders model predicts for each target."""
     local = quat.rotate(quat.conjugate(torso_q), targets - shoulder)
     lateral = chain.side_sign * local[:, 0]
-    distance_cm = np.linalg.norm(local, axis=-1) / (chain.upper + chain.fore) * _MODEL_ARM_CM
+    distance_cm = quat.norm(local) / (chain.upper + chain.fore) * _MODEL_ARM_CM
     target_elevation = np.degrees(np.arctan2(local[:, 1], np.hypot(lateral, local[:, 2])))
     azimuth = np.degrees(np.arctan2(lateral, local[:, 2]))
     elevation = np.radians(np.clip(_ELEVATION[0] + _ELEVATION[1] * distance_cm + _ELEVATION[2] * target_elevation, 0.0, 170.0))
@@ -312,9 +315,9 @@ def _arm_at(chain: _Chain, circle: _Circle, psi: np.ndarray, sc_global: np.ndarr
     radial = circle.direction(psi)
     elbow = circle.elbow(psi)
     upper_dir = quat.normalize(elbow - circle.shoulder[at])
-    hinge = quat.normalize(np.cross(radial, np.broadcast_to(circle.axis[at], radial.shape)))
-    rest = np.stack((chain.upper_rest, chain.hinge_rest, np.cross(chain.upper_rest, chain.hinge_rest)), axis=-1)
-    target = np.stack((upper_dir, hinge, np.cross(upper_dir, hinge)), axis=-1)
+    hinge = quat.normalize(quat.cross(radial, np.broadcast_to(circle.axis[at], radial.shape)))
+    rest = np.stack((chain.upper_rest, chain.hinge_rest, quat.cross(chain.upper_rest, chain.hinge_rest)), axis=-1)
+    target = np.stack((upper_dir, hinge, quat.cross(upper_dir, hinge)), axis=-1)
     shoulder_global = quat.from_frames(rest, target)
     sc = np.broadcast_to(sc_global[at], shoulder_global.shape)
     shoulder_local = quat.multiply(quat.conjugate(sc), shoulder_global)
@@ -440,17 +443,17 @@ def _wrist_load(
     hand = hands[:, None, :]
     forearm = (circle.wrist[:, None, :] - elbow) / chain.fore
     seen_from_hand = quat.rotate(quat.conjugate(hand), forearm)
-    axis = np.cross(seen_from_hand, chain.fore_rest)
-    sine = np.linalg.norm(axis, axis=-1)
+    axis = quat.cross(seen_from_hand, chain.fore_rest)
+    sine = quat.norm(axis)
     angle = np.arctan2(sine, np.sum(seen_from_hand * chain.fore_rest, axis=-1))
     rotvec = axis * (angle / np.maximum(sine, 1e-12))[..., None]
     flexion = rotvec @ chain.flexion_axis
     deviation = rotvec @ chain.deviation_axis
     swing = quat.from_rotation_vector(rotvec)
     wanted_hinge = quat.rotate(quat.multiply(hand, quat.conjugate(swing)), chain.hinge_rest)
-    hinge = quat.normalize(np.cross(circle.direction(psi), circle.axis[:, None, :]))
+    hinge = quat.normalize(quat.cross(circle.direction(psi), circle.axis[:, None, :]))
     twist_axis = forearm * float(chain.pronation_axis @ chain.fore_rest)
-    twist = np.arctan2(np.sum(np.cross(hinge, wanted_hinge) * twist_axis, axis=-1), np.sum(hinge * wanted_hinge, axis=-1))
+    twist = np.arctan2(np.sum(quat.cross(hinge, wanted_hinge) * twist_axis, axis=-1), np.sum(hinge * wanted_hinge, axis=-1))
     excess = lambda value, limits: value - np.clip(value, *limits)
     residual = np.sqrt(
         excess(flexion, chain.wrist_flexion) ** 2 + excess(deviation, chain.wrist_deviation) ** 2 + excess(twist, chain.twist_range) ** 2

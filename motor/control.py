@@ -41,6 +41,9 @@ SWIVEL_PERIOD = 0.1
 #: How far back (s) from the start of the latest window the LMP history is kept; covers
 #: the swivel grid's margin.
 HISTORY = 1.0
+#: How many grid points past a window the natural swivel is solved ahead, in the same
+#: batch: short windows then share one search instead of each paying for its own.
+SWIVEL_LOOKAHEAD = 10
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -61,6 +64,7 @@ class MotorControl:
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
+        self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
@@ -117,17 +121,33 @@ class MotorControl:
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
             self._lmps[channel].append(lmp)
-            self._changed(channel)
+            self._pending[channel].append(lmp)
+            self._changed(channel, lmp.pegs.start)
 
-    def _changed(self, channel: tuple[str, str]) -> None:
-        self._timelines.pop(channel, None)
-        self._swivels[channel[0]].clear()
+    def _changed(self, channel: tuple[str, str], since: float) -> None:
+        """The channel's values from ``since`` on are no longer known: forget the natural
+        swivels solved at grid times from then on (earlier values are unchanged: an LMP
+        only takes control at its start)."""
+        grid = self._swivels[channel[0]]
+        first = math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE)
+        for index in [i for i in grid if i >= first]:
+            del grid[index]
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
-        """The channel's timeline of everything activated so far (built on demand)."""
-        if channel not in self._timelines:
-            self._timelines[channel] = ChannelTimeline.build(channel, self._lmps[channel], self._initial[channel])
-        return self._timelines[channel]
+        """The channel's timeline of everything activated so far (built on demand; LMPs
+        starting no earlier than every one before them are appended to it)."""
+        pending = self._pending[channel]
+        if not pending and channel in self._timelines:
+            return self._timelines[channel]
+        built = self._timelines.get(channel)
+        if built is not None and all(a.pegs.start <= b.pegs.start for a, b in zip(built.lmps[-1:] + tuple(pending), pending)):
+            for lmp in pending:
+                built = built.extended(lmp)
+        else:
+            built = ChannelTimeline.build(channel, self._lmps[channel], self._initial[channel])
+        self._timelines[channel] = built
+        pending.clear()
+        return built
 
     def busy_until(self, arm: str) -> float:
         """When the arm's last activated LMP ends (retraction included); 0 if never used."""
@@ -149,7 +169,9 @@ class MotorControl:
                 kept = [lmp for lmp in self._lmps[channel] if lmp.pegs.start < at_time]
                 target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(channel[1], rest_handshape())
                 self._lmps[channel] = [*kept, RetractionLMP(channel, pegs, np.asarray(target, dtype=float))]
-                self._changed(channel)
+                self._timelines.pop(channel, None)
+                self._pending[channel].clear()
+                self._changed(channel, at_time)
 
     def frame_times(self, start: float, end: float) -> np.ndarray:
         """Frame times ``k / fps`` in ``[start, end)``."""
@@ -218,8 +240,9 @@ class MotorControl:
         first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
         last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
         known = self._swivels[arm]
-        missing = np.array([i for i in range(first, last + 1) if i not in known], dtype=int)
-        if missing.size:
+        if any(i not in known for i in range(first, last + 1)):
+            ahead = range(first, max(last, first + SWIVEL_LOOKAHEAD) + 1)
+            missing = np.array([i for i in ahead if i not in known], dtype=int)
             grid = missing * SWIVEL_PERIOD
             wrists = _sample(self.timeline((arm, "wrist_position")), grid)
             hands = _sample(self.timeline((arm, "hand_rotation")), grid)

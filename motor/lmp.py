@@ -497,6 +497,24 @@ class ChannelTimeline:
         starts = np.array([lmp.pegs.start for lmp in ordered], dtype=float)
         return cls(tuple(channel), initial, ordered, tuple(realizations), starts)
 
+    def extended(self, lmp: LMP) -> ChannelTimeline:
+        """This timeline with ``lmp`` added, which starts no earlier than any LMP on it:
+        the timeline :meth:`build` makes of all of them, without activating the others
+        again."""
+        if tuple(lmp.channel) != self.channel:
+            raise ValueError(f"timeline of {self.channel} was given an LMP on {lmp.channel}")
+        start = lmp.pegs.start
+        if self.starts.size and start < self.starts[-1]:
+            raise ValueError(f"{self.channel}: an LMP starting at {start} cannot follow one starting at {self.starts[-1]}")
+        state = (
+            self.realizations[-1].state(start)
+            if self.realizations
+            else ChannelState(np.asarray(self.initial.value, dtype=float), np.asarray(self.initial.velocity, dtype=float), start)
+        )
+        realization = lmp.activate(state)
+        starts = np.append(self.starts, float(start))
+        return ChannelTimeline(self.channel, self.initial, (*self.lmps, lmp), (*self.realizations, realization), starts)
+
     @property
     def warnings(self) -> tuple[str, ...]:
         """Every realization's warnings, in time order."""

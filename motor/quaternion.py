@@ -13,19 +13,40 @@ import numpy as np
 IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
 
 
+def _result(*parts: np.ndarray, size: int) -> np.ndarray:
+    """An empty array of the broadcast shape of ``parts`` with a last axis of ``size``."""
+    shape = np.broadcast_shapes(*(np.shape(part) for part in parts))
+    return np.empty(shape + (size,), dtype=np.result_type(*parts, float))
+
+
 def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Hamilton product ``p * q`` (apply ``q`` first, then ``p``)."""
     px, py, pz, pw = p[..., 0], p[..., 1], p[..., 2], p[..., 3]
     qx, qy, qz, qw = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    return np.stack(
-        (
-            pw * qx + px * qw + py * qz - pz * qy,
-            pw * qy - px * qz + py * qw + pz * qx,
-            pw * qz + px * qy - py * qx + pz * qw,
-            pw * qw - px * qx - py * qy - pz * qz,
-        ),
-        axis=-1,
-    )
+    out = _result(px, qx, size=4)
+    out[..., 0] = pw * qx + px * qw + py * qz - pz * qy
+    out[..., 1] = pw * qy - px * qz + py * qw + pz * qx
+    out[..., 2] = pw * qz + px * qy - py * qx + pz * qw
+    out[..., 3] = pw * qw - px * qx - py * qy - pz * qz
+    return out
+
+
+def cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Cross product of 3-vectors along the last axis (the arithmetic of ``np.cross``
+    without its per-call axis handling)."""
+    u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+    ux, uy, uz = u[..., 0], u[..., 1], u[..., 2]
+    vx, vy, vz = v[..., 0], v[..., 1], v[..., 2]
+    out = _result(ux, vx, size=3)
+    out[..., 0] = uy * vz - uz * vy
+    out[..., 1] = uz * vx - ux * vz
+    out[..., 2] = ux * vy - uy * vx
+    return out
+
+
+def norm(v: np.ndarray) -> np.ndarray:
+    """Euclidean length along the last axis."""
+    return np.sqrt(np.sum(v * v, axis=-1))
 
 
 def conjugate(q: np.ndarray) -> np.ndarray:
@@ -35,7 +56,7 @@ def conjugate(q: np.ndarray) -> np.ndarray:
 
 def normalize(q: np.ndarray) -> np.ndarray:
     """Scale quaternions (or vectors) to unit length along the last axis."""
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return q / np.sqrt(np.sum(q * q, axis=-1, keepdims=True))
 
 
 def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -45,30 +66,32 @@ def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     tx = 2.0 * (y * vz - z * vy)
     ty = 2.0 * (z * vx - x * vz)
     tz = 2.0 * (x * vy - y * vx)
-    return np.stack(
-        (
-            vx + w * tx + y * tz - z * ty,
-            vy + w * ty + z * tx - x * tz,
-            vz + w * tz + x * ty - y * tx,
-        ),
-        axis=-1,
-    )
+    out = _result(x, vx, size=3)
+    out[..., 0] = vx + w * tx + y * tz - z * ty
+    out[..., 1] = vy + w * ty + z * tx - x * tz
+    out[..., 2] = vz + w * tz + x * ty - y * tx
+    return out
 
 
 def from_axis_angle(axis: np.ndarray, angle: np.ndarray | float) -> np.ndarray:
     """Rotation by ``angle`` about the unit ``axis``; broadcasts ``(..., 3)`` with ``(...)``."""
-    half = 0.5 * np.asarray(angle, dtype=float)[..., None]
-    xyz = np.asarray(axis, dtype=float) * np.sin(half)
-    w = np.broadcast_to(np.cos(half), xyz.shape[:-1] + (1,))
-    return np.concatenate((xyz, w), axis=-1)
+    half = 0.5 * np.asarray(angle, dtype=float)
+    axis = np.asarray(axis, dtype=float)
+    out = _result(axis[..., 0], half, size=4)
+    out[..., :3] = axis * np.sin(half)[..., None]
+    out[..., 3] = np.cos(half)
+    return out
 
 
 def from_rotation_vector(rotvec: np.ndarray) -> np.ndarray:
     """Quaternion of a rotation vector (axis times angle), safe at zero."""
-    angle = np.linalg.norm(rotvec, axis=-1)
+    angle = norm(rotvec)
     half = 0.5 * angle
     scale = np.where(angle > 1e-12, np.sin(half) / np.where(angle > 1e-12, angle, 1.0), 0.5)
-    return np.concatenate((rotvec * scale[..., None], np.cos(half)[..., None]), axis=-1)
+    out = _result(rotvec[..., 0], size=4)
+    out[..., :3] = rotvec * scale[..., None]
+    out[..., 3] = np.cos(half)
+    return out
 
 
 def canonical(q: np.ndarray) -> np.ndarray:
@@ -83,7 +106,7 @@ def canonical(q: np.ndarray) -> np.ndarray:
 def to_rotation_vector(q: np.ndarray) -> np.ndarray:
     """Rotation vector (axis times angle in ``[0, π]``) of unit quaternions."""
     q = np.where(q[..., 3:4] < 0.0, -q, q)
-    sin_half = np.linalg.norm(q[..., :3], axis=-1)
+    sin_half = norm(q[..., :3])
     angle = 2.0 * np.arctan2(sin_half, q[..., 3])
     scale = np.where(sin_half > 1e-12, angle / np.where(sin_half > 1e-12, sin_half, 1.0), 2.0)
     return q[..., :3] * scale[..., None]
