@@ -17,9 +17,11 @@ planned in a worker thread while the current one plays). For each chunk:
    Completed when the last retraction ends, or when the next gesture on the same arm
    starts preparing (the retraction is skipped: co-articulation).
 
-Frames are sampled window by window (``SchedulerConfig.frame_window``) from the motor
-control; a window never crosses the time a program is activated. In a live run a frame
-window is sampled when the clock reaches its end (the viewer buffers one window).
+Frames are sampled window by window (``SchedulerConfig.frame_window`` live,
+``offline_frame_window`` on a virtual clock) from the motor control; a window never
+crosses the time a program is activated (nor any other agenda event), so the window
+length only decides how many frames one motor call makes, never which. In a live run a
+frame window is sampled when the clock reaches its end (the viewer buffers one window).
 
 Absolutely timed behaviours of an utterance with speech are planned with the first chunk
 whose speech ends after their onset (the last chunk takes the rest); a gesture-only
@@ -61,7 +63,9 @@ _EPS = 1e-9
 class SchedulerConfig:
     """Scheduler settings.
 
-    ``frame_window``: seconds of frames sampled at a time. ``live_margin``: in a live
+    ``frame_window``: seconds of frames sampled at a time in a live run;
+    ``offline_frame_window`` the same on a virtual clock, where nobody waits for a window
+    and longer ones spare the motor control's per-call cost. ``live_margin``: in a live
     run, how far ahead of the moment planning starts the planned chunk may begin, s (the
     time planning may take). ``voice``/``rate``/``with_audio`` go to the speech requests.
     ``keep_output``: collect the frames and audio into the result; when False they reach
@@ -71,10 +75,17 @@ class SchedulerConfig:
 
     timing: TimingConfig = TimingConfig()
     frame_window: float = 0.1
+    offline_frame_window: float = 1.0
     live_margin: float = 0.1
     voice: str | None = None
     rate: float = 1.0
     with_audio: bool = True
+
+    def __post_init__(self) -> None:
+        for name in ("frame_window", "offline_frame_window"):
+            value = getattr(self, name)
+            if not value > 0.0:
+                raise ValueError(f"SchedulerConfig.{name} must be a positive number of seconds, got {value}")
     keep_output: bool = True
 
 
@@ -412,7 +423,7 @@ class Scheduler:
         while True:
             self._handle_interrupts()
             next_event = self._agenda[0][0] if self._agenda else math.inf
-            stop = min(t, next_event, self._frame_cursor + self.config.frame_window)
+            stop = min(t, next_event, self._frame_cursor + self._frame_window())
             self.clock.sleep_until(stop)
             self._time = max(self._time, stop)
             self._sample_frames(stop)
@@ -424,6 +435,9 @@ class Scheduler:
                 action()
             if stop >= t - _EPS and not (self._agenda and self._agenda[0][0] <= t + _EPS):
                 return
+
+    def _frame_window(self) -> float:
+        return self.config.frame_window if self.clock.live else self.config.offline_frame_window
 
     def _sample_frames(self, until: float) -> None:
         start = self._frame_cursor
