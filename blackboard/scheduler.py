@@ -75,18 +75,18 @@ class SchedulerConfig:
 
     timing: TimingConfig = TimingConfig()
     frame_window: float = 0.1
-    offline_frame_window: float = 1.0
     live_margin: float = 0.1
     voice: str | None = None
     rate: float = 1.0
     with_audio: bool = True
+    keep_output: bool = True
+    offline_frame_window: float = 1.0
 
     def __post_init__(self) -> None:
         for name in ("frame_window", "offline_frame_window"):
             value = getattr(self, name)
             if not value > 0.0:
                 raise ValueError(f"SchedulerConfig.{name} must be a positive number of seconds, got {value}")
-    keep_output: bool = True
 
 
 @dataclass(frozen=True)
