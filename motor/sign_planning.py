@@ -96,8 +96,10 @@ LOCAL_ANGLE = 0.45
 STATIC_HOLD = 0.5
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
-#: How far (m) the IK may fall short before a position is moved within reach.
+#: How far (m) the IK may fall short before a position is moved within reach, and the
+#: margin inside the reach limit that positions keep.
 REACH_TOLERANCE = 1e-3
+REACH_MARGIN = 0.03
 #: Upper-arm penetration (m, IK diagnostics) that moves a position back from across the
 #: body, in steps of CROSS_STEP metres, at most CROSS_STEPS of them.
 PENETRATION_TOLERANCE = 1e-3
@@ -259,7 +261,7 @@ class _SignCompiler:
                 self.hold(STATIC_HOLD, "targetted")
         first = {arm: self.pose(arm, hand) for arm, hand in start.items()}
         for arm, pose in first.items():
-            wrist = within_reach(self.avatar, arm, outside_torso(self.avatar, pose.wrist[None]))[0][0]
+            wrist = within_reach(self.avatar, arm, outside_torso(self.avatar, pose.wrist[None]), pose.rotation[None])[0][0]
             first[arm] = HandPose(wrist, pose.rotation, pose.shape)
         moves = self.channel_moves(first)
         return SignPlan(self.sign.gloss, self.clock, first, moves, static, dict(self.sign.nonmanual), tuple(self.warnings))
@@ -667,13 +669,14 @@ class _SignCompiler:
         for arm in first:
             moves = self.moves.get(arm, [])
             palm = BodySite("palm", proximity="touch")
-            wrists = []
+            wrists, turns = [], []
             for move in moves:
                 start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
                 end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
                 fractions = _arc_fractions(move.locations)[:, None]
                 wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
-            wrists = self.reachable(arm, [self.outside_torso(w) for w in wrists], first[arm])
+                turns.append(rotations_along(move.rotations, fractions[:, 0]))
+            wrists = self.reachable(arm, [self.outside_torso(w) for w in wrists], turns)
             result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
             result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
@@ -694,11 +697,11 @@ class _SignCompiler:
     def outside_torso(self, points: np.ndarray) -> np.ndarray:
         return outside_torso(self.avatar, points)
 
-    def reachable(self, arm: str, paths: list[np.ndarray], first: HandPose) -> list[np.ndarray]:
+    def reachable(self, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray]) -> list[np.ndarray]:
         if not paths:
             return paths
         stacked = np.concatenate(paths)
-        fixed, short, worst = within_reach(self.avatar, arm, stacked)
+        fixed, short, worst = within_reach(self.avatar, arm, stacked, np.concatenate(rotations))
         if short:
             self.note(f"{short} position(s) of the {arm} hand out of reach (by up to {worst:.3f} m) or too far across the body; moved")
         return np.split(fixed, np.cumsum([len(p) for p in paths])[:-1])
@@ -723,28 +726,46 @@ def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     return out
 
 
-def within_reach(avatar: Avatar, arm: str, points: np.ndarray) -> tuple[np.ndarray, int, float]:
-    """Wrist positions ``(n, 3)`` the arm reaches without its upper arm in the torso.
+def within_reach(
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None
+) -> tuple[np.ndarray, int, float]:
+    """Wrist positions ``(n, 3)`` the arm reaches, with its upper arm out of the torso.
 
-    Positions out of reach go to the nearest the arm reaches; positions so far across the
-    body that no swivel keeps the upper arm out of the torso (the IK reports penetration)
-    step back toward the arm's own side by :data:`CROSS_STEP` until it does. Also returns
-    how many positions moved and the largest shortfall (m)."""
+    Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
+    between two reachable positions can leave the reachable shell, whose shoulder moves
+    with the clavicle), are pulled in to that margin; positions so far across the body
+    that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
+    back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
+    many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
+    hand's global rotations there, which change the swivel the IK picks."""
     side = AVATAR_SIDE[arm]
-    outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 0.0]) * CROSS_STEP
+    shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
+    outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
     fixed = np.asarray(points, dtype=float)
     moved = np.zeros(len(fixed), dtype=bool)
     worst = 0.0
     for _ in range(CROSS_STEPS):
-        solution = solve_arm(avatar, side, fixed)
-        short = solution.shortfall > REACH_TOLERANCE
-        crossing = solution.penetration > PENETRATION_TOLERANCE
-        if not (np.any(short) or np.any(crossing)):
+        away = fixed - shoulder
+        away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
+        far = solve_arm(avatar, side, fixed + REACH_MARGIN * away, rotations)
+        near = solve_arm(avatar, side, fixed - REACH_MARGIN * away, rotations)
+        too_far = far.shortfall > REACH_TOLERANCE
+        too_near = (near.shortfall > REACH_TOLERANCE) & ~too_far
+        crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
+        if not (np.any(too_far) or np.any(too_near) or np.any(crossing)):
             break
-        worst = max(worst, float(solution.shortfall.max()))
-        fixed = np.where(short[:, None], solution.wrist, fixed) + crossing[:, None] * outward
-        moved |= short | crossing
-    return fixed, int(moved.sum()), worst
+        worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
+        fixed = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, fixed)
+        fixed = np.where(too_near[:, None], near.wrist + REACH_MARGIN * away, fixed) + crossing[:, None] * outward
+        moved |= too_far | too_near | crossing
+    return fixed, int(moved.sum()), max(worst, 0.0)
+
+
+def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Rotations ``(n, 4)`` at fractions of the way through evenly spaced keys ``(m, 4)``."""
+    position = np.clip(fractions, 0.0, 1.0) * (len(keys) - 1)
+    index = np.minimum(position.astype(int), len(keys) - 2)
+    return quat.slerp(keys[index], keys[index + 1], position - index)
 
 
 def _flattened(node: Parallel) -> list[Constraint]:

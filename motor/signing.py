@@ -28,12 +28,12 @@ from motor.avatar import Avatar
 from motor.biocontrol import movement_duration, profile
 from motor.control import MotorControl
 from motor.kinematics import forward_kinematics
-from motor.lmp import LMP, RetractionLMP, TimePegs
+from motor.lmp import LMP, TimePegs
 from motor.motion import Motion
 from motor.program import ARMS, AVATAR_SIDE, rest_handshape, retraction_duration
 from motor.sign_lmp import SignChannelLMP
 from motor.arm_ik import solve_arm
-from motor.sign_planning import HandPose, SignPlan, outside_torso, plan_sign, within_reach
+from motor.sign_planning import HandPose, SignPlan, outside_torso, plan_sign, rotations_along, within_reach
 from motor.trajectory import fitts_duration
 from mura.signs import Sign
 
@@ -115,7 +115,7 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         for arm in ARMS:
             for channel in CHANNELS:
                 moves = tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ()))
-                via = _transition_way(avatar, arm, here[arm].wrist, targets[arm].wrist) if channel == "wrist_position" else None
+                via = _transition_way(avatar, arm, here[arm], targets[arm]) if channel == "wrist_position" else None
                 lmps.append(SignChannelLMP((arm, channel), pegs, targets[arm].channel(channel), moves, manner, via))
             here[arm] = _last_pose(plan, arm, targets[arm])
         control.activate(SignProgram(plan.gloss, tuple(lmps)))
@@ -125,7 +125,11 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     back = max(retraction_duration(float(np.linalg.norm(here[arm].wrist - rest[arm].wrist))) for arm in ARMS)
     retract = TimePegs.movement(clock, clock + back)
     control.activate(SignProgram("rest", tuple(
-        RetractionLMP((arm, channel), retract, rest[arm].channel(channel)) for arm in ARMS for channel in CHANNELS
+        SignChannelLMP(
+            (arm, channel), retract, rest[arm].channel(channel), (), "lax",
+            _transition_way(avatar, arm, here[arm], rest[arm]) if channel == "wrist_position" else None,
+        )
+        for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
     motion = control.frames(0.0, clock + back + REST_TAIL)
     motion = _elbows_outside(avatar, control, motion)
@@ -146,11 +150,13 @@ def _last_pose(plan: SignPlan, arm: str, first: HandPose) -> HandPose:
     return HandPose(values["wrist_position"], values["hand_rotation"], values["handshape"])
 
 
-def _transition_way(avatar: Avatar, arm: str, here: np.ndarray, there: np.ndarray) -> np.ndarray:
+def _transition_way(avatar: Avatar, arm: str, here: HandPose, there: HandPose) -> np.ndarray:
     """Interior points of the straight transition of a wrist, kept outside the torso and
     within reach (the transition is not a path the sign chose)."""
-    inner = np.linspace(here, there, TRANSITION_POINTS + 2)[1:-1]
-    return within_reach(avatar, arm, outside_torso(avatar, inner))[0]
+    fractions = np.linspace(0.0, 1.0, TRANSITION_POINTS + 2)[1:-1]
+    inner = here.wrist + fractions[:, None] * (there.wrist - here.wrist)
+    turns = rotations_along(np.stack([here.rotation, there.rotation]), fractions)
+    return within_reach(avatar, arm, outside_torso(avatar, inner), turns)[0]
 
 
 def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
@@ -237,9 +243,10 @@ class MotionCheck:
     max_upper_arm_depth: float
 
 
-#: Points along the upper arm (fractions from shoulder to elbow) checked against the torso;
-#: the shoulder itself sits on the torso's edge, so the check starts a little way out.
-_UPPER_ARM_SAMPLES = np.linspace(0.25, 1.0, 7)
+#: Points along the upper arm (fractions from shoulder to elbow) checked against the torso,
+#: those the IK's torso avoidance checks (the shoulder joint itself sits at the torso's
+#: edge, below its top).
+_UPPER_ARM_SAMPLES = np.array([0.3, 0.45, 0.6, 0.75, 0.9, 1.0])
 
 
 def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
