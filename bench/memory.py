@@ -10,6 +10,14 @@ the child prints one JSON line with its peak RSS, the run time and the callable'
 The one-hour case: :func:`long_utterance` builds an utterance of about an hour of speech
 by repeating the seed's Fig. 2 utterance (two chunks, a deictic and an iconic gesture)
 with fresh time tags and ids, each repetition its own pair of chunks.
+
+What is measured is the streaming render (``Agent.render_files``, what ``mura render``
+runs) at a short and a long length (60 s and 600 s; ``--quick``: 30 s and 120 s) and, in
+the full run, at one hour. Memory is *flat* when the peak grows by less than
+:data:`FLAT_MB_PER_HOUR` per hour of speech between the two lengths: what remains is the
+timeline (words, phonemes, chunk states), while accumulating the frames and the audio
+would add about 530 MB per hour at 60 fps and 22,050 Hz. The full run also renders the
+long length through ``Agent.render`` (everything in memory) for comparison.
 """
 
 from __future__ import annotations
@@ -35,6 +43,11 @@ FIG2_SECONDS = 3.9
 #: The utterance length the memory target is stated for, and the one ``--quick`` uses.
 HOUR_SECONDS = 3600.0
 QUICK_SECONDS = 30.0
+#: The (short, long) lengths whose peaks tell whether memory is flat, seconds.
+FLAT_SECONDS = (60.0, 600.0)
+QUICK_FLAT_SECONDS = (30.0, 120.0)
+#: Largest growth of the peak per hour of speech still called flat, MB.
+FLAT_MB_PER_HOUR = 100.0
 _MARKER = "bench-memory-result:"
 
 
@@ -131,23 +144,54 @@ def render_with_agent(seconds: str) -> dict[str, float]:
     return {"duration_s": performance.duration, "frames": performance.motion.frame_count}
 
 
+def render_streaming(seconds: str) -> dict[str, float]:
+    """Render a :func:`long_utterance` of ``seconds`` with ``Agent().render_files`` (the
+    streaming path ``mura render`` takes) into a temporary folder; returns the performed
+    duration and the size of the files written, MB."""
+    import tempfile
+
+    from agent.agent import Agent
+
+    with tempfile.TemporaryDirectory(prefix="mura-bench-memory-") as folder:
+        files = Agent().render_files(long_utterance(float(seconds)), folder, name="long")
+        size = sum(path.stat().st_size for path in (files.wav, files.bvh, files.timeline, files.html))
+    return {"duration_s": files.duration, "files_mb": size / 2**20}
+
+
 def run(quick: bool) -> dict:
-    """Peak RSS of the interpreter alone and of rendering about an hour of speech (30 s
-    when ``quick``) through the agent API, each in its own process; the render is reported
-    as not yet measurable when the agent API cannot be imported."""
-    seconds = QUICK_SECONDS if quick else HOUR_SECONDS
+    """Peak RSS of the interpreter alone and of the streaming render at a short and a long
+    length (and one hour unless ``quick``), each in its own process, with the verdict on
+    flatness; the full run adds the in-memory render of the long length."""
     figures: dict[str, object] = {"baseline_peak_rss_mb": peak_rss("bench.memory:idle")["peak_rss_mb"]}
-    try:
-        import_module("agent.agent")
-    except ImportError as error:
-        figures["one_hour_peak_rss_mb"] = {"status": "not yet measurable", "reason": f"agent API not importable: {error}"}
+    short, long = QUICK_FLAT_SECONDS if quick else FLAT_SECONDS
+    lengths = (short, long) if quick else (short, long, HOUR_SECONDS)
+    streaming = {f"{seconds:.0f}s": _measure("bench.memory:render_streaming", seconds) for seconds in lengths}
+    figures["streaming"] = streaming
+    figures["flat"] = flatness(streaming[f"{short:.0f}s"], streaming[f"{long:.0f}s"])
+    if quick:
+        figures["one_hour_peak_rss_mb"] = {"status": "not measured", "reason": f"--quick renders {long:.0f} s at most"}
         return figures
-    measured = peak_rss("bench.memory:render_with_agent", str(seconds))
-    figures["render"] = {"requested_s": seconds, **measured["result"], "peak_rss_mb": measured["peak_rss_mb"], "seconds": measured["seconds"]}
-    figures["one_hour_peak_rss_mb"] = (
-        {"status": "not measured", "reason": f"--quick renders {QUICK_SECONDS:.0f} s only"} if quick else measured["peak_rss_mb"]
-    )
+    figures["one_hour_peak_rss_mb"] = streaming[f"{HOUR_SECONDS:.0f}s"]["peak_rss_mb"]
+    figures["in_memory_render"] = {f"{long:.0f}s": _measure("bench.memory:render_with_agent", long)}
     return figures
+
+
+def flatness(short: dict, long: dict) -> dict[str, object]:
+    """Growth of the peak between two measured renders, per hour of performed speech."""
+    growth = long["peak_rss_mb"] - short["peak_rss_mb"]
+    hours = (long["duration_s"] - short["duration_s"]) / HOUR_SECONDS
+    per_hour = growth / hours
+    return {
+        "growth_mb": growth,
+        "ratio": long["peak_rss_mb"] / short["peak_rss_mb"],
+        "growth_mb_per_hour": per_hour,
+        "flat": per_hour < FLAT_MB_PER_HOUR,
+    }
+
+
+def _measure(target: str, seconds: float) -> dict[str, object]:
+    measured = peak_rss(target, str(seconds))
+    return {"requested_s": seconds, **measured["result"], "peak_rss_mb": measured["peak_rss_mb"], "seconds": measured["seconds"]}
 
 
 def idle() -> None:
