@@ -14,9 +14,8 @@ IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
 
 
 def _result(*parts: np.ndarray, size: int) -> np.ndarray:
-    """An empty array of the broadcast shape of ``parts`` with a last axis of ``size``."""
-    shape = np.broadcast_shapes(*(np.shape(part) for part in parts))
-    return np.empty(shape + (size,), dtype=np.result_type(*parts, float))
+    """An empty float array of the broadcast shape of ``parts`` with a last axis of ``size``."""
+    return np.empty(np.broadcast(*parts).shape + (size,))
 
 
 def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
