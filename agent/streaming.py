@@ -15,6 +15,7 @@ Memory holds one chunk's audio, at most ``FRAMES_PER_BLOCK`` frames and the time
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import os
@@ -224,7 +225,8 @@ def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | o
     except BaseException:
         for writer in (wav, bvh):
             if writer is not None:
-                writer.close()
+                with contextlib.suppress(Exception):  # the failure being raised is the one to report
+                    writer.close()
         staging.discard()
         raise
     staging.publish()

@@ -181,3 +181,17 @@ def test_mura_render_streams_the_same_files(agent, tmp_path, capsys):
         name = f"{example.stem}{suffix}"
         assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "saved" / name).read_bytes()
     assert f"-> {tmp_path / 'cli' / example.stem}.html" in capsys.readouterr().out
+
+
+def test_error_while_closing_after_a_failure_does_not_hide_it(agent, monkeypatch, tmp_path):
+    def finish_fails(self, duration):
+        raise OSError(5, "Input/output error")
+
+    def close_fails(self):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(streaming.StreamingWav, "finish", finish_fails)
+    monkeypatch.setattr(streaming.StreamingWav, "close", close_fails)
+    with pytest.raises(OSError, match="Input/output error"):
+        agent.render_files(EXAMPLES[0], tmp_path)
+    assert files_in(tmp_path) == []
