@@ -469,12 +469,22 @@ def _torso_penetration(chain: _Chain, shoulder: np.ndarray, elbow: np.ndarray, t
     """
     extra = (None,) * (elbow.ndim - 2)
     at = (slice(None),) + extra
-    points = shoulder[at][..., None, :] + _ARM_SAMPLES[:, None] * (elbow - shoulder[at])[..., None, :]
-    inverse = quat.conjugate(torso_q)[at][..., None, :]
-    local = quat.rotate(inverse, points - torso_p[at][..., None, :]) + chain.torso_joint_rest
-    dx = (local[..., 0] - chain.torso_center[0]) / chain.torso_axes[0]
-    dz = (local[..., 2] - chain.torso_center[2]) / chain.torso_axes[1]
+    if np.all(torso_q == quat.IDENTITY):
+        # an upright torso: rotating by the identity changes nothing; the same arithmetic
+        # one coordinate at a time, on contiguous arrays
+        x, y, z = (
+            shoulder[at + (c, None)] + _ARM_SAMPLES * (elbow[..., c] - shoulder[at + (c,)])[..., None]
+            - torso_p[at + (c, None)] + chain.torso_joint_rest[c]
+            for c in range(3)
+        )
+    else:
+        points = shoulder[at][..., None, :] + _ARM_SAMPLES[:, None] * (elbow - shoulder[at])[..., None, :]
+        inverse = quat.conjugate(torso_q)[at][..., None, :]
+        local = quat.rotate(inverse, points - torso_p[at][..., None, :]) + chain.torso_joint_rest
+        x, y, z = local[..., 0], local[..., 1], local[..., 2]
+    dx = (x - chain.torso_center[0]) / chain.torso_axes[0]
+    dz = (z - chain.torso_center[2]) / chain.torso_axes[1]
     inside = np.sqrt(dx**2 + dz**2)
-    within = (local[..., 1] > chain.torso_heights[0]) & (local[..., 1] < chain.torso_heights[1])
+    within = (y > chain.torso_heights[0]) & (y < chain.torso_heights[1])
     depth = np.where(within, np.clip(1.0 - inside, 0.0, None) * chain.torso_axes.min(), 0.0)
     return depth.max(axis=-1)
