@@ -471,20 +471,20 @@ def _torso_penetration(chain: _Chain, shoulder: np.ndarray, elbow: np.ndarray, t
     at = (slice(None),) + extra
     if np.all(torso_q == quat.IDENTITY):
         # an upright torso: rotating by the identity changes nothing; the same arithmetic
-        # one coordinate at a time, on contiguous arrays
+        # one coordinate at a time, samples along the arm first, on contiguous arrays
+        samples = _ARM_SAMPLES.reshape((-1,) + (1,) * (elbow.ndim - 1))
         x, y, z = (
-            shoulder[at + (c, None)] + _ARM_SAMPLES * (elbow[..., c] - shoulder[at + (c,)])[..., None]
-            - torso_p[at + (c, None)] + chain.torso_joint_rest[c]
+            shoulder[at + (c,)] + samples * (elbow[..., c] - shoulder[at + (c,)]) - torso_p[at + (c,)] + chain.torso_joint_rest[c]
             for c in range(3)
         )
     else:
         points = shoulder[at][..., None, :] + _ARM_SAMPLES[:, None] * (elbow - shoulder[at])[..., None, :]
         inverse = quat.conjugate(torso_q)[at][..., None, :]
-        local = quat.rotate(inverse, points - torso_p[at][..., None, :]) + chain.torso_joint_rest
+        local = np.moveaxis(quat.rotate(inverse, points - torso_p[at][..., None, :]) + chain.torso_joint_rest, -2, 0)
         x, y, z = local[..., 0], local[..., 1], local[..., 2]
     dx = (x - chain.torso_center[0]) / chain.torso_axes[0]
     dz = (z - chain.torso_center[2]) / chain.torso_axes[1]
     inside = np.sqrt(dx**2 + dz**2)
     within = (y > chain.torso_heights[0]) & (y < chain.torso_heights[1])
     depth = np.where(within, np.clip(1.0 - inside, 0.0, None) * chain.torso_axes.min(), 0.0)
-    return depth.max(axis=-1)
+    return depth.max(axis=0)
