@@ -268,10 +268,12 @@ class _Circle:
         """The circles of the frames selected by a boolean mask."""
         return _Circle(**{name: getattr(self, name)[mask] for name in self.__dataclass_fields__})
 
-    def elbow(self, psi: np.ndarray) -> np.ndarray:
-        """Elbow positions ``(n, ..., 3)`` at swivels ``psi (n, ...)``."""
+    def elbow(self, psi: np.ndarray, direction: np.ndarray | None = None) -> np.ndarray:
+        """Elbow positions ``(n, ..., 3)`` at swivels ``psi (n, ...)`` (their
+        :meth:`direction`, when known, spares computing it again)."""
         at = (slice(None),) + (None,) * (psi.ndim - 1)
-        return self.center[at] + self.direction(psi) * self.radius[at][..., None]
+        radial = self.direction(psi) if direction is None else direction
+        return self.center[at] + radial * self.radius[at][..., None]
 
     def direction(self, psi: np.ndarray) -> np.ndarray:
         """Unit direction from the circle's centre to the elbow at swivel ``psi (n, ...)``."""
@@ -420,8 +422,9 @@ def _cost(
     if hands is None:
         elbow = circle.elbow(psi)
     else:
-        elbow = circle.elbow(psi)
-        deviation, flexion, residual = _wrist_load(chain, circle, psi, elbow, hands)
+        radial = circle.direction(psi)
+        elbow = circle.elbow(psi, radial)
+        deviation, flexion, residual = _wrist_load(chain, circle, radial, elbow, hands)
         deviation = deviation / np.where(deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
         flexion = flexion / np.where(flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
         cost = cost + _DEVIATION_WEIGHT * deviation**2 + _FLEXION_WEIGHT * flexion**2 + _RESIDUAL_WEIGHT * residual**2
@@ -430,9 +433,10 @@ def _cost(
 
 
 def _wrist_load(
-    chain: _Chain, circle: _Circle, psi: np.ndarray, elbow: np.ndarray, hands: np.ndarray
+    chain: _Chain, circle: _Circle, radial: np.ndarray, elbow: np.ndarray, hands: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Wrist deviation and flexion a hand rotation needs at swivel ``psi (n, K)``, and an
+    """Wrist deviation and flexion a hand rotation needs with the elbow at ``elbow
+    (n, K, 3)``, in ``radial`` directions from the circle's centre, and an
     estimate of the rotation left unachieved by the joint limits (radians).
 
     The same quantities :func:`_arm_at` computes, from vectors alone (no rotation
@@ -451,7 +455,7 @@ def _wrist_load(
     deviation = rotvec @ chain.deviation_axis
     swing = quat.from_rotation_vector(rotvec)
     wanted_hinge = quat.rotate(quat.multiply(hand, quat.conjugate(swing)), chain.hinge_rest)
-    hinge = quat.normalize(quat.cross(circle.direction(psi), circle.axis[:, None, :]))
+    hinge = quat.normalize(quat.cross(radial, circle.axis[:, None, :]))
     twist_axis = forearm * float(chain.pronation_axis @ chain.fore_rest)
     twist = np.arctan2(np.sum(quat.cross(hinge, wanted_hinge) * twist_axis, axis=-1), np.sum(hinge * wanted_hinge, axis=-1))
     excess = lambda value, limits: value - np.clip(value, *limits)
