@@ -48,7 +48,7 @@ torso by the IK's swivel (:mod:`motor.arm_ik`).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -66,7 +66,8 @@ from motor.program import ARMS, AVATAR_SIDE
 from motor.sign_lmp import Move, continuous_quaternions
 from motor.symmetry import mirror_directions
 from mura.errors import SpecError
-from mura.model import Arm, Constraint, Dynamic, iter_leaves, Parallel, Repetition, Segment, SegmentKind, Sequence, Static, Symmetrical, Symmetry
+from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Static, Symmetrical, Symmetry, iter_leaves
+from mura.model import Sequence as SequenceNode
 from mura.signs import HandPosture, Sign
 from mura.values import (
     AXES,
@@ -217,12 +218,68 @@ class _Step:
 def plan_sign(avatar: Avatar, sign: Sign) -> SignPlan:
     """The sign's hand moves on its own clock; raises :class:`SignPlanningError` with the
     gloss and the reason when it cannot be realized."""
-    try:
-        return _SignCompiler(avatar, sign).plan()
-    except (SpecError, ValueError, KeyError) as error:
-        if isinstance(error, SignPlanningError):
-            raise
-        raise SignPlanningError(f"sign {sign.gloss!r}: {error}") from None
+    (result,) = plan_signs(avatar, [sign])
+    if isinstance(result, SignPlanningError):
+        raise result
+    return result
+
+
+def plan_signs(avatar: Avatar, signs: Sequence[Sign]) -> list[SignPlan | SignPlanningError]:
+    """Each sign's plan, or the error saying why it cannot be realized, in order.
+
+    Planning many signs at once is faster: the reach of every wrist position of all the
+    signs is checked in one vectorized IK call per arm."""
+    drafts: list[SignPlan | SignPlanningError] = []
+    for sign in signs:
+        try:
+            drafts.append(_SignCompiler(avatar, sign).plan())
+        except SignPlanningError as error:
+            drafts.append(error)
+        except (SpecError, ValueError, KeyError) as error:
+            drafts.append(SignPlanningError(f"sign {sign.gloss!r}: {error}"))
+    return _within_reach_all(avatar, drafts)
+
+
+def _within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """Plans with every wrist position moved within reach (:func:`within_reach`)."""
+    plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
+    fixed: dict[int, dict] = {id(plan): {"first": dict(plan.first), "moves": dict(plan.moves), "notes": []} for plan in plans}
+    for arm in ARMS:
+        points, turns, owners = [], [], []
+        for plan in plans:
+            if arm not in plan.first:
+                continue
+            first = plan.first[arm]
+            points.append(first.wrist[None])
+            turns.append(first.rotation[None])
+            for move, turn in zip(plan.moves[(arm, "wrist_position")], plan.moves[(arm, "hand_rotation")]):
+                points.append(move.values)
+                turns.append(rotations_along(turn.values, _arc_fractions(move.values)))
+            owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
+        if not points:
+            continue
+        sizes = [len(p) for p in points]
+        moved, _, _ = within_reach(avatar, arm, np.concatenate(points), np.concatenate(turns))
+        pieces = iter(np.split(moved, np.cumsum(sizes)[:-1]))
+        originals = iter(points)
+        for plan, count in owners:
+            record = fixed[id(plan)]
+            parts = [next(pieces) for _ in range(count)]
+            before = [next(originals) for _ in range(count)]
+            changed = sum(int(np.sum(np.any(np.abs(a - b) > 1e-12, axis=1))) for a, b in zip(parts, before))
+            if changed:
+                record["notes"].append(f"{plan.gloss}: {changed} position(s) of the {arm} hand out of reach or too far across the body; moved")
+            first = plan.first[arm]
+            record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
+            moves = plan.moves[(arm, "wrist_position")]
+            record["moves"][(arm, "wrist_position")] = tuple(replace(m, values=v) for m, v in zip(moves, parts[1:]))
+    return [
+        draft if not isinstance(draft, SignPlan) else replace(
+            draft, first=fixed[id(draft)]["first"], moves=fixed[id(draft)]["moves"],
+            warnings=draft.warnings + tuple(fixed[id(draft)]["notes"]),
+        )
+        for draft in drafts
+    ]  # fmt: skip
 
 
 class _SignCompiler:
@@ -260,9 +317,7 @@ class _SignCompiler:
             if self.clock <= 0.0:
                 self.hold(STATIC_HOLD, "targetted")
         first = {arm: self.pose(arm, hand) for arm, hand in start.items()}
-        for arm, pose in first.items():
-            wrist = within_reach(self.avatar, arm, outside_torso(self.avatar, pose.wrist[None]), pose.rotation[None])[0][0]
-            first[arm] = HandPose(wrist, pose.rotation, pose.shape)
+        first = {arm: replace(pose, wrist=outside_torso(self.avatar, pose.wrist[None])[0]) for arm, pose in first.items()}
         moves = self.channel_moves(first)
         return SignPlan(self.sign.gloss, self.clock, first, moves, static, dict(self.sign.nonmanual), tuple(self.warnings))
 
@@ -420,7 +475,7 @@ class _SignCompiler:
     # -- the movement tree ---------------------------------------------------------------
 
     def compile(self, node: Constraint) -> None:
-        if isinstance(node, Sequence):
+        if isinstance(node, SequenceNode):
             for child in node.children:
                 self.compile(child)
         elif isinstance(node, Parallel):
@@ -669,14 +724,12 @@ class _SignCompiler:
         for arm in first:
             moves = self.moves.get(arm, [])
             palm = BodySite("palm", proximity="touch")
-            wrists, turns = [], []
+            wrists = []
             for move in moves:
                 start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
                 end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
                 fractions = _arc_fractions(move.locations)[:, None]
-                wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
-                turns.append(rotations_along(move.rotations, fractions[:, 0]))
-            wrists = self.reachable(arm, [self.outside_torso(w) for w in wrists], turns)
+                wrists.append(outside_torso(self.avatar, move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset)))
             result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
             result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
@@ -693,19 +746,6 @@ class _SignCompiler:
             wrist = pose.positions[0, self.avatar.joint_index(f"{side}_wrist")]
             self._offsets[key] = resolve_location(self.avatar, site, "l" if side == "r" else "r", pose) - wrist
         return self._offsets[key]
-
-    def outside_torso(self, points: np.ndarray) -> np.ndarray:
-        return outside_torso(self.avatar, points)
-
-    def reachable(self, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray]) -> list[np.ndarray]:
-        if not paths:
-            return paths
-        stacked = np.concatenate(paths)
-        fixed, short, worst = within_reach(self.avatar, arm, stacked, np.concatenate(rotations))
-        if short:
-            self.note(f"{short} position(s) of the {arm} hand out of reach (by up to {worst:.3f} m) or too far across the body; moved")
-        return np.split(fixed, np.cumsum([len(p) for p in paths])[:-1])
-
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     """Wrist positions ``(n, 3)`` inside the torso's elliptic cylinder (grown by
@@ -741,23 +781,29 @@ def within_reach(
     side = AVATAR_SIDE[arm]
     shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
     outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
-    fixed = np.asarray(points, dtype=float)
+    fixed = np.array(points, dtype=float)
     moved = np.zeros(len(fixed), dtype=bool)
+    open_ = np.arange(len(fixed))
     worst = 0.0
     for _ in range(CROSS_STEPS):
-        away = fixed - shoulder
+        if open_.size == 0:
+            break
+        here = fixed[open_]
+        turns = None if rotations is None else np.asarray(rotations)[open_]
+        away = here - shoulder
         away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
-        far = solve_arm(avatar, side, fixed + REACH_MARGIN * away, rotations)
-        near = solve_arm(avatar, side, fixed - REACH_MARGIN * away, rotations)
+        far = solve_arm(avatar, side, here + REACH_MARGIN * away, turns)
+        near = solve_arm(avatar, side, here - REACH_MARGIN * away, turns)
         too_far = far.shortfall > REACH_TOLERANCE
         too_near = (near.shortfall > REACH_TOLERANCE) & ~too_far
         crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
-        if not (np.any(too_far) or np.any(too_near) or np.any(crossing)):
-            break
+        bad = too_far | too_near | crossing
         worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
-        fixed = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, fixed)
-        fixed = np.where(too_near[:, None], near.wrist + REACH_MARGIN * away, fixed) + crossing[:, None] * outward
-        moved |= too_far | too_near | crossing
+        here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
+        here = np.where(too_near[:, None], near.wrist + REACH_MARGIN * away, here) + crossing[:, None] * outward
+        fixed[open_] = here
+        moved[open_[bad]] = True
+        open_ = open_[bad]
     return fixed, int(moved.sum()), max(worst, 0.0)
 
 

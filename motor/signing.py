@@ -101,33 +101,40 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     control = MotorControl(avatar, fps)
     rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
     here = dict(rest)
+    legs: list[tuple[dict[str, HandPose], dict[str, HandPose]]] = []
+    for plan in plans:
+        targets = {arm: plan.first.get(arm, rest[arm]) for arm in ARMS}
+        legs.append((dict(here), targets))
+        here = {arm: _last_pose(plan, arm, targets[arm]) for arm in ARMS}
+    legs.append((dict(here), rest))
+    ways = _transition_ways(avatar, legs)
     clock = REST_LEAD
     timings: list[SignTiming] = []
     warnings: list[str] = []
-    for plan in plans:
-        targets = {arm: plan.first.get(arm, rest[arm]) for arm in ARMS}
-        transition = _transition_time(here, targets)
-        ready = clock + transition
+    for plan, (before, targets), way in zip(plans, legs, ways):
+        ready = clock + _transition_time(before, targets)
         end = ready + plan.duration
         pegs = TimePegs(clock, ready, ready, ready + 0.5 * plan.duration, end, end, end)
         manner = "targetted" if plan.static else "lax"
-        lmps: list[LMP] = []
-        for arm in ARMS:
-            for channel in CHANNELS:
-                moves = tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ()))
-                via = _transition_way(avatar, arm, here[arm], targets[arm]) if channel == "wrist_position" else None
-                lmps.append(SignChannelLMP((arm, channel), pegs, targets[arm].channel(channel), moves, manner, via))
-            here[arm] = _last_pose(plan, arm, targets[arm])
+        lmps = [
+            SignChannelLMP(
+                (arm, channel), pegs, targets[arm].channel(channel),
+                tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())), manner,
+                way[arm] if channel == "wrist_position" else None,
+            )
+            for arm in ARMS for channel in CHANNELS
+        ]  # fmt: skip
         control.activate(SignProgram(plan.gloss, tuple(lmps)))
         timings.append(SignTiming(plan.gloss, clock, ready, end, tuple(sorted(plan.nonmanual))))
         warnings.extend(plan.warnings)
         clock = end
-    back = max(retraction_duration(float(np.linalg.norm(here[arm].wrist - rest[arm].wrist))) for arm in ARMS)
+    before, _ = legs[-1]
+    back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
     retract = TimePegs.movement(clock, clock + back)
     control.activate(SignProgram("rest", tuple(
         SignChannelLMP(
             (arm, channel), retract, rest[arm].channel(channel), (), "lax",
-            _transition_way(avatar, arm, here[arm], rest[arm]) if channel == "wrist_position" else None,
+            ways[-1][arm] if channel == "wrist_position" else None,
         )
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
@@ -150,13 +157,20 @@ def _last_pose(plan: SignPlan, arm: str, first: HandPose) -> HandPose:
     return HandPose(values["wrist_position"], values["hand_rotation"], values["handshape"])
 
 
-def _transition_way(avatar: Avatar, arm: str, here: HandPose, there: HandPose) -> np.ndarray:
-    """Interior points of the straight transition of a wrist, kept outside the torso and
-    within reach (the transition is not a path the sign chose)."""
+def _transition_ways(
+    avatar: Avatar, legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]]
+) -> list[dict[str, np.ndarray]]:
+    """Interior points of every straight wrist transition, kept outside the torso and
+    within reach (a transition is not a path the sign chose); all legs of an arm at once."""
     fractions = np.linspace(0.0, 1.0, TRANSITION_POINTS + 2)[1:-1]
-    inner = here.wrist + fractions[:, None] * (there.wrist - here.wrist)
-    turns = rotations_along(np.stack([here.rotation, there.rotation]), fractions)
-    return within_reach(avatar, arm, outside_torso(avatar, inner), turns)[0]
+    ways: list[dict[str, np.ndarray]] = [{} for _ in legs]
+    for arm in ARMS:
+        inner = np.concatenate([b[arm].wrist + fractions[:, None] * (t[arm].wrist - b[arm].wrist) for b, t in legs])
+        turns = np.concatenate([rotations_along(np.stack([b[arm].rotation, t[arm].rotation]), fractions) for b, t in legs])
+        fixed = within_reach(avatar, arm, outside_torso(avatar, inner), turns)[0]
+        for way, points in zip(ways, np.split(fixed, len(legs))):
+            way[arm] = points
+    return ways
 
 
 def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
@@ -269,17 +283,28 @@ def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
     return depths
 
 
-def check_motion(avatar: Avatar, signed: SignedMotion) -> MotionCheck:
-    """NaN, reach and torso checks of every frame, by forward kinematics (no root offset)."""
+def frame_faults(avatar: Avatar, signed: SignedMotion) -> dict[str, np.ndarray]:
+    """Per frame: ``non_finite`` (bool), ``shortfall`` (m between the wrist reached by
+    forward kinematics and the wrist asked for, worse arm) and ``upper_arm_depth`` (m,
+    worse arm, see :func:`upper_arm_depths`)."""
     motion = signed.motion
-    rotations = motion.rotations
-    finite = np.all(np.isfinite(rotations), axis=(1, 2))
-    pose = forward_kinematics(avatar, np.where(np.isfinite(rotations), rotations, quat.IDENTITY))
-    times = motion.times
-    shortfall = 0.0
+    finite = np.all(np.isfinite(motion.rotations), axis=(1, 2))
+    pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
+    shortfall = np.zeros(motion.frame_count)
     for arm in ARMS:
         wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
-        asked = signed.control.timeline((arm, "wrist_position")).sample(times)
-        shortfall = max(shortfall, float(np.max(np.linalg.norm(pose.positions[:, wrist] - asked, axis=1), initial=0.0)))
-    depth = max(float(np.max(d, initial=0.0)) for d in upper_arm_depths(avatar, motion).values())
-    return MotionCheck(motion.frame_count, int(np.sum(~finite)), shortfall, depth)
+        asked = signed.control.timeline((arm, "wrist_position")).sample(motion.times)
+        shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked, axis=1))
+    depths = upper_arm_depths(avatar, motion)
+    return {"non_finite": ~finite, "shortfall": shortfall, "upper_arm_depth": np.maximum(*depths.values())}
+
+
+def check_motion(avatar: Avatar, signed: SignedMotion) -> MotionCheck:
+    """NaN, reach and torso checks of every frame, by forward kinematics (no root offset)."""
+    faults = frame_faults(avatar, signed)
+    return MotionCheck(
+        signed.motion.frame_count,
+        int(faults["non_finite"].sum()),
+        float(np.max(faults["shortfall"], initial=0.0)),
+        float(np.max(faults["upper_arm_depth"], initial=0.0)),
+    )

@@ -1,0 +1,125 @@
+"""Signing from the real SiGML corpora: render rate, frames per second, compression.
+
+Not a test: prints figures. ``run(quick)`` reads both corpora (``../shared/corpora/sigml``;
+``quick``: every 20th sign), plans every sign, realizes all planned signs in order as one
+sequence at 25 fps, and checks every frame (NaN, wrist reach, upper arm in the torso).
+
+* **render rate**: signs that parse, plan and render with every frame clean, over all
+  signs of the documents; failures by reason (parse failures included), each listed.
+* **frames per second**: frames of the sequence over the time to synthesize them
+  (activation, sampling, IK and hands, the elbow check); planning is reported apart, per
+  sign. The seed reports 15,000 frames/s for about 50 bone rotations per frame.
+* **compression**: bytes of SiGML per second of animation against raw motion data,
+  50 rotations × 3 floats × 4 bytes per frame at 25 fps (the seed reports 37-fold).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from motor.avatar import load_avatar
+from motor.sign_planning import SignPlanningError, plan_signs
+from motor.signing import frame_faults, realize_signs
+from mura.sigml import parse_sigml
+
+CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
+FOLDER = Path(__file__).resolve().parents[1].parent / "shared" / "corpora" / "sigml"
+FPS = 25.0
+#: Raw motion data of the seed's comparison: 50 rotations × 3 floats × 4 bytes per frame.
+RAW_BYTES_PER_FRAME = 50 * 3 * 4
+#: A frame counts as faulty above these (metres).
+SHORTFALL_LIMIT = 1e-3
+DEPTH_LIMIT = 0.01
+_SIGN_ELEMENT = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.S)
+
+
+def run(quick: bool) -> dict:
+    avatar = load_avatar("max")
+    stride = 20 if quick else 1
+    failures: list[dict] = []
+    signs, sizes, total = [], [], 0
+    for name in CORPORA:
+        data = (FOLDER / name).read_bytes()
+        result = parse_sigml(data, file=name)
+        failed = {failure.index for failure in result.failures}
+        elements = [len(m.group(0)) for m in _SIGN_ELEMENT.finditer(data)]
+        parsed_sizes = [size for index, size in enumerate(elements) if index not in failed]
+        signs.extend(result.signs[::stride])
+        sizes.extend(parsed_sizes[::stride])
+        taken_failures = result.failures[::stride]
+        total += len(result.signs[::stride]) + len(taken_failures)
+        failures.extend({"sign": f.gloss, "reason": str(f.error)} for f in taken_failures)
+    started = time.perf_counter()
+    results = plan_signs(avatar, signs)
+    planning = time.perf_counter() - started
+    plans = []
+    for result, size in zip(results, sizes):
+        if isinstance(result, SignPlanningError):
+            failures.append({"sign": "", "reason": str(result)})
+        else:
+            plans.append((result, size))
+
+    started = time.perf_counter()
+    signed = realize_signs(avatar, [plan for plan, _ in plans], FPS)
+    synthesis = time.perf_counter() - started
+    faults = frame_faults(avatar, signed)
+    bad = faults["non_finite"] | (faults["shortfall"] > SHORTFALL_LIMIT) | (faults["upper_arm_depth"] > DEPTH_LIMIT)
+    times = signed.motion.times
+    clean_bytes, clean_seconds = 0, 0.0
+    for (plan, size), timing in zip(plans, signed.timings):
+        window = (times >= timing.start) & (times < timing.end)
+        if np.any(bad & window):
+            frames = bad & window
+            failures.append({
+                "sign": plan.gloss,
+                "reason": "frames with "
+                + ", ".join(k for k in ("non_finite", "shortfall", "upper_arm_depth") if np.any(_fault(faults, k)[frames])),
+            })  # fmt: skip
+            continue
+        clean_bytes += size
+        clean_seconds += timing.end - timing.start
+    rendered = total - len(failures)
+    raw_per_second = RAW_BYTES_PER_FRAME * FPS
+    sigml_per_second = clean_bytes / clean_seconds if clean_seconds else float("nan")
+    reasons = Counter(_reason(f["reason"]) for f in failures)
+    return {
+        "signs": total,
+        "rendered": rendered,
+        "render_rate": round(rendered / total, 4) if total else None,
+        "failures_by_reason": dict(reasons.most_common()),
+        "failures": failures,
+        "planning_ms_per_sign": round(1e3 * planning / max(len(plans), 1), 2),
+        "frames": signed.motion.frame_count,
+        "animation_seconds": round(signed.duration, 1),
+        "synthesis_frames_per_second": round(signed.motion.frame_count / synthesis),
+        "rotations_per_frame": len(signed.motion.joint_names),
+        "max_shortfall_m": float(np.max(faults["shortfall"])),
+        "max_upper_arm_depth_m": float(np.max(faults["upper_arm_depth"])),
+        "sigml_bytes_per_second": round(sigml_per_second, 1),
+        "raw_motion_bytes_per_second": raw_per_second,
+        "compression_factor": round(raw_per_second / sigml_per_second, 1) if clean_seconds else None,
+        "warnings": len(signed.warnings),
+    }
+
+
+def _fault(faults: dict[str, np.ndarray], key: str) -> np.ndarray:
+    if key == "non_finite":
+        return faults[key]
+    return faults[key] > (SHORTFALL_LIMIT if key == "shortfall" else DEPTH_LIMIT)
+
+
+def _reason(text: str) -> str:
+    """A failure's reason without the place and the sign's name, for counting."""
+    reason = text.split(": ")[-1]
+    return re.sub(r"'[^']*'", "'…'", reason)[:90]
+
+
+if __name__ == "__main__":
+    print(json.dumps(run(quick="--quick" in sys.argv), indent=2, ensure_ascii=False))
