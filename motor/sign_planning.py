@@ -539,7 +539,7 @@ class _SignCompiler:
         for arm, change in step.changes.items():
             before = self.hands[arm]
             after = change.hand
-            path = change.path if change.path is not None else np.stack([before.location, after.location])
+            path = change.path if change.path is not None else np.linspace(before.location, after.location, _PATH_POINTS)
             rotations = change.rotations if change.rotations is not None else np.stack([self.rotation(arm, before), self.rotation(arm, after)])
             shapes = change.shapes if change.shapes is not None else np.stack([before.params, after.params])
             self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))

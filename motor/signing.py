@@ -40,8 +40,10 @@ from mura.signs import Sign
 #: Standing at rest before the first sign and after the last, seconds.
 REST_LEAD = 0.3
 REST_TAIL = 0.3
-#: Interior points of a transition's wrist path (checked against torso and reach).
-TRANSITION_POINTS = 6
+#: Spacing (m) and least number of the interior points of a transition's wrist path,
+#: which are checked against the torso and the arm's reach.
+TRANSITION_SPACING = 0.03
+MIN_TRANSITION_POINTS = 4
 #: Depth (m) of the upper arm's axis inside the torso cylinder tolerated before a frame's
 #: arm is solved again (the shoulder joint itself sits at the torso's edge).
 UPPER_ARM_TOLERANCE = 0.01
@@ -160,15 +162,21 @@ def _last_pose(plan: SignPlan, arm: str, first: HandPose) -> HandPose:
 def _transition_ways(
     avatar: Avatar, legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]]
 ) -> list[dict[str, np.ndarray]]:
-    """Interior points of every straight wrist transition, kept outside the torso and
-    within reach (a transition is not a path the sign chose); all legs of an arm at once."""
-    fractions = np.linspace(0.0, 1.0, TRANSITION_POINTS + 2)[1:-1]
+    """Interior points of every straight wrist transition, one every
+    :data:`TRANSITION_SPACING` metres, kept outside the torso and within reach (a
+    transition is not a path the sign chose); all legs of an arm in one IK call."""
     ways: list[dict[str, np.ndarray]] = [{} for _ in legs]
     for arm in ARMS:
-        inner = np.concatenate([b[arm].wrist + fractions[:, None] * (t[arm].wrist - b[arm].wrist) for b, t in legs])
-        turns = np.concatenate([rotations_along(np.stack([b[arm].rotation, t[arm].rotation]), fractions) for b, t in legs])
-        fixed = within_reach(avatar, arm, outside_torso(avatar, inner), turns)[0]
-        for way, points in zip(ways, np.split(fixed, len(legs))):
+        inner, turns, sizes = [], [], []
+        for before, after in legs:
+            distance = float(np.linalg.norm(after[arm].wrist - before[arm].wrist))
+            count = max(MIN_TRANSITION_POINTS, int(np.ceil(distance / TRANSITION_SPACING)))
+            fractions = np.linspace(0.0, 1.0, count + 2)[1:-1]
+            inner.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
+            turns.append(rotations_along(np.stack([before[arm].rotation, after[arm].rotation]), fractions))
+            sizes.append(count)
+        fixed = within_reach(avatar, arm, outside_torso(avatar, np.concatenate(inner)), np.concatenate(turns))[0]
+        for way, points in zip(ways, np.split(fixed, np.cumsum(sizes)[:-1])):
             way[arm] = points
     return ways
 
