@@ -216,7 +216,7 @@ def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | o
             motion_start = recorder.first_frame_time - result.timeline.origin
         timeline = dict(timeline, motion_start_time=motion_start)
         _write_text(staging.temporary(paths.bvh), bvh.write)
-        _write_text(staging.temporary(paths.timeline), lambda stream: stream.write(json.dumps(timeline, indent=1)), "utf-8")
+        _write_text(staging.temporary(paths.timeline), lambda stream: json.dump(timeline, stream, indent=1), "utf-8")
         _write_text(
             staging.temporary(paths.html),
             lambda stream: write_html_stream(stream, name=name, bvh_blocks=bvh.text_blocks(), timeline=timeline, wav_filename=paths.wav.name),
