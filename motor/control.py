@@ -18,6 +18,11 @@ swivel within the interpolation error. The grid does not depend on the frame rat
 the window, so frames depend only on their own times and the activated LMPs: sampling
 window after window gives exactly the frames of one call over the whole span. Runs of
 identical channel values (holds, rest) are solved once and repeated, which is exact.
+
+For the same reason frames and swivels can be computed ahead of the window asked for
+(:data:`FRAME_LOOKAHEAD`, :data:`SWIVEL_LOOKAHEAD`), so that short windows share the
+fixed cost of one computation; activating an LMP forgets what was computed ahead from
+where it can change things (its start, less the swivel interpolation's reach).
 """
 
 from __future__ import annotations
@@ -43,7 +48,10 @@ SWIVEL_PERIOD = 0.1
 HISTORY = 1.0
 #: How many grid points past a window the natural swivel is solved ahead, in the same
 #: batch: short windows then share one search instead of each paying for its own.
-SWIVEL_LOOKAHEAD = 10
+SWIVEL_LOOKAHEAD = 20
+#: How far past a window's start frames are computed ahead, seconds: later windows are
+#: then served from them until an activation changes what they would be.
+FRAME_LOOKAHEAD = 2.0
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -66,6 +74,7 @@ class MotorControl:
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
         self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
+        self._ahead: tuple[int, np.ndarray] | None = None  # first frame index, rotations
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._last_swivel = {arm: _LastRun() for arm in ARMS}
@@ -132,6 +141,10 @@ class MotorControl:
         first = math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE)
         for index in [i for i in grid if i >= first]:
             del grid[index]
+        if self._ahead is not None:
+            # a frame's swivel is interpolated from grid points up to two periods after it
+            kept = max(0, math.ceil((first - 3) * SWIVEL_PERIOD * self.fps - _FRAME_TOLERANCE) - self._ahead[0])
+            self._ahead = (self._ahead[0], self._ahead[1][:kept]) if kept else None
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
         """The channel's timeline of everything activated so far (built on demand; LMPs
@@ -183,20 +196,8 @@ class MotorControl:
         """Frames at times ``k / fps`` in ``[start, end)`` from everything activated so far."""
         times = self.frame_times(start, end)
         count = times.size
-        rotations = np.empty((count, self.avatar.joint_count, 4))
-        rotations[:] = self._rest_rotations
-        for arm in ARMS:
-            wrists = _sample(self.timeline((arm, "wrist_position")), times)
-            hands = _sample(self.timeline((arm, "hand_rotation")), times)
-            params = _sample(self.timeline((arm, "handshape")), times)
-            side = AVATAR_SIDE[arm]
-            inputs = np.concatenate([wrists, hands, self.swivel(arm, times)[:, None]], axis=1)
-            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
-                lambda rows, side=side: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs
-            )
-            rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
-                lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
-            )
+        first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
+        rotations = self._rotations_ahead(first, count)
         if count:
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
@@ -211,6 +212,38 @@ class MotorControl:
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
             start_time=float(times[0]) if count else float(start),
         )
+
+    def _rotations_ahead(self, first: int, count: int) -> np.ndarray:
+        """Joint rotations of frames ``first … first + count − 1``: from the frames computed
+        ahead when they hold them, else computed now with :data:`FRAME_LOOKAHEAD` more."""
+        if count and self._ahead is not None:
+            held, rotations = self._ahead
+            if held <= first and first + count <= held + rotations.shape[0]:
+                return rotations[first - held : first - held + count].copy()
+        if count == 0:
+            return np.empty((0, self.avatar.joint_count, 4))
+        total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
+        rotations = self._rotations(np.arange(first, first + total) / self.fps)
+        self._ahead = (first, rotations)
+        return rotations[:count].copy()
+
+    def _rotations(self, times: np.ndarray) -> np.ndarray:
+        """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
+        rotations = np.empty((times.size, self.avatar.joint_count, 4))
+        rotations[:] = self._rest_rotations
+        for arm in ARMS:
+            wrists = _sample(self.timeline((arm, "wrist_position")), times)
+            hands = _sample(self.timeline((arm, "hand_rotation")), times)
+            params = _sample(self.timeline((arm, "handshape")), times)
+            side = AVATAR_SIDE[arm]
+            inputs = np.concatenate([wrists, hands, self.swivel(arm, times)[:, None]], axis=1)
+            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
+                lambda rows, side=side: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs
+            )
+            rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
+                lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
+            )
+        return rotations
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""

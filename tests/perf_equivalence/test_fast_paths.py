@@ -99,17 +99,18 @@ def _programs(control):
 
 
 def test_frames_after_a_late_activation_are_those_of_a_fresh_control(avatar):
-    """Swivels solved ahead are forgotten from a new LMP's start on, and the appended
-    timelines equal rebuilt ones: the frames match a control given everything at once."""
+    """Swivels solved ahead are forgotten from a new LMP's start on, frames computed ahead
+    from two swivel periods before it, and the appended timelines equal rebuilt ones: the
+    frames match a control given everything at once."""
     streaming = MotorControl(avatar, fps=30.0)
     first, second = _programs(streaming)
     streaming.activate(first)
     early = [streaming.frames(0.0, 1.0), streaming.frames(1.0, 1.1)]  # swivels solved to 1.9 s
     assert max(streaming._swivels["right"]) * 0.1 > second.pegs.start
     streaming.activate(second)
-    late = streaming.frames(1.1, 5.0)
+    late = [streaming.frames(a, b) for a, b in ((1.1, 1.2), (1.2, 1.5), (1.5, 1.9), (1.9, 5.0))]  # partly from frames computed ahead
     fresh = MotorControl(avatar, fps=30.0)
     fresh.activate(first)
     fresh.activate(second)
     whole = fresh.frames(0.0, 5.0)
-    np.testing.assert_allclose(np.concatenate([*(m.rotations for m in early), late.rotations]), whole.rotations, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(np.concatenate([m.rotations for m in early + late]), whole.rotations, rtol=0, atol=1e-12)
