@@ -182,12 +182,15 @@ def _transition_ways(
 
 
 def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
-    """Frames whose upper arm entered the torso solved again with the per-frame natural
-    swivel of :func:`motor.arm_ik.solve_arm` (whose torso avoidance keeps it out).
+    """Frames whose upper arm entered the torso solved again, each with the better of two
+    swivels by the IK's own penetration diagnostics: the per-frame natural swivel of
+    :func:`motor.arm_ik.solve_arm`, and the natural swivel of the wrist position alone
+    (without the hand rotation's wrist-comfort terms), the hand still turned as asked.
 
     The control's swivel is sampled on a coarse grid and interpolated; where the natural
-    swivel jumps between grid points (the wrist crossing the midline near the body),
-    the interpolated elbow can pass through the trunk.
+    swivel jumps between grid points (the wrist crossing the midline near the body, or a
+    hand rotation that makes the wrist-comfort terms win), the interpolated or natural
+    elbow can pass through the trunk.
     """
     depth = upper_arm_depths(avatar, motion)
     for arm in ARMS:
@@ -198,7 +201,11 @@ def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Mo
         times = motion.times[flagged]
         wrists = control.timeline((arm, "wrist_position")).sample(times)
         hands = control.timeline((arm, "hand_rotation")).sample(times)
-        motion.rotations[np.flatnonzero(flagged)[:, None], avatar.arm_joints(side)[None, :]] = solve_arm(avatar, side, wrists, hands).rotations
+        natural = solve_arm(avatar, side, wrists, hands)
+        positional = solve_arm(avatar, side, wrists, hands, swivel=solve_arm(avatar, side, wrists).swivel)
+        better = (positional.penetration < natural.penetration)[:, None, None]
+        rotations = np.where(better, positional.rotations, natural.rotations)
+        motion.rotations[np.flatnonzero(flagged)[:, None], avatar.arm_joints(side)[None, :]] = rotations
     return motion
 
 
