@@ -224,6 +224,9 @@ class MotorControl:
             return np.empty((0, self.avatar.joint_count, 4))
         total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
         rotations = self._rotations(np.arange(first, first + total) / self.fps)
+        if total == count:  # nothing ahead to keep
+            self._ahead = None
+            return rotations
         self._ahead = (first, rotations)
         return rotations[:count].copy()
 
