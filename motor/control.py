@@ -235,8 +235,17 @@ class MotorControl:
         rotations = np.empty((times.size, self.avatar.joint_count, 4))
         rotations[:] = self._rest_rotations
         for arm in ARMS:
-            wrists = _sample(self.timeline((arm, "wrist_position")), times)
-            hands = _sample(self.timeline((arm, "hand_rotation")), times)
+            # the frames and the swivel grid points still to solve, sampled in one pass
+            missing = self._missing_grid(arm, times)
+            merged = np.concatenate([times, missing * SWIVEL_PERIOD])
+            order = np.argsort(merged, kind="stable")
+            back = np.empty_like(order)
+            back[order] = np.arange(order.size)
+            wrists = _sample(self.timeline((arm, "wrist_position")), merged[order])[back]
+            hands = _sample(self.timeline((arm, "hand_rotation")), merged[order])[back]
+            if missing.size:
+                self._solve_grid(arm, missing, wrists[times.size :], hands[times.size :])
+            wrists, hands = wrists[: times.size], hands[: times.size]
             params = _sample(self.timeline((arm, "handshape")), times)
             side = AVATAR_SIDE[arm]
             inputs = np.concatenate([wrists, hands, self.swivel(arm, times)[:, None]], axis=1)
@@ -273,23 +282,44 @@ class MotorControl:
         Catmull-Rom interpolated."""
         if times.size == 0:
             return np.zeros(0)
-        first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
-        last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
-        known = self._swivels[arm]
-        if any(i not in known for i in range(first, last + 1)):
-            ahead = range(first, max(last, first + SWIVEL_LOOKAHEAD) + 1)
-            missing = np.array([i for i in ahead if i not in known], dtype=int)
+        first, last = self._grid_span(times)
+        missing = self._missing_grid(arm, times)
+        if missing.size:
             grid = missing * SWIVEL_PERIOD
             wrists = _sample(self.timeline((arm, "wrist_position")), grid)
             hands = _sample(self.timeline((arm, "hand_rotation")), grid)
-            side = AVATAR_SIDE[arm]
-            solved = self._last_swivel[arm].apply(
-                lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None],
-                np.concatenate([wrists, hands], axis=1),
-            )
-            known.update(zip(missing.tolist(), solved[:, 0].tolist()))
+            self._solve_grid(arm, missing, wrists, hands)
+        known = self._swivels[arm]
         natural = np.array([known[i] for i in range(first, last + 1)])
         return _catmull_rom(np.unwrap(natural), first, times / SWIVEL_PERIOD)
+
+    @staticmethod
+    def _grid_span(times: np.ndarray) -> tuple[int, int]:
+        """First and last grid index the swivel interpolation at sorted ``times`` needs."""
+        first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
+        last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
+        return first, last
+
+    def _missing_grid(self, arm: str, times: np.ndarray) -> np.ndarray:
+        """Grid indices to solve for ``times``: none if every needed one is known, else the
+        unknown ones up to :data:`SWIVEL_LOOKAHEAD` points ahead."""
+        if times.size == 0:
+            return np.zeros(0, dtype=int)
+        first, last = self._grid_span(times)
+        known = self._swivels[arm]
+        if all(i in known for i in range(first, last + 1)):
+            return np.zeros(0, dtype=int)
+        ahead = range(first, max(last, first + SWIVEL_LOOKAHEAD) + 1)
+        return np.array([i for i in ahead if i not in known], dtype=int)
+
+    def _solve_grid(self, arm: str, missing: np.ndarray, wrists: np.ndarray, hands: np.ndarray) -> None:
+        """Natural swivels at grid indices ``missing`` from the channel values there."""
+        side = AVATAR_SIDE[arm]
+        solved = self._last_swivel[arm].apply(
+            lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None],
+            np.concatenate([wrists, hands], axis=1),
+        )
+        self._swivels[arm].update(zip(missing.tolist(), solved[:, 0].tolist()))
 
     def warnings(self) -> tuple[str, ...]:
         """What the LMPs changed when they activated (a squeezed preparation, a slowed
