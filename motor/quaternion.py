@@ -18,23 +18,16 @@ def _result(*parts: np.ndarray, size: int) -> np.ndarray:
     return np.empty(np.broadcast(*parts).shape + (size,))
 
 
-#: ``p * q`` is ``pw q + px (q ∘ X) + py (q ∘ Y) + pz (q ∘ Z)``: the components of ``q``
-#: each term takes, and their signs (the Hamilton product column by column).
-_PRODUCT_TERMS = tuple(
-    (np.array(order), np.array(signs))
-    for order, signs in (
-        ((3, 2, 1, 0), (1.0, -1.0, 1.0, -1.0)),
-        ((2, 3, 0, 1), (1.0, 1.0, -1.0, -1.0)),
-        ((1, 0, 3, 2), (-1.0, 1.0, 1.0, -1.0)),
-    )
-)
-
-
 def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Hamilton product ``p * q`` (apply ``q`` first, then ``p``)."""
-    p, q = np.asarray(p, dtype=float), np.asarray(q, dtype=float)
-    (ox, sx), (oy, sy), (oz, sz) = _PRODUCT_TERMS
-    return p[..., 3:4] * q + p[..., 0:1] * (q[..., ox] * sx) + p[..., 1:2] * (q[..., oy] * sy) + p[..., 2:3] * (q[..., oz] * sz)
+    px, py, pz, pw = p[..., 0], p[..., 1], p[..., 2], p[..., 3]
+    qx, qy, qz, qw = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    out = _result(px, qx, size=4)
+    out[..., 0] = pw * qx + px * qw + py * qz - pz * qy
+    out[..., 1] = pw * qy - px * qz + py * qw + pz * qx
+    out[..., 2] = pw * qz + px * qy - py * qx + pz * qw
+    out[..., 3] = pw * qw - px * qx - py * qy - pz * qz
+    return out
 
 
 def cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
