@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.biocontrol import TimeProfile, profile
+from motor.biocontrol import profile
 from motor.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
 
 #: Step of the differences that estimate a channel's velocity, seconds.
@@ -82,41 +82,63 @@ def continuous_quaternions(quaternions: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class _Track:
-    """A realized channel: moves with their profiles and fractions, holds between."""
+    """A realized channel: moves with their profiles, holds between, sampled at once.
+
+    The moves' values are flattened into one array; each value's *key* is
+    ``2 · move + fraction of the way`` (strictly increasing), so one ``searchsorted``
+    finds every sample's segment in every move.
+    """
 
     rotation: bool
     initial: np.ndarray
     starts: np.ndarray
     ends: np.ndarray
-    values: tuple[np.ndarray, ...]
-    fractions: tuple[np.ndarray, ...]
-    profiles: tuple[TimeProfile, ...]
+    tables: np.ndarray
+    values: np.ndarray
+    keys: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
     warnings: tuple[str, ...] = ()
+
+    @classmethod
+    def of(cls, rotation: bool, initial: np.ndarray, moves: list[Move], by_distance: bool) -> _Track:
+        fractions = [path_fractions(m.values, by_distance) for m in moves]
+        sizes = np.array([m.values.shape[0] for m in moves])
+        first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        return cls(
+            rotation=rotation,
+            initial=initial,
+            starts=np.array([m.start for m in moves]),
+            ends=np.array([m.end for m in moves]),
+            tables=np.stack([profile(m.manner).fractions for m in moves]),
+            values=np.concatenate([m.values for m in moves]),
+            keys=np.concatenate([2.0 * i + f for i, f in enumerate(fractions)]),
+            first=first,
+            last=first + sizes - 1,
+        )
 
     def sample(self, times: np.ndarray) -> np.ndarray:
         t = np.asarray(times, dtype=float)
-        out = np.empty((t.size, self.initial.size))
-        out[:] = self.initial
-        if not self.values:
-            return out
-        # holds: the value at the end of the last move begun
         owner = np.searchsorted(self.starts, t, side="right") - 1
-        for index in range(max(int(owner.min(initial=0)), 0), int(owner.max(initial=-1)) + 1):
-            mask = owner == index
-            if not np.any(mask):
-                continue
-            u = (t[mask] - self.starts[index]) / (self.ends[index] - self.starts[index])
-            out[mask] = self._along(index, self.profiles[index].fraction(u))
-        return out
-
-    def _along(self, index: int, s: np.ndarray) -> np.ndarray:
-        values, fractions = self.values[index], self.fractions[index]
-        segment = np.clip(np.searchsorted(fractions, s, side="right") - 1, 0, fractions.size - 2)
-        width = fractions[segment + 1] - fractions[segment]
-        local = np.clip((s - fractions[segment]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
+        before = owner < 0
+        move = np.maximum(owner, 0)
+        u = np.clip((t - self.starts[move]) / (self.ends[move] - self.starts[move]), 0.0, 1.0)
+        # the move's time profile, read from its table (linear interpolation)
+        position = u * (self.tables.shape[1] - 1)
+        low = np.minimum(position.astype(int), self.tables.shape[1] - 2)
+        weight = position - low
+        s = (1.0 - weight) * self.tables[move, low] + weight * self.tables[move, low + 1]
+        # the segment of the move's values that fraction s of the way falls in
+        index = np.searchsorted(self.keys, 2.0 * move + s, side="right") - 1
+        index = np.clip(index, self.first[move], self.last[move] - 1)
+        width = self.keys[index + 1] - self.keys[index]
+        local = np.clip((2.0 * move + s - self.keys[index]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
         if self.rotation:
-            return quat.slerp(values[segment], values[segment + 1], local)
-        return values[segment] + local[:, None] * (values[segment + 1] - values[segment])
+            out = quat.slerp(self.values[index], self.values[index + 1], local)
+        else:
+            out = self.values[index] + local[:, None] * (self.values[index + 1] - self.values[index])
+        out[before] = self.initial
+        return out
 
     def state(self, time: float) -> ChannelState:
         """Value and velocity (angular velocity for rotations) looking back from ``time``."""
@@ -178,12 +200,4 @@ class SignChannelLMP:
                 values = continuous_quaternions(np.concatenate([previous[None], values]))[1:]
             chain.append(replace(move, values=values))
             previous = values[-1]
-        return _Track(
-            rotation=rotation,
-            initial=here,
-            starts=np.array([m.start for m in chain]),
-            ends=np.array([m.end for m in chain]),
-            values=tuple(m.values for m in chain),
-            fractions=tuple(path_fractions(m.values, self.channel[1] == "wrist_position") for m in chain),
-            profiles=tuple(profile(m.manner) for m in chain),
-        )
+        return _Track.of(rotation, here, chain, self.channel[1] == "wrist_position")

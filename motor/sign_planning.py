@@ -41,7 +41,7 @@ the fast/slow/tense tables for those manners. A static sign holds its posture fo
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
-:data:`TORSO_MARGIN`) are pushed out radially to its surface; positions the arm cannot
+:data:`TORSO_MARGIN`) are pushed forward onto its front surface; positions the arm cannot
 reach are moved to the nearest it reaches (warning). The upper arm is kept out of the
 torso by the IK's swivel (:mod:`motor.arm_ik`).
 """
@@ -749,20 +749,18 @@ class _SignCompiler:
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     """Wrist positions ``(n, 3)`` inside the torso's elliptic cylinder (grown by
-    :data:`TORSO_MARGIN`) pushed out radially onto its surface; the others unchanged."""
+    :data:`TORSO_MARGIN`) pushed forward onto its front surface (the surface normal
+    there points forward, into signing space); the others unchanged."""
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
-    dx = points[:, 0] - torso.center[0]
-    dz = points[:, 2] - torso.center[2]
-    radius = np.sqrt((dx / a) ** 2 + (dz / b) ** 2)
-    inside = (radius < 1.0) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+    dx = (points[:, 0] - torso.center[0]) / a
+    dz = (points[:, 2] - torso.center[2]) / b
+    inside = (dx * dx + dz * dz < 1.0) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
     if not np.any(inside):
         return points
     out = points.copy()
-    safe = np.where(radius > 1e-9, radius, 1.0)
-    # a point on the axis goes straight forward
-    out[:, 0] = np.where(inside, torso.center[0] + np.where(radius > 1e-9, dx / safe, 0.0), out[:, 0])
-    out[:, 2] = np.where(inside, torso.center[2] + np.where(radius > 1e-9, dz / safe, b), out[:, 2])
+    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
+    out[:, 2] = np.where(inside, front, out[:, 2])
     return out
 
 
@@ -773,7 +771,8 @@ def within_reach(
 
     Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
     between two reachable positions can leave the reachable shell, whose shoulder moves
-    with the clavicle), are pulled in to that margin; positions so far across the body
+    with the clavicle), are pulled in to that margin; positions too near the shoulder
+    for the elbow's flexion step away from it by :data:`CROSS_STEP`; positions so far across the body
     that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
     back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
     many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
@@ -794,13 +793,16 @@ def within_reach(
         away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
         far = solve_arm(avatar, side, here + REACH_MARGIN * away, turns)
         near = solve_arm(avatar, side, here - REACH_MARGIN * away, turns)
-        too_far = far.shortfall > REACH_TOLERANCE
-        too_near = (near.shortfall > REACH_TOLERANCE) & ~too_far
+        # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
+        outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
+        short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
+        too_far = short & outer
+        too_near = short & ~outer
         crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
         bad = too_far | too_near | crossing
         worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
         here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
-        here = np.where(too_near[:, None], near.wrist + REACH_MARGIN * away, here) + crossing[:, None] * outward
+        here = here + too_near[:, None] * CROSS_STEP * away + crossing[:, None] * outward
         fixed[open_] = here
         moved[open_[bad]] = True
         open_ = open_[bad]
