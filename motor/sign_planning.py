@@ -57,7 +57,13 @@ from motor import quaternion as quat
 from motor.arm_ik import solve_arm
 from motor.avatar import Avatar
 from motor.biocontrol import movement_duration
-from motor.guiding_strokes import curve_breakpoints, default_normal, ellipse_breakpoints, wavy, zigzag
+from motor.guiding_strokes import (
+    curve_breakpoints,
+    default_normal,
+    ellipse_breakpoints,
+    wavy,
+    zigzag,
+)
 from motor.hand import hand_rotations, handshape_params
 from motor.hand_orientation import hand_rotations_from_vectors
 from motor.kinematics import Pose, forward_kinematics, identity_rotations
@@ -66,7 +72,19 @@ from motor.program import ARMS, AVATAR_SIDE
 from motor.sign_lmp import Move, continuous_quaternions
 from motor.symmetry import mirror_directions
 from mura.errors import SpecError
-from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Static, Symmetrical, Symmetry, iter_leaves
+from mura.model import (
+    Arm,
+    Constraint,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Static,
+    Symmetrical,
+    Symmetry,
+    iter_leaves,
+)
 from mura.model import Sequence as SequenceNode
 from mura.signs import HandPosture, Sign
 from mura.values import (
@@ -79,7 +97,6 @@ from mura.values import (
     HandShape,
     Location,
     PalmOrientation,
-    PointLocation,
 )
 
 #: Length of a straight movement by HamNoSys size, fractions of the arm's length.
@@ -484,8 +501,11 @@ class _SignCompiler:
             self.repetition(node)
         elif isinstance(node, Symmetrical):
             self.compile(node.child)
+        elif isinstance(node, Dynamic) and len(node.segments) > 1:
+            for segment in node.segments:
+                self.apply(self.leaf(replace(node, segments=(segment,))))
         else:
-            self.apply(self.leaf(node, dict(self.hands)))
+            self.apply(self.leaf(node))
 
     def parallel(self, node: Parallel) -> None:
         children = _flattened(node)
@@ -496,7 +516,7 @@ class _SignCompiler:
                 self.compile(child)
             return
         base = dict(self.hands)
-        steps = [self.leaf(leaf, base) for leaf in leaves]
+        steps = [self.leaf(leaf) for leaf in leaves]
         self.apply(_merge_steps(steps, base))
 
     def repetition(self, node: Repetition) -> None:
@@ -559,7 +579,8 @@ class _SignCompiler:
             return (self.dominant, self.other)
         return (self.dominant,)
 
-    def leaf(self, leaf: Static | Dynamic, hands: Mapping[str, _Hand]) -> _Step:
+    def leaf(self, leaf: Static | Dynamic) -> _Step:
+        """What one leaf does to the hands it applies to, from their current state."""
         arms = self.arms_of(leaf)
         if isinstance(leaf, Static):
             segment = Segment(SegmentKind.LINEAR, end=leaf.value, manner="targetted")
@@ -567,7 +588,7 @@ class _SignCompiler:
             if not leaf.segments:
                 raise SignPlanningError(f"sign {self.sign.gloss!r}: dynamic {leaf.slot} without segments")
             if len(leaf.segments) > 1:
-                self.note(f"{leaf.slot}: {len(leaf.segments)} segments performed as one movement each after the first's timing")
+                self.note(f"{leaf.slot}: of {len(leaf.segments)} segments in a parallel group only the first is realized")
             segment = leaf.segments[0]
         manner = MANNERS.get(segment.manner or "targetted")
         if manner is None:

@@ -52,7 +52,7 @@ def test_sequence_is_one_performance(tmp_path, sigml):
 
 def test_hamnosys_string(tmp_path):
     out = tmp_path / "out"
-    text = hamnosys_string("hamflathand hamextfingero hampalmd hamchest hamcircleo".split())
+    text = hamnosys_string(["hamflathand", "hamextfingero", "hampalmd", "hamchest", "hamcircleo"])
     assert main(["sign", "--hamnosys", text, "--gloss", "circle", "-o", str(out)]) == 0
     assert (out / "circle.bvh").is_file()
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from conftest import sign_from
+
 from motor.biocontrol import movement_duration
 from motor.kinematics import forward_kinematics
 from motor.sign_planning import SIZE_FRACTIONS, plan_sign
