@@ -75,25 +75,29 @@ class Timeline:
         self.slack: list[PlanningSlack] = []
         self.warnings: list[str] = []
         self._lock = threading.Lock()
+        self._chunk_index: dict[int, ChunkEntry] = {}
+        self._behavior_index: dict[str, BehaviorEntry] = {}
 
     def chunk(self, index: int) -> ChunkEntry:
         with self._lock:
-            return next(c for c in self.chunks if c.index == index)
+            return self._chunk_index[index]
 
     def add_chunk(self, entry: ChunkEntry) -> None:
         with self._lock:
             self.chunks.append(entry)
+            self._chunk_index[entry.index] = entry
 
     def record_state(self, index: int, transition: Transition) -> None:
         self.chunk(index).states.append(transition)
 
     def behavior(self, behavior_id: str) -> BehaviorEntry:
         with self._lock:
-            return next(b for b in self.behaviors if b.id == behavior_id)
+            return self._behavior_index[behavior_id]
 
     def add_behavior(self, entry: BehaviorEntry) -> None:
         with self._lock:
             self.behaviors.append(entry)
+            self._behavior_index[entry.id] = entry
 
     def warn(self, message: str) -> None:
         with self._lock:
