@@ -114,3 +114,20 @@ def test_frames_after_a_late_activation_are_those_of_a_fresh_control(avatar):
     fresh.activate(second)
     whole = fresh.frames(0.0, 5.0)
     np.testing.assert_allclose(np.concatenate([m.rotations for m in early + late]), whole.rotations, rtol=0, atol=1e-12)
+
+
+def test_frames_after_an_interrupt_are_those_of_a_fresh_control(avatar):
+    """An interrupt forgets the frames computed ahead from where it changes the motion."""
+    streaming = MotorControl(avatar, fps=30.0)
+    programs = _programs(streaming)
+    for program in programs:
+        streaming.activate(program)
+    early = streaming.frames(0.0, 1.0)  # frames computed ahead to 3.0 s, uninterrupted
+    streaming.interrupt(1.2)
+    late = [streaming.frames(a, b) for a, b in ((1.0, 1.5), (1.5, 2.5), (2.5, 5.0))]
+    fresh = MotorControl(avatar, fps=30.0)
+    for program in programs:
+        fresh.activate(program)
+    fresh.interrupt(1.2)
+    whole = fresh.frames(0.0, 5.0)
+    np.testing.assert_allclose(np.concatenate([m.rotations for m in [early, *late]]), whole.rotations, rtol=0, atol=1e-12)
