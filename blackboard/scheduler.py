@@ -114,6 +114,7 @@ class _Job:
     origin: float = 0.0
     boards: list[Blackboard] = field(default_factory=list)
     absolute: list[BehaviorSpec] = field(default_factory=list)
+    absolute_delay: float = 0.0  # how late the absolute clock starts, seconds (see blackboard.timing)
     frames: list[Motion] = field(default_factory=list)
     audio_end: int = 0  # without keep_output: samples from the utterance start to the end of the last audio
     sample_rate: int | None = None
@@ -624,11 +625,12 @@ class Scheduler:
             stroke = (earliest + marks[b.timing.onset] - cfg.stroke_lead) if isinstance(b.timing, Affiliate) else job.origin + b.timing.onset
             guess = float(fitts_duration(board.demands[b.id].preparation_distance))
             naive[b.id] = self.motor.preparation_duration(b, max(arm_free, stroke - guess))
-        timing = time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, naive), cfg)
+        delay = job.absolute_delay
+        timing = time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, naive), cfg, delay)
         solved = {g.behavior: self.motor.preparation_duration(b, g.prep_start) for g, b in zip(timing.gestures, board.behaviors)}
         if all(abs(solved[k] - naive[k]) < 1e-6 for k in solved):
             return timing
-        return time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, solved), cfg)
+        return time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, solved), cfg, delay)
 
     def _program(self, board: Blackboard, job: _Job, timing: ChunkTiming, follows) -> tuple[PlannedGesture, ...]:
         later_arms = self._arms_following(board, timing, follows)
@@ -640,7 +642,7 @@ class Scheduler:
             next_follows = bool(d.arms & later_arms[b.id])
             program = self.motor.plan(b, pegs, repetitions=g.repetitions, next_gesture_follows=next_follows)
             for warning in program.warnings:
-                job.timeline.warn(f"{b.id}: {warning}")
+                job.timeline.warn(warning)  # the motor names the behaviour in its warnings
             planned.append(PlannedGesture(b, d, g, program, next_follows))
         return tuple(planned)
 
@@ -666,6 +668,10 @@ class Scheduler:
         entry.speech_end = board.speech_end - o
         if timing.stretch is not None:
             tl.stretches.append(timing.stretch)
+        if timing.absolute_stretch is not None:
+            tl.warn(f"absolute timings delayed by {timing.absolute_stretch.amount:.3f} s: {timing.absolute_stretch.reason}")
+        job.absolute_delay = timing.absolute_delay
+        tl.absolute_delay = timing.absolute_delay
         if board.speech is not None:
             onset = timing.speech_onset - o
             tl.words.extend({"text": w.text, "start": onset + w.start, "end": onset + w.end, "chunk": i} for w in board.speech.words)
@@ -678,7 +684,8 @@ class Scheduler:
             if isinstance(b.timing, Affiliate):
                 affiliate = {"onset": tl.time_tags[b.timing.onset], "end": tl.time_tags[b.timing.end]}
             else:
-                affiliate = {"onset": b.timing.onset, "end": b.timing.end, "absolute": True}
+                delay = timing.absolute_delay
+                affiliate = {"onset": b.timing.onset + delay, "end": b.timing.end + delay, "absolute": True}
             tl.add_behavior(BehaviorEntry(
                 b.id, i, b.kind, tuple(sorted(g.demands.arms, reverse=True)),
                 {name: getattr(pegs, name) - o for name in PEG_NAMES}, affiliate,

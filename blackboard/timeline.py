@@ -66,6 +66,7 @@ class Timeline:
         self.fps = fps
         self.duration = 0.0
         self.origin = 0.0  # clock time of the utterance start (non-zero for queued live utterances)
+        self.absolute_delay = 0.0  # how late absolute timings run, seconds (see blackboard.timing)
         self.chunks: list[ChunkEntry] = []
         self.behaviors: list[BehaviorEntry] = []
         self.words: list[dict] = []
@@ -107,7 +108,7 @@ class Timeline:
         return [t.state for t in self.chunk(index).states]
 
     def to_json(self) -> dict:
-        """The viewer's JSON shape (version 1) plus ``origin``, ``stretches``, ``slack`` and ``warnings``."""
+        """The viewer's JSON shape (version 1) plus ``origin``, ``absolute_delay``, ``stretches``, ``slack`` and ``warnings``."""
         with self._lock:
             return {
                 "version": JSON_VERSION,
@@ -120,6 +121,7 @@ class Timeline:
                 "phonemes": list(self.phonemes),
                 "time_tags": dict(self.time_tags),
                 "origin": self.origin,
+                "absolute_delay": self.absolute_delay,
                 "stretches": [
                     {"chunk": s.chunk, "amount": s.amount, "reason": s.reason, "behavior": s.behavior}
                     for s in self.stretches

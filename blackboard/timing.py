@@ -22,7 +22,11 @@ The speech onset is bounded below by the previous chunk's speech end plus a mini
 pause. Since the stroke onset is tied to the speech, a preparation that cannot fit pushes
 the speech onset later: the vocal pause before the chunk is stretched, and the stretch
 is reported with the chain of constraints that caused it. An absolutely timed gesture's
-stroke spans ``[onset, end]`` on the utterance clock.
+stroke spans ``[onset, end]`` of the absolute clock, which runs with the utterance clock
+but may start late: when an absolute stroke comes sooner than its preparation from rest
+allows (published MURML asks for strokes at 1.0 s that take longer to prepare), every
+absolute time of the utterance is delayed alike, the least that makes them fit; the delay
+is reported like a stretched pause, and later chunks keep it.
 
 How a stroke fills its span (``relax − stroke onset``), with ``f`` = span / natural
 duration: a static stroke holds its posture; ``f ≤ max_slowdown`` (1.5) slows one
@@ -44,6 +48,7 @@ from blackboard.planning import GestureDemands
 
 _NS = 1_000_000_000
 ZERO = "utterance start"
+ABSOLUTE = "absolute clock start"
 
 
 @dataclass(frozen=True)
@@ -97,11 +102,15 @@ class PauseStretch:
 
 @dataclass(frozen=True)
 class ChunkTiming:
-    """The solved timing of one chunk."""
+    """The solved timing of one chunk; ``absolute_delay`` is how late the absolute clock
+    starts (seconds after the utterance start), ``absolute_stretch`` says why when this
+    chunk made it later than asked."""
 
     speech_onset: float
     gestures: tuple[GestureTiming, ...]
     stretch: PauseStretch | None
+    absolute_delay: float = 0.0
+    absolute_stretch: PauseStretch | None = None
 
 
 def _ns(seconds: float) -> int:
@@ -182,6 +191,7 @@ def time_chunk(
     marks: Mapping[str, float],
     gestures: Sequence[GestureRequest],
     config: TimingConfig = TimingConfig(),
+    absolute_delay: float = 0.0,
 ) -> ChunkTiming:
     """Solve chunk ``chunk``'s timing.
 
@@ -189,11 +199,14 @@ def time_chunk(
     speech end plus the pause, or the utterance start) and ``onset_reason`` says so in
     words; ``arm_free`` is when this chunk's gestures may start preparing. ``marks`` are
     the time tags' times from the chunk's speech onset (the TTS's marks). Gestures on the
-    same arm are ordered by their stroke onset as the spec asks for it.
+    same arm are ordered by their stroke onset as the spec asks for it. Absolute times are
+    counted from the absolute clock start, at least ``absolute_delay`` after the utterance
+    start (the delay earlier chunks needed).
     """
     net = TemporalNetwork()
     speech = speech_point(chunk)
     net.at_least(speech, ZERO, earliest_onset, onset_reason)
+    net.at_least(ABSOLUTE, ZERO, absolute_delay, f"absolute timings run {absolute_delay:.3f} s late")
     for tag, offset in marks.items():
         net.exactly(tag_point(tag), speech, offset, f"time tag {tag} at {offset:.3f} s into the speech of chunk {chunk + 1}")
     for gesture in gestures:
@@ -212,7 +225,13 @@ def time_chunk(
             behavior=behaviors[0] if behaviors else None,
         )
     timed = tuple(_fill_stroke(gesture, times, config) for gesture in gestures)
-    return ChunkTiming(onset, timed, stretch)
+    delay = times[ABSOLUTE]
+    absolute_stretch = None
+    if delay - absolute_delay > 1e-9:
+        chain = net.binding_chain(pred, ABSOLUTE)
+        behaviors = [b for _, b in chain if b is not None]
+        absolute_stretch = PauseStretch(chunk, delay - absolute_delay, "; ".join(name for name, _ in chain), behaviors[0] if behaviors else None)
+    return ChunkTiming(onset, timed, stretch, delay, absolute_stretch)
 
 
 def _points(behavior: str) -> tuple[str, str, str]:
@@ -224,8 +243,8 @@ def _add_gesture(net: TemporalNetwork, g: GestureRequest, arm_free: float, arm_f
     prep, onset, span_end = _points(b)
     if g.absolute is not None:
         start, end = g.absolute
-        net.exactly(onset, ZERO, start, f"{b}: stroke onset at absolute {start:.3f} s", b)
-        net.exactly(span_end, ZERO, end, f"{b}: stroke end at absolute {end:.3f} s", b)
+        net.exactly(onset, ABSOLUTE, start, f"{b}: stroke onset at absolute {start:.3f} s", b)
+        net.exactly(span_end, ABSOLUTE, end, f"{b}: stroke end at absolute {end:.3f} s", b)
     else:
         first, last = g.affiliate
         net.exactly(onset, tag_point(first), -config.stroke_lead,

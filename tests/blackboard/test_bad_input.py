@@ -6,6 +6,8 @@ from dataclasses import replace
 
 import pytest
 
+from motor.trajectory import fitts_duration
+
 from blackboard import BehaviorError, ChunkState, OverlappingGestures, ScheduleError, Scheduler, VirtualClock
 from mura.model import Affiliate, Utterance
 from mura.murml import parse_utterance
@@ -107,10 +109,17 @@ def test_a_speech_failure_in_the_first_chunk_yields_an_empty_result():
     assert result.timeline.states_of(0) == [ChunkState.IN_PREP, ChunkState.FAILED]
 
 
-def test_an_impossible_absolute_timing_fails_its_chunk_naming_the_constraints():
+def test_an_absolute_stroke_too_soon_for_its_preparation_delays_the_absolute_clock():
     utt = utterance("stack_height.xml")
     motor = FakeMotor(distances={"look_at_user": 2.0})  # a 1.26 s preparation before a stroke at 0.2 s
     result = schedule(utt, motor=motor)
-    assert result.failed_chunk == 0
-    assert "look_at_user: stroke onset at absolute 0.200 s" in str(result.error)
-    assert "look_at_user: preparation takes" in str(result.error)
+    assert result.failed_chunk is None
+    data = result.timeline.to_json()
+    look = next(b for b in data["behaviors"] if b["id"] == "look_at_user")
+    delay = data["absolute_delay"]
+    assert delay > 1.0
+    assert look["phases"]["stroke_start"] == pytest.approx(0.2 + delay, abs=1e-6)
+    assert look["phases"]["stroke_start"] - look["phases"]["start"] >= float(fitts_duration(2.0)) - 1e-6
+    assert look["affiliate"] == {"onset": pytest.approx(0.2 + delay), "end": pytest.approx(0.9 + delay), "absolute": True}
+    (warning,) = [w for w in data["warnings"] if w.startswith("absolute timings delayed")]
+    assert "look_at_user: preparation takes" in warning and "look_at_user: stroke onset at absolute 0.200 s" in warning

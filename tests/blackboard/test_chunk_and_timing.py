@@ -99,13 +99,33 @@ def test_absolute_timing_fixes_the_stroke_on_the_utterance_clock():
     assert (g.mode, g.repetitions) == ("repeated", 2)
 
 
+def test_absolute_timing_too_soon_for_its_preparation_delays_the_absolute_clock():
+    timing = time_chunk(2, 0.0, "start", 0.5, "arm free at 0.5 s", {}, [GestureRequest("wave", demands(), 0.8, absolute=(1.0, 2.0))])
+    g = timing.gestures[0]
+    assert timing.absolute_delay == pytest.approx(0.3)
+    assert (g.prep_start, g.stroke_start, g.relax) == pytest.approx((0.5, 1.3, 2.3))
+    reason = timing.absolute_stretch.reason
+    assert "arm free at 0.5 s" in reason and "wave: preparation takes 0.800 s" in reason
+    assert "wave: stroke onset at absolute 1.000 s" in reason
+
+
+def test_a_later_chunk_keeps_the_absolute_delay():
+    timing = time_chunk(3, 4.0, "pause", 0.0, "free", {}, [GestureRequest("nod", demands(), 0.2, absolute=(5.0, 6.0))], absolute_delay=0.3)
+    assert timing.absolute_delay == pytest.approx(0.3) and timing.absolute_stretch is None
+    assert timing.gestures[0].stroke_start == pytest.approx(5.3)
+
+
 def test_a_true_conflict_names_its_constraints():
+    marks = {"t1": 0.5, "t2": 0.9, "t3": 1.6, "t4": 2.0}
     with pytest.raises(TimingConflict) as caught:
-        time_chunk(2, 0.0, "start", 0.5, "arm free at 0.5 s", {}, [GestureRequest("wave", demands(), 0.8, absolute=(1.0, 2.0))])
+        time_chunk(2, 0.0, "start", 0.0, "free", marks, [
+            GestureRequest("long", demands(), 0.5, ("t1", "t3")),
+            GestureRequest("overlapping", demands(), 0.5, ("t2", "t4")),
+        ])
     names = caught.value.constraints
-    assert any("wave: stroke onset at absolute 1.000 s" in n for n in names)
-    assert any("wave: preparation takes 0.800 s" in n for n in names)
-    assert any("arm free at 0.5 s" in n for n in names)
+    assert any("long: stroke spans its affiliate up to t3" in n for n in names)
+    assert any("overlapping prepares after the stroke of long" in n for n in names)
+    assert any("overlapping: stroke onset 0.200 s before affiliate onset t2" in n for n in names)
     assert str(caught.value).startswith("chunk 3:")
 
 
