@@ -125,6 +125,10 @@ CROSS_STEP = 0.02
 CROSS_STEPS = 12
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
+#: Rounds of midpoints inserted between moved neighbours, and the spacing (m) above
+#: which neighbours get one anyway (see :func:`clear_paths`).
+REFINEMENTS = 2
+REFINE_SPACING = 0.06
 #: Neutral signing space of the right hand (mirrored for the left).
 NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
 #: Extended-finger direction and palm of a hand whose sign leaves them open.
@@ -275,17 +279,16 @@ def _within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]
             owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
         if not points:
             continue
-        sizes = [len(p) for p in points]
-        moved, _, _ = within_reach(avatar, arm, np.concatenate(points), np.concatenate(turns))
-        pieces = iter(np.split(moved, np.cumsum(sizes)[:-1]))
+        cleared, _ = clear_paths(avatar, arm, points, turns)
+        pieces = iter(cleared)
         originals = iter(points)
         for plan, count in owners:
             record = fixed[id(plan)]
             parts = [next(pieces) for _ in range(count)]
             before = [next(originals) for _ in range(count)]
-            changed = sum(int(np.sum(np.any(np.abs(a - b) > 1e-12, axis=1))) for a, b in zip(parts, before))
+            changed = sum(int(len(a) != len(b) or np.any(np.abs(a - b) > 1e-12)) for a, b in zip(parts, before))
             if changed:
-                record["notes"].append(f"{plan.gloss}: {changed} position(s) of the {arm} hand out of reach or too far across the body; moved")
+                record["notes"].append(f"{plan.gloss}: {changed} path(s) of the {arm} hand moved within reach or out of the body")
             first = plan.first[arm]
             record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
             moves = plan.moves[(arm, "wrist_position")]
@@ -770,17 +773,18 @@ class _SignCompiler:
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     """Wrist positions ``(n, 3)`` inside the torso's elliptic cylinder (grown by
-    :data:`TORSO_MARGIN`) pushed forward onto its front surface (the surface normal
-    there points forward, into signing space); the others unchanged."""
+    :data:`TORSO_MARGIN`), or behind it within its width, pushed forward onto its front
+    surface (the surface normal there points forward, into signing space); the others
+    unchanged."""
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
     dx = (points[:, 0] - torso.center[0]) / a
-    dz = (points[:, 2] - torso.center[2]) / b
-    inside = (dx * dx + dz * dz < 1.0) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
+    # inside the torso, or behind it within its width: no hand goes there
+    inside = (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
     if not np.any(inside):
         return points
     out = points.copy()
-    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
     out[:, 2] = np.where(inside, front, out[:, 2])
     return out
 
@@ -793,7 +797,8 @@ def within_reach(
     Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
     between two reachable positions can leave the reachable shell, whose shoulder moves
     with the clavicle), are pulled in to that margin; positions too near the shoulder
-    for the elbow's flexion step away from it by :data:`CROSS_STEP`; positions so far across the body
+    for the elbow's flexion step forward by :data:`CROSS_STEP` (around the shoulder's
+    front, where the hand passes); positions so far across the body
     that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
     back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
     many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
@@ -801,6 +806,7 @@ def within_reach(
     side = AVATAR_SIDE[arm]
     shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
     outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
+    forward = np.array([0.0, 0.0, CROSS_STEP])
     fixed = np.array(points, dtype=float)
     moved = np.zeros(len(fixed), dtype=bool)
     open_ = np.arange(len(fixed))
@@ -823,11 +829,70 @@ def within_reach(
         bad = too_far | too_near | crossing
         worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
         here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
-        here = here + too_near[:, None] * CROSS_STEP * away + crossing[:, None] * outward
+        here = here + too_near[:, None] * forward + crossing[:, None] * outward
         fixed[open_] = here
         moved[open_[bad]] = True
         open_ = open_[bad]
     return fixed, int(moved.sum()), max(worst, 0.0)
+
+
+def clear_paths(
+    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], keep_ends: bool = False
+) -> tuple[list[np.ndarray], int]:
+    """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
+    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`), in
+    one IK call per arm and round; with ``keep_ends`` the first and last points stay.
+
+    Moving a point can open a chord to its neighbour that cuts the unreachable core around
+    the shoulder or the torso, so for :data:`REFINEMENTS` rounds each pair of neighbours of
+    which one moved (or that lie more than :data:`REFINE_SPACING` apart) gets its checked
+    midpoint inserted. Also returns how many points moved."""
+    masks = []
+    for path in paths:
+        mask = np.ones(len(path), dtype=bool)
+        if keep_ends:
+            mask[[0, -1]] = False
+        masks.append(mask)
+    paths, rotations, moved, total = _clear_points(avatar, arm, paths, rotations, masks)
+    for _ in range(REFINEMENTS):
+        new_paths, new_rotations, new_masks = [], [], []
+        for path, turn, change in zip(paths, rotations, moved):
+            gap = np.linalg.norm(np.diff(path, axis=0), axis=1)
+            split = (change[1:] | change[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
+            middles = 0.5 * (path[1:] + path[:-1])[split]
+            turns = quat.slerp(turn[:-1][split], turn[1:][split], 0.5)
+            order = np.argsort(np.concatenate([np.arange(len(path)), np.flatnonzero(split) + 0.5]), kind="stable")
+            new_paths.append(np.concatenate([path, middles])[order])
+            new_rotations.append(np.concatenate([turn, turns])[order])
+            new_masks.append(np.concatenate([np.zeros(len(path), dtype=bool), np.ones(len(middles), dtype=bool)])[order])
+        if not any(mask.any() for mask in new_masks):
+            break
+        paths, rotations, moved, more = _clear_points(avatar, arm, new_paths, new_rotations, new_masks)
+        total += more
+    return paths, total
+
+
+def _clear_points(
+    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], masks: list[np.ndarray]
+) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int]:
+    """The masked points of every path checked at once; which points moved."""
+    chosen = np.concatenate([path[mask] for path, mask in zip(paths, masks)])
+    if chosen.size == 0:
+        return paths, rotations, [np.zeros(len(p), dtype=bool) for p in paths], 0
+    turns = np.concatenate([turn[mask] for turn, mask in zip(rotations, masks)])
+    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns)[0]
+    changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
+    out, moved, start = [], [], 0
+    for path, mask in zip(paths, masks):
+        count = int(mask.sum())
+        path = path.copy()
+        path[mask] = fixed[start : start + count]
+        flags = np.zeros(len(path), dtype=bool)
+        flags[mask] = changed[start : start + count]
+        out.append(path)
+        moved.append(flags)
+        start += count
+    return out, rotations, moved, int(changed.sum())
 
 
 def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor import quaternion as quat
+from motor.arm_ik import solve_arm
 from motor.avatar import Avatar
 from motor.biocontrol import movement_duration, profile
 from motor.control import MotorControl
@@ -32,8 +33,13 @@ from motor.lmp import LMP, TimePegs
 from motor.motion import Motion
 from motor.program import ARMS, AVATAR_SIDE, rest_handshape, retraction_duration
 from motor.sign_lmp import SignChannelLMP
-from motor.arm_ik import solve_arm
-from motor.sign_planning import HandPose, SignPlan, outside_torso, plan_sign, rotations_along, within_reach
+from motor.sign_planning import (
+    HandPose,
+    SignPlan,
+    clear_paths,
+    plan_sign,
+    rotations_along,
+)
 from motor.trajectory import fitts_duration
 from mura.signs import Sign
 
@@ -163,21 +169,20 @@ def _transition_ways(
     avatar: Avatar, legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]]
 ) -> list[dict[str, np.ndarray]]:
     """Interior points of every straight wrist transition, one every
-    :data:`TRANSITION_SPACING` metres, kept outside the torso and within reach (a
-    transition is not a path the sign chose); all legs of an arm in one IK call."""
+    :data:`TRANSITION_SPACING` metres, kept outside the torso and within reach
+    (:func:`motor.sign_planning.clear_paths`; a transition is not a path the sign chose)."""
     ways: list[dict[str, np.ndarray]] = [{} for _ in legs]
     for arm in ARMS:
-        inner, turns, sizes = [], [], []
+        paths, turns = [], []
         for before, after in legs:
             distance = float(np.linalg.norm(after[arm].wrist - before[arm].wrist))
             count = max(MIN_TRANSITION_POINTS, int(np.ceil(distance / TRANSITION_SPACING)))
-            fractions = np.linspace(0.0, 1.0, count + 2)[1:-1]
-            inner.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
+            fractions = np.linspace(0.0, 1.0, count + 2)
+            paths.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
             turns.append(rotations_along(np.stack([before[arm].rotation, after[arm].rotation]), fractions))
-            sizes.append(count)
-        fixed = within_reach(avatar, arm, outside_torso(avatar, np.concatenate(inner)), np.concatenate(turns))[0]
-        for way, points in zip(ways, np.split(fixed, np.cumsum(sizes)[:-1])):
-            way[arm] = points
+        cleared, _ = clear_paths(avatar, arm, paths, turns, keep_ends=True)
+        for way, points in zip(ways, cleared):
+            way[arm] = points[1:-1]
     return ways
 
 
