@@ -122,12 +122,12 @@ REACH_MARGIN = 0.03
 #: body, in steps of CROSS_STEP metres, at most CROSS_STEPS of them.
 PENETRATION_TOLERANCE = 1e-3
 CROSS_STEP = 0.02
-CROSS_STEPS = 12
+CROSS_STEPS = 16
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
 #: Rounds of midpoints inserted between moved neighbours, and the spacing (m) above
 #: which neighbours get one anyway (see :func:`clear_paths`).
-REFINEMENTS = 2
+REFINEMENTS = 4
 REFINE_SPACING = 0.06
 #: Neutral signing space of the right hand (mirrored for the left).
 NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
@@ -797,8 +797,8 @@ def within_reach(
     Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
     between two reachable positions can leave the reachable shell, whose shoulder moves
     with the clavicle), are pulled in to that margin; positions too near the shoulder
-    for the elbow's flexion step forward by :data:`CROSS_STEP` (around the shoulder's
-    front, where the hand passes); positions so far across the body
+    for the elbow's flexion step away from it and forward (around the shoulder's front,
+    where the hand passes) by what they lack, at least :data:`CROSS_STEP`; positions so far across the body
     that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
     back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
     many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
@@ -829,7 +829,10 @@ def within_reach(
         bad = too_far | too_near | crossing
         worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
         here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
-        here = here + too_near[:, None] * forward + crossing[:, None] * outward
+        lacking = np.maximum(np.maximum(far.shortfall, near.shortfall), CROSS_STEP)
+        around = away + forward / CROSS_STEP
+        around /= np.maximum(np.linalg.norm(around, axis=1, keepdims=True), 1e-9)
+        here = here + (too_near * lacking)[:, None] * around + crossing[:, None] * outward
         fixed[open_] = here
         moved[open_[bad]] = True
         open_ = open_[bad]
