@@ -37,7 +37,7 @@ RAW_BYTES_PER_FRAME = 50 * 3 * 4
 #: A frame counts as faulty above these (metres).
 SHORTFALL_LIMIT = 1e-3
 DEPTH_LIMIT = 0.01
-_SIGN_ELEMENT = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.S)
+_SIGN_ELEMENT = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.DOTALL)
 
 
 def run(quick: bool) -> dict:
@@ -60,9 +60,9 @@ def run(quick: bool) -> dict:
     results = plan_signs(avatar, signs)
     planning = time.perf_counter() - started
     plans = []
-    for result, size in zip(results, sizes):
+    for sign, result, size in zip(signs, results, sizes):
         if isinstance(result, SignPlanningError):
-            failures.append({"sign": "", "reason": str(result)})
+            failures.append({"sign": sign.gloss, "reason": str(result)})
         else:
             plans.append((result, size))
 
@@ -93,6 +93,7 @@ def run(quick: bool) -> dict:
         "signs": total,
         "rendered": rendered,
         "render_rate": round(rendered / total, 4) if total else None,
+        "rendered_percent": round(100.0 * rendered / total, 2) if total else None,
         "failures_by_reason": dict(reasons.most_common()),
         "failures": failures,
         "planning_ms_per_sign": round(1e3 * planning / max(len(plans), 1), 2),
