@@ -41,9 +41,13 @@ the fast/slow/tense tables for those manners. A static sign holds its posture fo
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
-:data:`TORSO_MARGIN`) are pushed forward onto its front surface; positions the arm cannot
-reach are moved to the nearest it reaches (warning). The upper arm is kept out of the
-torso by the IK's swivel (:mod:`motor.arm_ik`).
+:data:`TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
+(:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
+near the shoulder step around its front, and positions so far across the body that the
+IK reports the upper arm in the torso step back toward the arm's side
+(:func:`within_reach`); midpoints are checked where that opened long chords
+(:func:`clear_paths`). A warning names every sign whose paths were changed. The upper arm
+is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm_ik`).
 """
 
 from __future__ import annotations
