@@ -162,3 +162,13 @@ def test_sequence_starts_and_ends_at_rest(avatar):
     assert np.allclose(first, last, atol=1e-6)
     check = check_motion(avatar, signed)
     assert check.non_finite == 0 and check.max_shortfall < 1e-3 and check.max_upper_arm_depth < 0.01
+
+
+def test_alternating_hands_move_in_opposite_directions(avatar):
+    sign = sign_from("hamsymmlr hamalternatingmotion hamflathand hamextfingero hampalmd hammoveu")
+    assert sign.symmetry is not None and sign.symmetry.alternating
+    plan = plan_sign(avatar, sign)
+    right = plan.moves[("right", "wrist_position")][0].values
+    left = plan.moves[("left", "wrist_position")][0].values
+    assert right[-1, 1] - right[0, 1] > 0.05
+    assert left[-1, 1] - left[0, 1] == pytest.approx(-(right[-1, 1] - right[0, 1]), abs=1e-6)
