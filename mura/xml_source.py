@@ -13,8 +13,9 @@ column where each start tag begins by scanning the text once, so messages can po
 
 from __future__ import annotations
 
+import bisect
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
@@ -55,6 +56,7 @@ class XmlSource:
     data: bytes
     root: etree._Element
     _starts: dict[etree._Element, int]
+    _line_starts: list[int] = field(default_factory=list, repr=False)
 
     @classmethod
     def from_bytes(cls, data: bytes, file: str = "<input>", max_bytes: int = MAX_SPEC_BYTES) -> XmlSource:
@@ -74,7 +76,8 @@ class XmlSource:
             raise SpecError(f"malformed XML: {error.msg}", SourceLocation(file, line, column)) from None
         except ValueError as error:
             raise SpecError(f"malformed XML: {error}", SourceLocation(file, 1, 1)) from None
-        return cls(file, data, root, _start_offsets(data, root))
+        line_starts = [0] + [match.end() for match in re.finditer(rb"\n", data)]
+        return cls(file, data, root, _start_offsets(data, root), line_starts)
 
     @classmethod
     def from_path(cls, path: str | Path, max_bytes: int = MAX_SPEC_BYTES) -> XmlSource:
@@ -99,8 +102,8 @@ class XmlSource:
             found = re.compile(rb"\s" + re.escape(attribute.encode()) + rb"\s*=").search(self.data, offset, end if end >= 0 else None)
             if found is not None:
                 offset = found.start() + 1
-        line, column = _line_column(self.data, offset)
-        return SourceLocation(self.file, line, column)
+        line = bisect.bisect_right(self._line_starts, offset)
+        return SourceLocation(self.file, line, offset - self._line_starts[line - 1] + 1)
 
     def error(self, message: str, element: etree._Element, attribute: str | None = None) -> SpecError:
         """A :class:`SpecError` located at ``element`` (or its ``attribute``)."""
