@@ -28,6 +28,7 @@ where it can change things (its start, less the swivel interpolation's reach).
 from __future__ import annotations
 
 import math
+
 import numpy as np
 
 from motor.arm_ik import solve_arm
@@ -35,7 +36,17 @@ from motor.avatar import Avatar
 from motor.hand import hand_rotations
 from motor.lmp import LMP, ChannelState, ChannelTimeline, RetractionLMP, TimePegs
 from motor.motion import Motion
-from motor.program import ARMS, AVATAR_SIDE, GestureDemands, MotorProgram, Planner, first_location, rest_handshape, retraction_duration
+from motor.program import (
+    ARMS,
+    AVATAR_SIDE,
+    GestureDemands,
+    MotorProgram,
+    Planner,
+    first_location,
+    rest_handshape,
+    retraction_duration,
+)
+from motor.torso import outside_torso
 from motor.trajectory import fitts_duration
 from mura.model import BehaviorSpec
 
@@ -241,7 +252,7 @@ class MotorControl:
             order = np.argsort(merged, kind="stable")
             back = np.empty_like(order)
             back[order] = np.arange(order.size)
-            wrists = _sample(self.timeline((arm, "wrist_position")), merged[order])[back]
+            wrists = self._wrists(arm, merged[order])[back]
             hands = _sample(self.timeline((arm, "hand_rotation")), merged[order])[back]
             if missing.size:
                 self._solve_grid(arm, missing, wrists[times.size :], hands[times.size :])
@@ -277,6 +288,11 @@ class MotorControl:
             for index in [i for i in grid if i < limit]:
                 del grid[index]
 
+    def _wrists(self, arm: str, times: np.ndarray) -> np.ndarray:
+        """The wrist positions the arm is given at sorted ``times``: the wrist channel's, kept
+        out of the torso (a path between targets may cut through it; :mod:`motor.torso`)."""
+        return outside_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
+
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The natural swivel (radians) at ``times``: IK on the :data:`SWIVEL_PERIOD` grid,
         Catmull-Rom interpolated."""
@@ -286,7 +302,7 @@ class MotorControl:
         missing = self._missing_grid(arm, times)
         if missing.size:
             grid = missing * SWIVEL_PERIOD
-            wrists = _sample(self.timeline((arm, "wrist_position")), grid)
+            wrists = self._wrists(arm, grid)
             hands = _sample(self.timeline((arm, "hand_rotation")), grid)
             self._solve_grid(arm, missing, wrists, hands)
         known = self._swivels[arm]

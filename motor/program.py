@@ -75,10 +75,18 @@ from motor.biocontrol import MANNERS, movement_duration
 from motor.guiding_strokes import circle_from_start, curve_breakpoints
 from motor.hand import handshape_params
 from motor.hand_orientation import hand_rotations_from_vectors
-from motor.lmp import LMP, HandShapeLMP, RetractionLMP, TimePegs, WristPositionLMP, WristRotationLMP
+from motor.lmp import (
+    LMP,
+    HandShapeLMP,
+    RetractionLMP,
+    TimePegs,
+    WristPositionLMP,
+    WristRotationLMP,
+)
 from motor.locations import resolve_location
 from motor.quaternion import between_vectors, rotate
 from motor.symmetry import mirror_directions, mirror_points
+from motor.torso import outside_torso
 from motor.trajectory import fitts_duration, plan_wrist_trajectory, time_breakpoints
 from mura.errors import SourceLocation, SpecError
 from mura.model import (
@@ -95,7 +103,14 @@ from mura.model import (
     Symmetrical,
     Symmetry,
 )
-from mura.values import Direction, FingerBend, GridLocation, HandShape, PalmOrientation, PointLocation
+from mura.values import (
+    Direction,
+    FingerBend,
+    GridLocation,
+    HandShape,
+    PalmOrientation,
+    PointLocation,
+)
 
 #: The arms, as the scheduler names them, and the avatar's side prefixes.
 ARMS: tuple[str, ...] = ("right", "left")
@@ -698,7 +713,16 @@ class Planner:
         return pegs
 
     def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
-        """``points`` with those the arm cannot reach moved to the nearest it can (warning)."""
+        """``points`` with those inside the torso pushed out in front of it and those the arm
+        cannot reach moved to the nearest it can (warnings)."""
+        clear = outside_torso(self.avatar, points)
+        moved = np.any(clear != points, axis=1)
+        if np.any(moved):
+            notes.append(
+                f"{behavior}: {int(np.sum(moved))} location(s) of the {arm} hand inside the torso by up to "
+                f"{float(np.max(np.abs(clear - points))):.3f} m; moved in front of it"
+            )
+            points = clear
         solution = solve_arm(self.avatar, AVATAR_SIDE[arm], points)
         short = solution.shortfall > REACH_TOLERANCE
         if not np.any(short):

@@ -41,7 +41,7 @@ the fast/slow/tense tables for those manners. A static sign holds its posture fo
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
-:data:`TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
+:data:`motor.torso.TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
 (:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
 near the shoulder step around its front, and positions so far across the body that the
 IK reports the upper arm in the torso step back toward the arm's side
@@ -75,6 +75,7 @@ from motor.locations import ARM_SITES, FINGER_SITES, resolve_location
 from motor.program import ARMS, AVATAR_SIDE
 from motor.sign_lmp import Move, continuous_quaternions
 from motor.symmetry import mirror_directions
+from motor.torso import outside_torso
 from mura.errors import SpecError
 from mura.model import (
     Arm,
@@ -116,8 +117,6 @@ ZIGS = 4
 LOCAL_ANGLE = 0.45
 #: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
 STATIC_HOLD = 0.5
-#: Clearance of the wrist from the torso surface, metres.
-TORSO_MARGIN = 0.04
 #: How far (m) the IK may fall short before a position is moved within reach, and the
 #: margin inside the reach limit that positions keep.
 REACH_TOLERANCE = 1e-3
@@ -774,24 +773,6 @@ class _SignCompiler:
             wrist = pose.positions[0, self.avatar.joint_index(f"{side}_wrist")]
             self._offsets[key] = resolve_location(self.avatar, site, "l" if side == "r" else "r", pose) - wrist
         return self._offsets[key]
-
-def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
-    """Wrist positions ``(n, 3)`` inside the torso's elliptic cylinder (grown by
-    :data:`TORSO_MARGIN`), or behind it within its width, pushed forward onto its front
-    surface (the surface normal there points forward, into signing space); the others
-    unchanged."""
-    torso = avatar.torso
-    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
-    dx = (points[:, 0] - torso.center[0]) / a
-    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
-    # inside the torso, or behind it within its width: no hand goes there
-    inside = (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
-    if not np.any(inside):
-        return points
-    out = points.copy()
-    out[:, 2] = np.where(inside, front, out[:, 2])
-    return out
-
 
 def within_reach(
     avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None

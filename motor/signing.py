@@ -40,6 +40,7 @@ from motor.sign_planning import (
     plan_sign,
     rotations_along,
 )
+from motor.torso import outside_torso
 from motor.trajectory import fitts_duration
 from mura.signs import Sign
 
@@ -313,7 +314,7 @@ def frame_faults(avatar: Avatar, signed: SignedMotion) -> dict[str, np.ndarray]:
     shortfall = np.zeros(motion.frame_count)
     for arm in ARMS:
         wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
-        asked = signed.control.timeline((arm, "wrist_position")).sample(motion.times)
+        asked = outside_torso(avatar, signed.control.timeline((arm, "wrist_position")).sample(motion.times))
         shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked, axis=1))
     depths = upper_arm_depths(avatar, motion)
     return {"non_finite": ~finite, "shortfall": shortfall, "upper_arm_depth": np.maximum(*depths.values())}

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import sign_from
+from sign_helpers import sign_from
 
-from motor.sign_planning import SignPlanningError, outside_torso, plan_sign
+from motor.sign_planning import SignPlanningError, plan_sign
 from motor.signing import head_movement, realize_signs
+from motor.torso import outside_torso
 from mura.sigml import parse_sigml
 from mura.signs import HandPosture, NonmanualItem, Sign
 from mura.values import BodySite

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import sign_from
+from sign_helpers import sign_from
 
 from motor.biocontrol import movement_duration
 from motor.kinematics import forward_kinematics
