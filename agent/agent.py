@@ -23,11 +23,15 @@ import numpy as np
 from agent.performance import Performance, SavedFiles
 from blackboard.clock import VirtualClock, WallClock
 from blackboard.events import Event, SpeechStarted
-from blackboard.scheduler import LiveHandle, ScheduledUtterance, Scheduler, SchedulerConfig
+from blackboard.scheduler import (
+    LiveHandle,
+    ScheduledUtterance,
+    Scheduler,
+    SchedulerConfig,
+)
 from motor.avatar import Avatar, load_avatar
 from motor.control import MotorControl
 from motor.motion import Motion
-from mura.errors import SpecError
 from mura.model import Utterance
 from mura.murml import load_utterance, parse_utterance
 from tts import SpeechSynthesizer, make_synthesizer
@@ -95,7 +99,9 @@ class Agent:
         """Perform ``utterance`` offline straight into NAME.wav, .bvh, .timeline.json and .html
         in ``directory``, in memory that does not grow with its length; the files equal
         ``render(...).save(directory)``'s. Raises as :meth:`render` does (``partial`` None)."""
-        from agent.streaming import render_to_files  # agent.streaming builds on this module
+        from agent.streaming import (
+            render_to_files,  # agent.streaming builds on this module
+        )
 
         return render_to_files(self, utterance, directory, name)
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,6 +20,7 @@ import numpy as np
 
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
+from agent.export.staging import Staging
 from motor.motion import Motion
 from tts.wav import write_wav
 
@@ -103,17 +103,11 @@ class Performance:
 
 
 def _write_all(folder: Path, writers: list[tuple[Path, Callable[[Path], None]]]) -> None:
-    staged: list[tuple[Path, Path]] = []
+    staging = Staging(folder)
     try:
         for target, write in writers:
-            handle, name = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".part")
-            os.close(handle)
-            temporary = Path(name)
-            staged.append((temporary, target))
-            write(temporary)
+            write(staging.temporary(target))
     except BaseException:
-        for temporary, _ in staged:
-            temporary.unlink(missing_ok=True)
+        staging.discard()
         raise
-    for temporary, target in staged:
-        os.replace(temporary, target)
+    staging.publish()

@@ -19,7 +19,6 @@ import contextlib
 import dataclasses
 import json
 import os
-import tempfile
 import wave
 from collections.abc import Callable
 from pathlib import Path
@@ -29,6 +28,7 @@ import numpy as np
 
 from agent.export.bvh import StreamingBvh
 from agent.export.html import write_html_stream
+from agent.export.staging import Staging
 from agent.performance import SILENT_RATE, SavedFiles
 from blackboard.clock import VirtualClock
 from blackboard.events import Event, FramesReady, SpeechStarted
@@ -144,39 +144,6 @@ class _Recorder:
             self.wav.add(event.time, event.audio, event.sample_rate)
 
 
-class _Staging:
-    """Files written under temporary names in one folder: all renamed, or all removed."""
-
-    def __init__(self, folder: Path) -> None:
-        self.folder = folder
-        self._staged: list[tuple[Path, Path | None]] = []
-
-    def temporary(self, target: Path, suffix: str = ".part") -> Path:
-        """A fresh hidden file beside ``target``, renamed to it by :meth:`publish`."""
-        return self._make(target, target, suffix)
-
-    def scratch(self, target: Path, suffix: str) -> Path:
-        """A fresh hidden file named after ``target``, removed by both :meth:`publish` and :meth:`discard`."""
-        return self._make(target, None, suffix)
-
-    def publish(self) -> None:
-        for temporary, target in self._staged:
-            if target is not None:
-                os.replace(temporary, target)
-        self.discard()
-
-    def discard(self) -> None:
-        for temporary, _ in self._staged:
-            temporary.unlink(missing_ok=True)
-        self._staged = []
-
-    def _make(self, name_from: Path, target: Path | None, suffix: str) -> Path:
-        handle, name = tempfile.mkstemp(dir=self.folder, prefix=f".{name_from.name}.", suffix=suffix)
-        os.close(handle)
-        self._staged.append((Path(name), target))
-        return Path(name)
-
-
 def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None) -> SavedFiles:
     """Perform ``utterance`` offline with ``agent`` and write NAME.wav, NAME.bvh,
     NAME.timeline.json and NAME.html into ``directory`` (created if missing) as the
@@ -192,7 +159,7 @@ def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | o
     folder = Path(directory)
     folder.mkdir(parents=True, exist_ok=True)
     paths = SavedFiles(folder / f"{name}.wav", folder / f"{name}.bvh", folder / f"{name}.timeline.json", folder / f"{name}.html")
-    staging = _Staging(folder)
+    staging = Staging(folder)
     wav = bvh = None
     try:
         wav = StreamingWav(staging.temporary(paths.wav))

@@ -11,10 +11,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import re
 import sys
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -22,6 +20,7 @@ from tqdm import tqdm
 
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
+from agent.export.staging import staged_text
 from motor.avatar import load_avatar
 from motor.sign_planning import SignPlan, SignPlanningError, plan_sign
 from motor.signing import SignedMotion, realize_signs
@@ -221,11 +220,5 @@ def _report(records: list[SignRecord]) -> dict:
 def _write_json(path: Path, data: dict) -> None:
     """Write JSON under a temporary name in the same folder, then rename."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".part")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            json.dump(data, stream, indent=1, ensure_ascii=False)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    with staged_text(path) as stream:
+        json.dump(data, stream, indent=1, ensure_ascii=False)

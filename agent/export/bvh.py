@@ -26,13 +26,13 @@ from __future__ import annotations
 import io
 import os
 import shutil
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from agent.export.staging import staged_text
 from motor.motion import Motion
 
 CENTIMETRES_PER_METRE = 100.0
@@ -63,15 +63,8 @@ def write_bvh(motion: Motion, path: str | os.PathLike[str]) -> None:
     The file is written under a temporary name in the same folder and renamed when
     complete, so a reader never sees a half-written file under ``path``.
     """
-    target = Path(path)
-    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
-    try:
-        with os.fdopen(handle, "w", encoding="ascii", newline="\n") as stream:
-            _write(motion, stream)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    with staged_text(path, encoding="ascii") as stream:
+        _write(motion, stream)
 
 
 class StreamingBvh:

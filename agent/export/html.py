@@ -16,11 +16,12 @@ import html
 import json
 import os
 import re
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TextIO
 from urllib.parse import quote
+
+from agent.export.staging import staged_text
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 VIEWER_BUNDLE = REPO_ROOT / "viewer" / "dist" / "viewer.js"
@@ -59,15 +60,8 @@ def write_html(
             does not look like BVH, or ``wav_filename`` is absolute.
     """
     page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename)
-    target = Path(path)
-    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".part")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(page)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    with staged_text(path) as stream:
+        stream.write(page)
 
 
 def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None) -> str:

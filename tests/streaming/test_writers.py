@@ -175,3 +175,26 @@ def test_page_in_pieces_refuses_bad_input_before_writing(blocks, timeline, wav, 
     with pytest.raises(ValueError, match=message):
         write_html_stream(out, name="n", bvh_blocks=blocks, timeline=timeline, wav_filename=wav)
     assert out.getvalue() == ""
+
+
+def test_published_files_get_the_usual_permissions(tmp_path):
+    from agent.export.staging import UMASK, staged_text
+
+    target = tmp_path / "out.txt"
+    with staged_text(target) as stream:
+        stream.write("done\n")
+    assert target.read_text() == "done\n"
+    assert target.stat().st_mode & 0o777 == 0o666 & ~UMASK
+    assert [p.name for p in tmp_path.iterdir()] == ["out.txt"]
+
+
+def test_a_failed_staged_write_leaves_nothing(tmp_path):
+    import pytest
+
+    from agent.export.staging import staged_text
+
+    with pytest.raises(RuntimeError):
+        with staged_text(tmp_path / "out.txt") as stream:
+            stream.write("half")
+            raise RuntimeError("disk full")
+    assert list(tmp_path.iterdir()) == []
