@@ -26,7 +26,7 @@ frame window is sampled when the clock reaches its end (the viewer buffers one w
 Absolutely timed behaviours of an utterance with speech are planned with the first chunk
 whose speech ends after their onset (the last chunk takes the rest); a gesture-only
 utterance (no text) is one chunk without speech. Other behaviours than gestures (facial,
-…) are listed in the timeline's ``other_behaviors`` but not performed.
+…) are listed in the timeline's ``other_behaviors`` but not performed; gestures and signs are.
 """
 
 from __future__ import annotations
@@ -240,12 +240,12 @@ class Scheduler:
     def _job(self, utterance: Utterance, name: str) -> _Job:
         validate(utterance, self.motor)
         chunks = utterance.chunks or (ChunkSpec(0, "", ()),)
-        absolute = sorted((b for b in utterance.behaviors if isinstance(b.timing, AbsoluteTiming) and b.gesture),
+        absolute = sorted((b for b in utterance.behaviors if isinstance(b.timing, AbsoluteTiming) and b.moves_arms),
                           key=lambda b: b.timing.onset)
         timeline = Timeline(name, self.motor.fps)
         for b in utterance.behaviors:
-            if b.gesture is None:
-                timeline.warn(f"behaviour {b.id!r} ({b.kind}) is listed but not performed: only gestures are scheduled")
+            if not b.moves_arms:
+                timeline.warn(f"behaviour {b.id!r} ({b.kind}) is listed but not performed: only gestures and signs are scheduled")
         return _Job(utterance, name, chunks, timeline, absolute=list(absolute))
 
     # ----------------------------------------------------------------- the loop
@@ -506,7 +506,7 @@ class Scheduler:
         now = self.clock.now()
         job.timeline.add_chunk(ChunkEntry(index, spec.text))
         behaviors = job.utterance.behaviors_in_chunk(index) if job.utterance.chunks else ()
-        board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.gesture is not None), job.origin, now, self.bus, job.timeline)
+        board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.moves_arms), job.origin, now, self.bus, job.timeline)
         job.boards.append(board)
         with self._lock:
             self._board_jobs[board] = job
@@ -650,7 +650,7 @@ class Scheduler:
         """Per gesture, the arms another gesture uses after it (later in this chunk, or in the next chunk)."""
         next_arms: frozenset[str] = frozenset()
         for b in follows or ():
-            if b.gesture is not None:
+            if b.moves_arms:
                 next_arms |= self.motor.demands(b).arms
         out = {}
         for g in timing.gestures:
@@ -764,11 +764,11 @@ def validate(utterance: Utterance, motor: MotorControl) -> None:
     """
     if not utterance.chunks and not utterance.behaviors:
         raise ScheduleError(f"{utterance.source}: the utterance has neither text nor behaviours")
-    if not utterance.chunks and not any(b.gesture is not None for b in utterance.behaviors):
+    if not utterance.chunks and not any(b.moves_arms for b in utterance.behaviors):
         raise ScheduleError(f"{utterance.source}: the utterance has no text and no gesture to perform")
     tags = utterance.time_tags
     for b in utterance.behaviors:
-        if b.gesture is not None and b.timing is None:
+        if b.moves_arms and b.timing is None:
             raise BehaviorError(f"behaviour {b.id!r}: a gesture needs an affiliate or an absolute timing")
         if isinstance(b.timing, Affiliate):
             _check_affiliate(b, tags, utterance)
@@ -791,7 +791,7 @@ def _check_affiliate(b: BehaviorSpec, tags, utterance: Utterance) -> None:
 
 
 def _check_same_arm(behaviors: tuple[BehaviorSpec, ...], tags, motor: MotorControl) -> None:
-    gestures = [b for b in behaviors if b.gesture is not None and isinstance(b.timing, Affiliate)]
+    gestures = [b for b in behaviors if b.moves_arms and isinstance(b.timing, Affiliate)]
     arms = {b.id: motor.demands(b).arms for b in gestures}
     gestures.sort(key=lambda b: tags[b.timing.onset].offset)
     for earlier, later in itertools.combinations(gestures, 2):

@@ -46,6 +46,7 @@ from motor.program import (
     rest_handshape,
     retraction_duration,
 )
+from motor.sign_program import SignBehaviorPlanner
 from motor.torso import outside_torso
 from motor.trajectory import fitts_duration
 from mura.model import BehaviorSpec
@@ -80,6 +81,7 @@ class MotorControl:
         self.avatar = avatar
         self.fps = float(fps)
         self.planner = Planner(avatar)
+        self.signs = SignBehaviorPlanner(avatar)
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
@@ -109,15 +111,20 @@ class MotorControl:
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
         """Arms, natural stroke duration and preparation distance of ``behavior``."""
+        if behavior.sign is not None:
+            return self.signs.demands(behavior)
         return self.planner.demands(behavior)
 
     def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
         """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
         programs activated so far) to the start of the stroke; the slowest arm counts."""
-        fragment = self.planner.fragment(behavior)
+        if behavior.sign is not None:
+            targets = self.signs.first_wrists(behavior)
+        else:
+            fragment = self.planner.fragment(behavior)
+            targets = {arm: first_location(fragment, arm) for arm in ARMS}
         longest = 0.0
-        for arm in ARMS:
-            target = first_location(fragment, arm)
+        for arm, target in targets.items():
             if target is None:
                 continue
             here = self.timeline((arm, "wrist_position")).state(at_time).value
@@ -127,7 +134,10 @@ class MotorControl:
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
     ) -> MotorProgram:
-        """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program`)."""
+        """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program`;
+        a sign behaviour: :mod:`motor.sign_program`)."""
+        if behavior.sign is not None:
+            return self.signs.plan(behavior, pegs, next_gesture_follows)
         return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
 
     # -- execution ----------------------------------------------------------------------

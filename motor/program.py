@@ -801,10 +801,15 @@ class Planner:
         return np.array(key_times), np.array(key_values)
 
     def retraction(self, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
-        arm, name = channel
-        rest = self.avatar.postures[posture][AVATAR_SIDE[arm]]
-        target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
-        return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
+        return retraction_lmp(self.avatar, channel, pegs, posture)
+
+
+def retraction_lmp(avatar: Avatar, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
+    """The LMP taking ``channel`` back to the avatar's ``posture`` (``rest`` or ``interim_rest``)."""
+    arm, name = channel
+    rest = avatar.postures[posture][AVATAR_SIDE[arm]]
+    target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
+    return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
 
 
 def first_location(fragment: _Fragment, arm: str) -> np.ndarray | None:

@@ -13,10 +13,13 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Union
+from typing import TYPE_CHECKING, Union
 
 from mura.errors import SourceLocation
 from mura.values import Direction, SlotValue
+
+if TYPE_CHECKING:  # mura.signs builds on this module's constraint tree
+    from mura.signs import Sign
 
 #: Slots that a static or dynamic constraint may name; arm slots are realized by ``motor/``.
 ARM_SLOTS: tuple[str, ...] = ("HandShape", "PalmOrientation", "ExtFingerOrientation", "HandLocation")
@@ -220,9 +223,10 @@ class AbsoluteTiming:
 class BehaviorSpec:
     """One behaviour of an utterance.
 
-    ``kind`` is the element that carried it (``gesture``, or another behaviour such as
-    ``facial`` kept for the timeline). ``chunk`` is the index of the chunk whose time tags
-    the affiliate names, None for absolute timing.
+    ``kind`` is the element that carried it (``gesture``, ``sign``, or another behaviour
+    such as ``facial`` kept for the timeline). A ``sign`` behaviour carries a HamNoSys/SiGML
+    sign performed by the arms, timed like a gesture. ``chunk`` is the index of the chunk
+    whose time tags the affiliate names, None for absolute timing.
     """
 
     id: str
@@ -231,6 +235,12 @@ class BehaviorSpec:
     gesture: Gesture | None = None
     chunk: int | None = None
     where: SourceLocation | None = field(default=None, compare=False)
+    sign: Sign | None = None
+
+    @property
+    def moves_arms(self) -> bool:
+        """True for the behaviours the motor core performs: gestures and signs."""
+        return self.gesture is not None or self.sign is not None
 
 
 @dataclass(frozen=True)

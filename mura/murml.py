@@ -29,7 +29,14 @@ from lxml import etree
 
 from mura import murml_vocabulary as vocabulary
 from mura.errors import SourceLocation, SpecError, SpecErrors
-from mura.lexicon import GestureLexicon, SceneLocation, bind_params, load_lexicon, read_scene
+from mura.hamnosys import parse_hamnosys
+from mura.lexicon import (
+    GestureLexicon,
+    SceneLocation,
+    bind_params,
+    load_lexicon,
+    read_scene,
+)
 from mura.model import (
     ARM_SLOTS,
     OTHER_SLOTS,
@@ -54,7 +61,16 @@ from mura.model import (
     Utterance,
 )
 from mura.schema import validate_murml
-from mura.values import Direction, Location, PalmOrientation, PointLocation, SlotValue, Vector
+from mura.sigml import read_sign_element
+from mura.signs import Sign
+from mura.values import (
+    Direction,
+    Location,
+    PalmOrientation,
+    PointLocation,
+    SlotValue,
+    Vector,
+)
 from mura.xml_source import XmlSource
 
 _UNIT_METRES = {"mm": 0.001, "cm": 0.01, "m": 1.0}
@@ -65,6 +81,7 @@ _EXTENTS = {"Flat": 0.25, "Normal": 0.5, "Large": 0.75}
 _ROUNDNESS = {"Sharpe": 0.9, "Sharp": 0.9, "Normal": 0.0, "Broad": -0.9}
 _SKEWEDNESS = {"Round": 0.0, "FunnelS": -0.9, "FunnelE": 0.9}
 _SEGMENT_VALUE_TYPES = ("start", "end", "direction", "distance", "normal", "shape", "extent", "extension", "roundness", "skewedness")
+_SIGN_FORMS = ("hamnosys", "hns_sign", "hamgestural_sign")
 _TRUE = {"true", "1", "yes"}
 _FALSE = {"false", "0", "no"}
 
@@ -208,10 +225,29 @@ class _UtteranceReader:
         timing_element = _timing_element(element, body)
         timing = self._read_timing(timing_element, behavior_id) if timing_element is not None else None
         gesture = self._read_gesture(body, behavior_id) if body.tag == "gesture" else None
-        if gesture is not None and timing is None:
-            raise self.source.error(f"gesture {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
+        sign = self._read_sign(body, behavior_id) if body.tag == "sign" else None
+        if (gesture is not None or sign is not None) and timing is None:
+            raise self.source.error(f"{body.tag} {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
-        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element))
+        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign)
+
+    def _read_sign(self, element: etree._Element, behavior_id: str) -> Sign:
+        """A sign behaviour: ``<hamnosys>`` text (HamNoSys 4 Unicode) or a SiGML
+        ``<hns_sign>``/``<hamgestural_sign>`` element, beside its timing."""
+        forms = [child for child in element if child.tag not in ("affiliate", "timing")]
+        if len(forms) != 1 or forms[0].tag not in _SIGN_FORMS:
+            raise self.source.error(f"sign {behavior_id!r} needs exactly one of <{'>, <'.join(_SIGN_FORMS)}>", element)
+        form = forms[0]
+        gloss = element.get("gloss") or form.get("gloss") or behavior_id
+        if form.tag != "hamnosys":
+            return read_sign_element(form, gloss, self.source.where)
+        text = (form.text or "").strip()
+        if not text:
+            raise self.source.error(f"sign {behavior_id!r}: <hamnosys> is empty", form)
+        try:
+            return parse_hamnosys(text, gloss=gloss, file=str(self.source.where(form)))
+        except SpecError as error:
+            raise SpecError(error.message, self.source.where(form)) from None
 
     def _read_timing(self, element: etree._Element, behavior_id: str) -> Affiliate | AbsoluteTiming:
         onset_text, end_text = element.get("onset", ""), element.get("end", "")

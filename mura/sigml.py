@@ -21,9 +21,25 @@ from lxml import etree
 
 from mura.errors import SourceLocation, SpecError
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
-from mura.model import Arm, Constraint, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence
-from mura.signs import HandConstellation, HandPosture, NonmanualItem, SigmlParseResult, Sign, SignFailure, SignSymmetry
-from mura.xml_source import XmlSource
+from mura.model import (
+    Arm,
+    Constraint,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Sequence,
+)
+from mura.signs import (
+    HandConstellation,
+    HandPosture,
+    NonmanualItem,
+    SigmlParseResult,
+    Sign,
+    SignFailure,
+    SignSymmetry,
+)
 from mura.values import (
     BASIC_HANDSHAPES,
     FINGER_BENDINGS,
@@ -38,6 +54,7 @@ from mura.values import (
     PalmOrientation,
     direction_from_letters,
 )
+from mura.xml_source import XmlSource
 
 #: Largest SiGML document accepted, bytes (the corpora are about 1 MB).
 MAX_SIGML_BYTES = 32 * 1024 * 1024
@@ -68,15 +85,20 @@ def read_sigml(source: XmlSource) -> SigmlParseResult:
     for index, element in enumerate(e for e in root if isinstance(e.tag, str)):
         gloss = element.get("gloss", f"#{index}")
         try:
-            if element.tag == "hns_sign":
-                signs.append(_hns_sign(element, gloss, where_of))
-            elif element.tag == "hamgestural_sign":
-                signs.append(_GesturalReader(gloss, where_of).sign(element))
-            else:
-                raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
+            signs.append(read_sign_element(element, gloss, where_of))
         except SpecError as error:
             failures.append(SignFailure(gloss, index, error))
     return SigmlParseResult(tuple(signs), tuple(failures), source.file)
+
+
+def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation]) -> Sign:
+    """One ``<hns_sign>`` or ``<hamgestural_sign>`` element as a :class:`Sign`; the sign
+    elements of a SiGML document and those inside MURML utterances read alike."""
+    if element.tag == "hns_sign":
+        return _hns_sign(element, gloss, where_of)
+    if element.tag == "hamgestural_sign":
+        return _GesturalReader(gloss, where_of).sign(element)
+    raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
 
 
 def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:

@@ -74,8 +74,8 @@ class FakeMotor:
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
         gesture = behavior.gesture
-        node = gesture.constraints
-        scope = gesture.scope or ""
+        node = gesture.constraints if gesture is not None else behavior.sign.to_constraint()
+        scope = (gesture.scope if gesture is not None else None) or ""
         if isinstance(node, Symmetrical):
             arms = frozenset({"right", "left"})
         elif "head" in scope or not any(leaf.slot in ARM_SLOTS for leaf in iter_leaves(node)):
