@@ -14,6 +14,7 @@ from blackboard.clock import VirtualClock
 from blackboard.scheduler import Scheduler, SchedulerConfig
 from motor.avatar import AvatarError, load_avatar
 from motor.control import MotorControl
+from motor.lmp import WristPositionLMP
 from motor.program import MotorProgram
 from mura.errors import SpecError
 from tts import SpeechError, make_synthesizer
@@ -72,4 +73,4 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _moves_a_wrist(program: MotorProgram) -> bool:
-    return any(type(lmp).__name__ == "WristPositionLMP" for lmp in program.lmps)
+    return any(isinstance(lmp, WristPositionLMP) for lmp in program.lmps)
