@@ -324,8 +324,8 @@ class _TextBuffer:
         if not text:
             return
         collapsed = re.sub(r"\s+", " ", text)
-        if self.raw.endswith(" ") or not self.raw:
-            collapsed = collapsed.lstrip(" ") if self.raw.endswith(" ") else collapsed
+        if self.raw.endswith(" "):
+            collapsed = collapsed.lstrip(" ")
         self.raw += collapsed
 
     @property
