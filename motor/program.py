@@ -84,7 +84,7 @@ from motor.lmp import (
     WristRotationLMP,
 )
 from motor.locations import resolve_location
-from motor.quaternion import between_vectors, rotate
+from motor.quaternion import between_vectors, continuous, rotate
 from motor.symmetry import mirror_directions, mirror_points
 from motor.torso import outside_torso
 from motor.trajectory import fitts_duration, plan_wrist_trajectory, time_breakpoints
@@ -796,7 +796,7 @@ class Planner:
             finger_vectors.append(np.asarray(finger, dtype=float))
             palm_vectors.append(direction)
         quaternions = hand_rotations_from_vectors(self.avatar, AVATAR_SIDE[arm], np.array(finger_vectors), np.array(palm_vectors))
-        quaternions = _continuous(quaternions)
+        quaternions = continuous(quaternions)
         key_times, key_values = self.prepared((merged, list(quaternions)), ready)
         return np.array(key_times), np.array(key_values)
 
@@ -822,12 +822,4 @@ def _curved_into(keys: tuple[_Key, ...], time: float) -> bool:
     """Whether the breakpoint at ``time`` is reached along a curve."""
     return any(key.curved and abs(key.start - time) <= _SAME_TIME for key in keys)
 
-
-def _continuous(quaternions: np.ndarray) -> np.ndarray:
-    """Flip signs so consecutive quaternions lie in the same hemisphere."""
-    q = np.array(quaternions, dtype=float)
-    for i in range(1, len(q)):
-        if q[i] @ q[i - 1] < 0.0:
-            q[i] = -q[i]
-    return q
 

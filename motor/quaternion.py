@@ -179,3 +179,13 @@ def slerp(p: np.ndarray, q: np.ndarray, t: np.ndarray | float) -> np.ndarray:
     a = np.where(small, 1.0 - t, np.sin((1.0 - t) * theta) / safe)
     b = np.where(small, t, np.sin(t * theta) / safe)
     return normalize(a * p + b * q)
+
+
+def continuous(quaternions: np.ndarray) -> np.ndarray:
+    """A sequence ``(m, 4)`` with signs flipped so that consecutive quaternions share a
+    hemisphere (the same rotations; interpolation between them takes the short way)."""
+    q = np.array(quaternions, dtype=float)
+    for i in range(1, len(q)):
+        if q[i] @ q[i - 1] < 0.0:
+            q[i] = -q[i]
+    return q

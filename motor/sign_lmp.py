@@ -71,15 +71,6 @@ def path_fractions(values: np.ndarray, by_distance: bool) -> np.ndarray:
     return cumulative / cumulative[-1]
 
 
-def continuous_quaternions(quaternions: np.ndarray) -> np.ndarray:
-    """Quaternions with signs flipped so that consecutive ones share a hemisphere."""
-    q = np.array(quaternions, dtype=float)
-    for i in range(1, len(q)):
-        if q[i] @ q[i - 1] < 0.0:
-            q[i] = -q[i]
-    return q
-
-
 @dataclass(frozen=True, eq=False)
 class _Track:
     """A realized channel: moves with their profiles, holds between, sampled at once.
@@ -197,7 +188,7 @@ class SignChannelLMP:
         for move in self.moves:
             values = move.values
             if rotation:
-                values = continuous_quaternions(np.concatenate([previous[None], values]))[1:]
+                values = quat.continuous(np.concatenate([previous[None], values]))[1:]
             chain.append(replace(move, values=values))
             previous = values[-1]
         return _Track.of(rotation, here, chain, self.channel[1] == "wrist_position")

@@ -73,7 +73,7 @@ from motor.hand_orientation import hand_rotations_from_vectors
 from motor.kinematics import Pose, forward_kinematics, identity_rotations
 from motor.locations import ARM_SITES, FINGER_SITES, resolve_location
 from motor.program import ARMS, AVATAR_SIDE
-from motor.sign_lmp import Move, continuous_quaternions
+from motor.sign_lmp import Move
 from motor.symmetry import mirror_directions
 from motor.torso import outside_torso
 from mura.errors import SpecError
@@ -735,7 +735,7 @@ class _SignCompiler:
         axis = quat.rotate(rotation, local_axis)
         angles = np.array([0.0, LOCAL_ANGLE, 0.0, -LOCAL_ANGLE, 0.0]) if kind != "nodding" else np.array([0.0, LOCAL_ANGLE, 0.0])
         turns = quat.from_axis_angle(np.broadcast_to(axis, (angles.size, 3)), angles)
-        return _Change(hand, rotations=continuous_quaternions(quat.multiply(turns, rotation)))
+        return _Change(hand, rotations=quat.continuous(quat.multiply(turns, rotation)))
 
     def fingerplay(self, hand: _Hand) -> _Change:
         """Fingers bending in turn: index and ring, then middle and pinky, then back."""
