@@ -32,28 +32,41 @@ from motor.program import (
 from motor.sign_lmp import Move, SignChannelLMP
 from motor.sign_planning import SignPlan, SignPlanningError, plan_sign
 from mura.model import BehaviorSpec
+from mura.signs import Sign
 
+#: How many sign plans are kept (a chunk's signs are planned, then asked for again).
+PLAN_CACHE = 16
 #: Channels of one arm that a sign drives.
 CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 
 
 class SignBehaviorPlanner:
-    """Plans the sign behaviours of utterances on one avatar (plans cached by behaviour id)."""
+    """Plans the sign behaviours of utterances on one avatar.
+
+    Demands, preparation and planning each need the sign's plan, so the last few plans
+    are kept, keyed by the sign object itself (behaviour ids repeat across utterances).
+    """
 
     def __init__(self, avatar: Avatar) -> None:
         self.avatar = avatar
-        self._plans: dict[str, SignPlan] = {}
+        self._plans: dict[int, tuple[Sign, SignPlan]] = {}
 
     def sign_plan(self, behavior: BehaviorSpec) -> SignPlan:
         """The sign's plan on its own clock; raises :class:`PlanningError` naming the behaviour."""
-        if behavior.sign is None:
+        sign = behavior.sign
+        if sign is None:
             raise PlanningError(f"behaviour {behavior.id!r} carries no sign")
-        if behavior.id not in self._plans:
-            try:
-                self._plans[behavior.id] = plan_sign(self.avatar, behavior.sign)
-            except SignPlanningError as error:
-                raise PlanningError(f"behaviour {behavior.id!r}: {error}") from None
-        return self._plans[behavior.id]
+        cached = self._plans.get(id(sign))
+        if cached is not None and cached[0] is sign:
+            return cached[1]
+        try:
+            plan = plan_sign(self.avatar, sign)
+        except SignPlanningError as error:
+            raise PlanningError(f"behaviour {behavior.id!r}: {error}") from None
+        if len(self._plans) >= PLAN_CACHE:
+            self._plans.pop(next(iter(self._plans)))
+        self._plans[id(sign)] = (sign, plan)
+        return plan
 
     def first_wrists(self, behavior: BehaviorSpec) -> dict[str, np.ndarray]:
         """Where each hand the sign uses begins, metres (avatar frame)."""

@@ -69,3 +69,17 @@ def test_the_two_handed_sign_is_mirrored_and_moves_down(performance):
     assert np.max(np.abs(right[stroke, 1] - left[stroke, 1])) < 1e-3
     assert np.ptp(right[stroke, 1]) > 0.03  # the small downward movement, repeated
     assert np.all(np.isfinite(performance.motion.rotations))
+
+
+def test_same_behaviour_id_in_two_utterances_plans_each_sign():
+    from motor.avatar import load_avatar
+    from motor.control import MotorControl
+
+    control = MotorControl(load_avatar("max"))
+    one_handed = parse_utterance(TEMPLATE.format(body=AFFILIATE + "<hamnosys>&#xE002;&#xE020;&#xE03E;&#xE051;&#xE080;</hamnosys>"))
+    two_handed = load_utterance(EXAMPLE)
+    first = control.demands(one_handed.behaviors[0])
+    renamed = two_handed.behaviors[0].__class__(**{**two_handed.behaviors[0].__dict__, "id": "s"})
+    second = control.demands(renamed)
+    assert first.arms == frozenset({"right"})
+    assert second.arms == frozenset({"right", "left"})
