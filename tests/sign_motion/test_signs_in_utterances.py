@@ -1,6 +1,7 @@
 """Signs inside MURML utterances: parsed in both written forms, timed against speech like
 gestures, realized by the motor core."""
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -79,7 +80,7 @@ def test_same_behaviour_id_in_two_utterances_plans_each_sign():
     one_handed = parse_utterance(TEMPLATE.format(body=AFFILIATE + "<hamnosys>&#xE002;&#xE020;&#xE03E;&#xE051;&#xE080;</hamnosys>"))
     two_handed = load_utterance(EXAMPLE)
     first = control.demands(one_handed.behaviors[0])
-    renamed = two_handed.behaviors[0].__class__(**{**two_handed.behaviors[0].__dict__, "id": "s"})
+    renamed = replace(two_handed.behaviors[0], id="s")
     second = control.demands(renamed)
     assert first.arms == frozenset({"right"})
     assert second.arms == frozenset({"right", "left"})
