@@ -16,11 +16,12 @@ import queue
 import sys
 import threading
 from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 
-from agent.performance import Performance, SavedFiles
+from agent.performance import Performance, PerformanceError, SavedFiles, rest_motion
+from agent.sources import UtteranceSource, read_utterance
+from agent.streaming import render_to_files
 from blackboard.clock import VirtualClock, WallClock
 from blackboard.events import Event, SpeechStarted
 from blackboard.scheduler import (
@@ -29,33 +30,10 @@ from blackboard.scheduler import (
     Scheduler,
     SchedulerConfig,
 )
-from motor.avatar import Avatar, load_avatar
+from motor.body.avatar import Avatar, load_avatar
 from motor.control import MotorControl
-from motor.motion import Motion
-from mura.model import Utterance
-from mura.murml import load_utterance, parse_utterance
 from tts import SpeechSynthesizer, make_synthesizer
 from tts.playback import PlaybackUnavailable, make_player
-
-UtteranceSource = str | bytes | os.PathLike[str] | Utterance
-
-
-class PerformanceError(RuntimeError):
-    """An utterance that could not be performed to the end (a chunk failed)."""
-
-    def __init__(self, message: str, partial: Performance | None) -> None:
-        super().__init__(message)
-        self.partial = partial
-
-
-def read_utterance(source: UtteranceSource) -> tuple[Utterance, str]:
-    """An utterance and a name for it, from XML text, a file path or a parsed model."""
-    if isinstance(source, Utterance):
-        return source, Path(source.source).stem or "utterance"
-    if isinstance(source, bytes) or (isinstance(source, str) and source.lstrip().startswith("<")):
-        return parse_utterance(source, file="<utterance>"), "utterance"
-    path = Path(source)
-    return load_utterance(path), path.stem
 
 
 class Agent:
@@ -99,11 +77,7 @@ class Agent:
         """Perform ``utterance`` offline straight into NAME.wav, .bvh, .timeline.json and .html
         in ``directory``, in memory that does not grow with its length; the files equal
         ``render(...).save(directory)``'s. Raises as :meth:`render` does (``partial`` None)."""
-        from agent.streaming import (
-            render_to_files,  # agent.streaming builds on this module
-        )
-
-        return render_to_files(self, utterance, directory, name)
+        return render_to_files(utterance, directory, self.tts, self.avatar, self.fps, self.config, name)
 
     def subscribe(self, observer: Callable[[Event], None]) -> None:
         """Receive every event of live utterances (chunk states, feedback, frames)."""
@@ -201,13 +175,6 @@ def _performance(result: ScheduledUtterance, name: str, avatar: Avatar, fps: flo
     if result.error is not None and not allow_partial:
         raise PerformanceError(f"chunk {result.failed_chunk} failed: {result.error}", performance)
     return performance
-
-
-def rest_motion(avatar: Avatar, fps: float) -> Motion:
-    """One frame of ``avatar`` at rest: what a page shows before any frame arrives."""
-    rotations = np.zeros((1, avatar.joint_count, 4))
-    rotations[..., 3] = 1.0
-    return Motion(fps, avatar.joint_names, tuple(int(p) for p in avatar.parents), np.asarray(avatar.offsets), rotations, np.zeros((1, 3)))
 
 
 __all__ = ["Agent", "LiveUtterance", "Performance", "PerformanceError", "SpeechPlayer", "read_utterance", "rest_motion"]

@@ -21,6 +21,7 @@ import numpy as np
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
 from agent.export.staging import Staging
+from motor.body.avatar import Avatar
 from motor.motion import Motion
 from tts.wav import write_wav
 
@@ -111,3 +112,18 @@ def _write_all(folder: Path, writers: list[tuple[Path, Callable[[Path], None]]])
         staging.discard()
         raise
     staging.publish()
+
+
+class PerformanceError(RuntimeError):
+    """An utterance that could not be performed to the end (a chunk failed)."""
+
+    def __init__(self, message: str, partial: Performance | None) -> None:
+        super().__init__(message)
+        self.partial = partial
+
+
+def rest_motion(avatar: Avatar, fps: float) -> Motion:
+    """One frame of ``avatar`` at rest: what a page shows before any frame arrives."""
+    rotations = np.zeros((1, avatar.joint_count, 4))
+    rotations[..., 3] = 1.0
+    return Motion(fps, avatar.joint_names, tuple(int(p) for p in avatar.parents), np.asarray(avatar.offsets), rotations, np.zeros((1, 3)))

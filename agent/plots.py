@@ -18,11 +18,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from motor.avatar import Avatar  # noqa: E402
-from motor.kinematics import forward_kinematics  # noqa: E402
-from motor.lmp import WristPositionLMP  # noqa: E402
+from motor.arm.wrist_position import WristPositionLMP  # noqa: E402
+from motor.body.avatar import (
+    AVATAR_SIDE,  # noqa: E402
+    Avatar,  # noqa: E402
+)
+from motor.body.kinematics import forward_kinematics  # noqa: E402
 from motor.motion import Motion  # noqa: E402
-from motor.program import AVATAR_SIDE, MotorProgram  # noqa: E402
+from motor.program.gesture import MotorProgram  # noqa: E402
 
 
 def _wrist_lmps(program: MotorProgram) -> list[WristPositionLMP]:

@@ -22,21 +22,21 @@ import os
 import wave
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import TextIO
 
 import numpy as np
 
 from agent.export.bvh import StreamingBvh
 from agent.export.html import write_html_stream
 from agent.export.staging import Staging
-from agent.performance import SILENT_RATE, SavedFiles
+from agent.performance import SILENT_RATE, PerformanceError, SavedFiles, rest_motion
+from agent.sources import UtteranceSource, read_utterance
 from blackboard.clock import VirtualClock
 from blackboard.events import Event, FramesReady, SpeechStarted
-from blackboard.scheduler import Scheduler
+from blackboard.scheduler import Scheduler, SchedulerConfig
+from motor.body.avatar import Avatar
 from motor.control import MotorControl
-
-if TYPE_CHECKING:
-    from agent.agent import Agent, UtteranceSource
+from tts import SpeechSynthesizer
 
 #: Samples of silence written at a time, so a long pause never becomes one big array.
 SILENCE_BLOCK = 1 << 16
@@ -144,16 +144,23 @@ class _Recorder:
             self.wav.add(event.time, event.audio, event.sample_rate)
 
 
-def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None) -> SavedFiles:
-    """Perform ``utterance`` offline with ``agent`` and write NAME.wav, NAME.bvh,
+def render_to_files(
+    utterance: UtteranceSource,
+    directory: str | os.PathLike[str],
+    tts: SpeechSynthesizer,
+    avatar: Avatar,
+    fps: float,
+    config: SchedulerConfig,
+    name: str | None = None,
+) -> SavedFiles:
+    """Perform ``utterance`` offline (speech from ``tts``, motion for ``avatar`` at ``fps``
+    frames/s, scheduled with ``config``) and write NAME.wav, NAME.bvh,
     NAME.timeline.json and NAME.html into ``directory`` (created if missing) as the
     performance runs, in bounded memory; the files equal :meth:`Performance.save`'s.
 
     Raises :class:`SpecError` for a bad spec and :class:`PerformanceError` (``partial`` is
     None) when a chunk fails; on any failure no file is left under the final names.
     """
-    from agent.agent import PerformanceError, read_utterance, rest_motion
-
     model, default_name = read_utterance(utterance)
     name = name or default_name
     folder = Path(directory)
@@ -165,8 +172,8 @@ def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | o
         wav = StreamingWav(staging.temporary(paths.wav))
         bvh = StreamingBvh(staging.scratch(paths.bvh, ".frames.part"))
         recorder = _Recorder(name, wav, bvh)
-        config = dataclasses.replace(agent.config, keep_output=False)
-        scheduler = Scheduler(agent.tts, MotorControl(agent.avatar, agent.fps), VirtualClock(), config)
+        config = dataclasses.replace(config, keep_output=False)
+        scheduler = Scheduler(tts, MotorControl(avatar, fps), VirtualClock(), config)
         scheduler.subscribe(recorder)
         try:
             result = scheduler.run(model, name)
@@ -178,7 +185,7 @@ def render_to_files(agent: Agent, utterance: UtteranceSource, directory: str | o
         wav.finish(float(timeline["duration"]))
         motion_start = 0.0
         if recorder.first_frame_time is None:
-            bvh.add(rest_motion(agent.avatar, agent.fps))
+            bvh.add(rest_motion(avatar, fps))
         else:
             motion_start = recorder.first_frame_time - result.timeline.origin
         timeline = dict(timeline, motion_start_time=motion_start)

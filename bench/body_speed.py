@@ -16,11 +16,11 @@ import sys
 import numpy as np
 
 from bench.timing import median_seconds
-from motor.arm_ik import solve_arm
-from motor.avatar import load_avatar
-from motor.hand import hand_rotations, handshape_params
-from motor.hand_orientation import hand_rotations_from_vectors
-from motor.kinematics import forward_kinematics, identity_rotations
+from motor.arm.hand_orientation import hand_rotations_from_vectors
+from motor.arm.ik import solve_arm
+from motor.body.avatar import load_avatar
+from motor.body.kinematics import forward_kinematics, identity_rotations
+from motor.hand.shape import hand_rotations, handshape_params
 from mura.values import HandShape
 
 

@@ -25,11 +25,11 @@ import numpy as np
 from bench import quality, synchrony
 from blackboard.clock import VirtualClock
 from blackboard.scheduler import Scheduler
-from motor.avatar import Avatar, load_avatar
+from motor.body.avatar import Avatar, load_avatar
+from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
-from motor.guiding_strokes import ellipse_breakpoints
-from motor.kinematics import forward_kinematics
-from motor.trajectory import plan_wrist_trajectory
+from motor.trajectory.guiding_strokes import ellipse_breakpoints
+from motor.trajectory.spline import plan_wrist_trajectory
 from mura.murml import load_utterance
 from tts import FakeSynthesizer
 

@@ -30,11 +30,11 @@ import numpy as np
 
 from bench.timing import median_seconds
 from motor import quaternion as quat
-from motor.avatar import load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
-from motor.kinematics import forward_kinematics
-from motor.lmp import TimePegs
-from motor.program import MotorProgram
+from motor.program.gesture import MotorProgram
+from motor.program.lmp import TimePegs
 from mura.model import BehaviorSpec
 from mura.murml import load_utterance
 

@@ -3,7 +3,7 @@
 Every trajectory measure takes wrist positions ``(n, 3)`` in metres sampled at ``fps``
 frames per second; derivatives are finite differences (``numpy.gradient``, second order
 inside, so a polynomial movement of degree ≤ 2 is differentiated exactly). Motion
-measures take a :class:`motor.motion.Motion` and its :class:`motor.avatar.Avatar`.
+measures take a :class:`motor.motion.Motion` and its :class:`motor.body.avatar.Avatar`.
 
 * :func:`speed_symmetry` — where the speed peak of a single stroke lies (0.5 for the
   bell-shaped profile of a minimum-jerk reach) and the skewness of the profile.
@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import Avatar
-from motor.kinematics import Pose, forward_kinematics
+from motor.body.avatar import Avatar
+from motor.body.kinematics import Pose, forward_kinematics
 from motor.motion import Motion
 
 #: Curvature-law fit: points slower than this fraction of the peak speed are dropped

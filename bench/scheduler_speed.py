@@ -16,8 +16,14 @@ import statistics
 import time
 from pathlib import Path
 
-from blackboard import ChunkState, ChunkStateChanged, FramesReady, Scheduler, VirtualClock
-from motor.avatar import load_avatar
+from blackboard import (
+    ChunkState,
+    ChunkStateChanged,
+    FramesReady,
+    Scheduler,
+    VirtualClock,
+)
+from motor.body.avatar import load_avatar
 from motor.control import MotorControl
 from mura.murml import load_utterance
 from tts import BACKENDS

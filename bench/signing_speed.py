@@ -24,9 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
-from motor.avatar import load_avatar
-from motor.sign_planning import SignPlanningError, plan_signs
-from motor.signing import frame_faults, realize_signs
+from motor.body.avatar import load_avatar
+from motor.signing.plan import SignPlanningError
+from motor.signing.planning import plan_signs
+from motor.signing.sequence import frame_faults, realize_signs
 from mura.sigml import parse_sigml
 
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")

@@ -41,8 +41,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from motor.avatar import Avatar
-from motor.kinematics import forward_kinematics
+from motor.body.avatar import Avatar
+from motor.body.kinematics import forward_kinematics
 from motor.motion import Motion
 
 #: Wrist speed below which the hand counts as still, m/s (1 mm/s: a minimum-jerk reach

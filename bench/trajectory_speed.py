@@ -1,8 +1,8 @@
 """Sampling speed of wrist trajectories and channel timelines.
 
 Not a test: prints figures. ``run(quick)`` returns samples per second (median of several
-runs) of a :class:`motor.trajectory.WristTrajectory` tracing three laps of an ellipse and
-of a :class:`motor.lmp.ChannelTimeline` of gestures, retractions and co-articulated
+runs) of a :class:`motor.trajectory.spline.WristTrajectory` tracing three laps of an ellipse and
+of a :class:`motor.program.lmp.ChannelTimeline` of gestures, retractions and co-articulated
 successors, for 100,000 frames each (10,000 when ``quick``), plus the planning time of
 the timeline.
 """
@@ -15,15 +15,10 @@ import sys
 import numpy as np
 
 from bench.timing import median_seconds
-from motor.guiding_strokes import curve_breakpoints, ellipse_breakpoints
-from motor.lmp import (
-    ChannelState,
-    ChannelTimeline,
-    RetractionLMP,
-    TimePegs,
-    WristPositionLMP,
-)
-from motor.trajectory import plan_wrist_trajectory
+from motor.arm.wrist_position import WristPositionLMP
+from motor.program.lmp import ChannelState, ChannelTimeline, RetractionLMP, TimePegs
+from motor.trajectory.guiding_strokes import curve_breakpoints, ellipse_breakpoints
+from motor.trajectory.spline import plan_wrist_trajectory
 
 REST = np.array([0.2, 0.9, 0.1])
 

@@ -6,7 +6,13 @@ each chunk by a simple temporal network."""
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import TRANSITIONS, ChunkState, ChunkStateMachine, Transition
 from blackboard.clock import Clock, VirtualClock, WallClock
-from blackboard.errors import BehaviorError, IllegalTransition, OverlappingGestures, ScheduleError, TimingConflict
+from blackboard.errors import (
+    BehaviorError,
+    IllegalTransition,
+    OverlappingGestures,
+    ScheduleError,
+    TimingConflict,
+)
 from blackboard.events import (
     BehaviorFeedback,
     ChunkStateChanged,
@@ -15,10 +21,30 @@ from blackboard.events import (
     SpeechEnded,
     SpeechStarted,
 )
-from blackboard.planning import PEG_NAMES, GestureDemands, MotorControl, MotorProgramLike, TimePegs
-from blackboard.scheduler import LiveHandle, ScheduledUtterance, Scheduler, SchedulerConfig, validate
+from blackboard.planning import (
+    PEG_NAMES,
+    GestureDemands,
+    MotorControl,
+    MotorProgramLike,
+    TimePegs,
+)
+from blackboard.scheduler import (
+    LiveHandle,
+    ScheduledUtterance,
+    Scheduler,
+    SchedulerConfig,
+    validate,
+)
 from blackboard.timeline import Timeline
-from blackboard.timing import ChunkTiming, GestureRequest, GestureTiming, PauseStretch, TemporalNetwork, TimingConfig, time_chunk
+from blackboard.timing import (
+    ChunkTiming,
+    GestureRequest,
+    GestureTiming,
+    PauseStretch,
+    TemporalNetwork,
+    TimingConfig,
+    time_chunk,
+)
 
 __all__ = [
     "PEG_NAMES", "TRANSITIONS", "BehaviorError", "BehaviorFeedback", "Blackboard", "ChunkState",

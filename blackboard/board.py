@@ -10,14 +10,13 @@ from __future__ import annotations
 import threading
 from dataclasses import dataclass
 
-from mura.model import BehaviorSpec, ChunkSpec
-from tts import SpeechTiming
-
 from blackboard.chunk import ChunkState, ChunkStateMachine, Transition
 from blackboard.events import BehaviorFeedback, ChunkStateChanged, EventBus
 from blackboard.planning import GestureDemands, MotorProgramLike
 from blackboard.timeline import Timeline
 from blackboard.timing import ChunkTiming, GestureTiming
+from mura.model import BehaviorSpec, ChunkSpec
+from tts import SpeechTiming
 
 
 @dataclass(frozen=True)

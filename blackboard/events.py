@@ -14,9 +14,8 @@ from typing import Union
 
 import numpy as np
 
-from motor.motion import Motion
-
 from blackboard.chunk import ChunkState
+from motor.motion import Motion
 
 
 @dataclass(frozen=True)

@@ -13,8 +13,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
-from motor.lmp import TimePegs
 from motor.motion import Motion
+from motor.program.lmp import TimePegs
 from mura.model import BehaviorSpec
 
 #: The pegs in phase order, as they appear in the timeline.
@@ -34,7 +34,7 @@ class GestureDemands:
         repeatable: the stroke can be performed again to fill a longer affiliate.
         preparation_distance: metres from the rest position to the stroke's start (the
             planner's estimate); Fitts' law ``T = 0.24 · ln(100·A + 1)`` turns it into a
-            preparation time (``motor.trajectory.fitts_duration``).
+            preparation time (``motor.trajectory.spline.fitts_duration``).
     """
 
     arms: frozenset[str]

@@ -42,19 +42,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from motor.motion import Motion
-from motor.trajectory import fitts_duration
-from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
-from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
-
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
 from blackboard.errors import BehaviorError, OverlappingGestures, ScheduleError
-from blackboard.events import EventBus, FramesReady, Observer, SpeechEnded, SpeechStarted
+from blackboard.events import (
+    EventBus,
+    FramesReady,
+    Observer,
+    SpeechEnded,
+    SpeechStarted,
+)
 from blackboard.planning import PEG_NAMES, MotorControl, TimePegs
 from blackboard.timeline import BehaviorEntry, ChunkEntry, PlanningSlack, Timeline
 from blackboard.timing import ChunkTiming, GestureRequest, TimingConfig, time_chunk
+from motor.motion import Motion
+from motor.trajectory.spline import fitts_duration
+from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
+from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
 
 _EPS = 1e-9
 

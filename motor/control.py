@@ -1,6 +1,6 @@
 """Motor control: the object the scheduler calls to plan, activate and sample gestures.
 
-:class:`MotorControl` keeps one :class:`motor.lmp.ChannelTimeline` per channel of each
+:class:`MotorControl` keeps one :class:`motor.program.lmp.ChannelTimeline` per channel of each
 arm — wrist position, hand rotation, hand shape — holding every LMP activated so far.
 Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
 all frames of the window at once: first the externally formulated LMPs (wrist position,
@@ -31,24 +31,28 @@ import math
 
 import numpy as np
 
-from motor.arm_ik import solve_arm
-from motor.avatar import Avatar
-from motor.hand import hand_rotations
-from motor.lmp import LMP, ChannelState, ChannelTimeline, RetractionLMP, TimePegs
+from motor.arm.ik import solve_arm
+from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.collision import outside_torso
+from motor.hand.shape import hand_rotations
 from motor.motion import Motion
-from motor.program import (
-    ARMS,
-    AVATAR_SIDE,
+from motor.program.fragment import first_location
+from motor.program.gesture import (
     GestureDemands,
     MotorProgram,
     Planner,
-    first_location,
     rest_handshape,
     retraction_duration,
 )
-from motor.sign_program import SignBehaviorPlanner
-from motor.torso import outside_torso
-from motor.trajectory import fitts_duration
+from motor.program.lmp import (
+    LMP,
+    ChannelState,
+    ChannelTimeline,
+    RetractionLMP,
+    TimePegs,
+)
+from motor.signing.behavior import SignBehaviorPlanner
+from motor.trajectory.spline import fitts_duration
 from mura.model import BehaviorSpec
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
@@ -134,8 +138,8 @@ class MotorControl:
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
     ) -> MotorProgram:
-        """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program`;
-        a sign behaviour: :mod:`motor.sign_program`)."""
+        """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program.gesture`;
+        a sign behaviour: :mod:`motor.signing.behavior`)."""
         if behavior.sign is not None:
             return self.signs.plan(behavior, pegs, next_gesture_follows)
         return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
@@ -300,7 +304,7 @@ class MotorControl:
 
     def _wrists(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The wrist positions the arm is given at sorted ``times``: the wrist channel's, kept
-        out of the torso (a path between targets may cut through it; :mod:`motor.torso`)."""
+        out of the torso (a path between targets may cut through it; :mod:`motor.body.collision`)."""
         return outside_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:

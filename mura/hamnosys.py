@@ -59,9 +59,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from mura.errors import SourceLocation, SpecError
-from mura.hamnosys_symbols import Symbol, vocabulary
-from mura.model import (
+from mura.constraints import (
     Arm,
     Constraint,
     Dynamic,
@@ -69,9 +67,11 @@ from mura.model import (
     Repetition,
     Segment,
     SegmentKind,
-    Sequence as SequenceNode,
     Static,
 )
+from mura.constraints import Sequence as SequenceNode
+from mura.errors import SourceLocation, SpecError
+from mura.hamnosys_symbols import Symbol, vocabulary
 from mura.signs import HandConstellation, HandPosture, NonmanualItem, Sign, SignSymmetry
 from mura.values import (
     FINGERS,

@@ -28,6 +28,21 @@ from pathlib import Path
 from lxml import etree
 
 from mura import murml_vocabulary as vocabulary
+from mura.constraints import (
+    ARM_SLOTS,
+    OTHER_SLOTS,
+    Arm,
+    Constraint,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Sequence,
+    Static,
+    Symmetrical,
+    Symmetry,
+)
 from mura.errors import SourceLocation, SpecError, SpecErrors
 from mura.hamnosys import parse_hamnosys
 from mura.lexicon import (
@@ -38,25 +53,12 @@ from mura.lexicon import (
     read_scene,
 )
 from mura.model import (
-    ARM_SLOTS,
-    OTHER_SLOTS,
     AbsoluteTiming,
     Affiliate,
-    Arm,
     BehaviorSpec,
     ChunkSpec,
-    Constraint,
-    Dynamic,
     FunctionCall,
     Gesture,
-    Parallel,
-    Repetition,
-    Segment,
-    SegmentKind,
-    Sequence,
-    Static,
-    Symmetrical,
-    Symmetry,
     TimeTag,
     Utterance,
 )

@@ -19,9 +19,7 @@ from dataclasses import dataclass, field, replace
 
 from lxml import etree
 
-from mura.errors import SourceLocation, SpecError
-from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
-from mura.model import (
+from mura.constraints import (
     Arm,
     Constraint,
     Dynamic,
@@ -31,6 +29,8 @@ from mura.model import (
     SegmentKind,
     Sequence,
 )
+from mura.errors import SourceLocation, SpecError
+from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
 from mura.signs import (
     HandConstellation,
     HandPosture,

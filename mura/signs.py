@@ -39,8 +39,16 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from mura.constraints import (
+    Arm,
+    Constraint,
+    Parallel,
+    Sequence,
+    Static,
+    Symmetrical,
+    Symmetry,
+)
 from mura.errors import SourceLocation, SpecError
-from mura.model import Arm, Constraint, Parallel, Sequence, Static, Symmetrical, Symmetry
 from mura.values import Direction, HandShape, Location, PalmOrientation
 
 #: Symmetry kinds: left-right mirror and parallel (HamNoSys ``hamsymmlr``/``hamsymmpar``).

@@ -12,11 +12,11 @@ import sys
 import time
 import webbrowser
 
-from agent.agent import PerformanceError, rest_motion
 from agent.commands.render import add_agent_options, make_agent
 from agent.live_server import LiveServer
+from agent.performance import PerformanceError, rest_motion
 from blackboard.events import Event, FramesReady, SpeechStarted
-from motor.avatar import AvatarError
+from motor.body.avatar import AvatarError
 from mura.errors import SpecError
 from tts import SpeechError
 

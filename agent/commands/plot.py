@@ -7,15 +7,15 @@ import argparse
 import sys
 from pathlib import Path
 
-from agent.agent import read_utterance
 from agent.commands.render import add_agent_options
 from agent.plots import plot_timeline, plot_wrist_paths
+from agent.sources import read_utterance
 from blackboard.clock import VirtualClock
 from blackboard.scheduler import Scheduler, SchedulerConfig
-from motor.avatar import AvatarError, load_avatar
+from motor.arm.wrist_position import WristPositionLMP
+from motor.body.avatar import AvatarError, load_avatar
 from motor.control import MotorControl
-from motor.lmp import WristPositionLMP
-from motor.program import MotorProgram
+from motor.program.gesture import MotorProgram
 from mura.errors import SpecError
 from tts import SpeechError, make_synthesizer
 

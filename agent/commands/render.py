@@ -9,7 +9,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.agent import Agent, PerformanceError
-from motor.avatar import AvatarError
+from motor.body.avatar import AvatarError
 from mura.errors import SpecError
 from tts import SpeechError
 

@@ -21,9 +21,10 @@ from tqdm import tqdm
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
 from agent.export.staging import staged_text
-from motor.avatar import load_avatar
-from motor.sign_planning import SignPlan, SignPlanningError, plan_sign
-from motor.signing import SignedMotion, realize_signs
+from motor.body.avatar import load_avatar
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.planning import plan_sign
+from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
 from mura.sigml import parse_sigml

@@ -3,7 +3,7 @@
 import pytest
 
 from agent.examples import assembly_expert, describe_objects
-from mura.model import iter_leaves
+from mura.constraints import iter_leaves
 from mura.murml import parse_utterance
 
 

@@ -5,7 +5,7 @@ import pytest
 
 from bench import quality
 from motor import quaternion as quat
-from motor.avatar import load_avatar
+from motor.body.avatar import load_avatar
 from motor.motion import Motion
 
 

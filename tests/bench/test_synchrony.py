@@ -95,14 +95,13 @@ def test_bad_input_is_named(call, message):
 
 def test_rendered_example_utterance(tmp_path):
     """The real pipeline end to end: fig2's strokes are found, the motion is clean."""
+    from bench.machine import REPO_ROOT
     from blackboard.clock import VirtualClock
     from blackboard.scheduler import Scheduler
-    from motor.avatar import load_avatar
+    from motor.body.avatar import load_avatar
     from motor.control import MotorControl
     from mura.murml import load_utterance
     from tts import FakeSynthesizer
-
-    from bench.machine import REPO_ROOT
 
     avatar = load_avatar("max")
     performed = Scheduler(FakeSynthesizer(), MotorControl(avatar, 60.0), VirtualClock()).run(

@@ -14,10 +14,12 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+
 from blackboard import GestureDemands, TimePegs
 from motor.motion import Motion
-from motor.trajectory import fitts_duration
-from mura.model import ARM_SLOTS, BehaviorSpec, Dynamic, Repetition, Symmetrical, iter_leaves
+from motor.trajectory.spline import fitts_duration
+from mura.constraints import ARM_SLOTS, Dynamic, Repetition, Symmetrical, iter_leaves
+from mura.model import BehaviorSpec
 from mura.murml import load_utterance
 from tts import FakeSynthesizer, SpeechError, SpeechRequest, SpeechTiming
 

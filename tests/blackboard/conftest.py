@@ -3,8 +3,14 @@
 from __future__ import annotations
 
 import pytest
-
-from blackboard_fakes import CORPUS, UTTERANCES, FailingSpeech, FakeMotor, RecordingSpeech, utterance  # noqa: F401
+from blackboard_fakes import (  # noqa: F401
+    CORPUS,
+    UTTERANCES,
+    FailingSpeech,
+    FakeMotor,
+    RecordingSpeech,
+    utterance,
+)
 
 
 @pytest.fixture

@@ -5,15 +5,20 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+from blackboard_fakes import FailingSpeech, FakeMotor, RecordingSpeech, utterance
 
-from motor.trajectory import fitts_duration
-
-from blackboard import BehaviorError, ChunkState, OverlappingGestures, ScheduleError, Scheduler, VirtualClock
+from blackboard import (
+    BehaviorError,
+    ChunkState,
+    OverlappingGestures,
+    ScheduleError,
+    Scheduler,
+    VirtualClock,
+)
+from motor.trajectory.spline import fitts_duration
 from mura.model import Affiliate, Utterance
 from mura.murml import parse_utterance
 from tts import SpeechError
-
-from blackboard_fakes import FailingSpeech, FakeMotor, RecordingSpeech, utterance
 
 FOUR_CHUNKS = """<definition><utterance><specification>
   First <time id="a1"/> this <time id="a2" chunkborder="true"/>

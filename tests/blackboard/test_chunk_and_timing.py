@@ -5,8 +5,15 @@ from __future__ import annotations
 import pytest
 
 from blackboard import (
-    TRANSITIONS, ChunkState, ChunkStateMachine, GestureDemands, GestureRequest, IllegalTransition,
-    TimingConfig, TimingConflict, time_chunk,
+    TRANSITIONS,
+    ChunkState,
+    ChunkStateMachine,
+    GestureDemands,
+    GestureRequest,
+    IllegalTransition,
+    TimingConfig,
+    TimingConflict,
+    time_chunk,
 )
 
 S = ChunkState

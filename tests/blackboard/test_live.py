@@ -6,10 +6,15 @@ import threading
 import time
 
 import pytest
-
-from blackboard import ChunkState, ChunkStateChanged, Scheduler, SchedulerConfig, WallClock
-
 from blackboard_fakes import UTTERANCES, FakeMotor, RecordingSpeech, utterance
+
+from blackboard import (
+    ChunkState,
+    ChunkStateChanged,
+    Scheduler,
+    SchedulerConfig,
+    WallClock,
+)
 
 SPEEDUP = 20.0
 CONFIG = SchedulerConfig(live_margin=1.0)  # clock seconds planning may take: 50 ms of wall time at 20×

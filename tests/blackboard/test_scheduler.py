@@ -6,11 +6,10 @@ import json
 
 import numpy as np
 import pytest
+from blackboard_fakes import CORPUS, UTTERANCES, FakeMotor, RecordingSpeech, utterance
 
 from blackboard import ChunkState, FramesReady, Scheduler, SpeechStarted, VirtualClock
 from mura.murml import load_utterance
-
-from blackboard_fakes import CORPUS, UTTERANCES, FakeMotor, RecordingSpeech, utterance
 
 ORDER = ["InPrep", "Pending", "Lurking", "InExec", "Subsiding", "Completed"]
 

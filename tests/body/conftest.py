@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from motor.avatar import Avatar, load_avatar
+from motor.body.avatar import Avatar, load_avatar
 
 AVATARS = ("max", "kim")
 

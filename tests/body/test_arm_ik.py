@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm_ik import ArmSolution, solve_arm
-from motor.avatar import Avatar
-from motor.hand_orientation import hand_rotation
-from motor.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.arm.hand_orientation import hand_rotation
+from motor.arm.ik import ArmSolution, solve_arm
+from motor.body.avatar import Avatar
+from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
 from mura.murml_vocabulary import parse_direction, parse_palm_orientation
 from mura.values import Direction, PalmOrientation
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.avatar import LONG_FINGERS
-from motor.hand import PARAMETER_COUNT, handshape_params, hand_rotations
-from motor.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.body.avatar import LONG_FINGERS
+from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.hand.shape import PARAMETER_COUNT, hand_rotations, handshape_params
 from mura.errors import SpecError
 from mura.values import BASIC_HANDSHAPES, FingerBend, HandShape
 

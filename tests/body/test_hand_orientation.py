@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.hand_orientation import hand_rotation, hand_rotations_from_vectors
-from motor.kinematics import forward_kinematics, identity_rotations
+from motor.arm.hand_orientation import hand_rotation, hand_rotations_from_vectors
+from motor.body.kinematics import forward_kinematics, identity_rotations
 from mura.murml_vocabulary import parse_direction, parse_palm_orientation
 from mura.values import AXES, Direction, PalmOrientation, direction_from_letters
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from motor.kinematics import forward_kinematics, identity_rotations
+from motor.body.kinematics import forward_kinematics, identity_rotations
 
 
 def _reference(avatar, rotations, root):

@@ -5,10 +5,21 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.avatar import Avatar
-from motor.locations import ARM_SITES, CENTRAL_SITES, FINGER_SITES, PAIRED_SITES, resolve_location
+from motor.body.avatar import Avatar
+from motor.body.locations import (
+    ARM_SITES,
+    CENTRAL_SITES,
+    FINGER_SITES,
+    PAIRED_SITES,
+    resolve_location,
+)
 from mura.errors import SpecError
-from mura.murml_vocabulary import GRID_DISTANCES, GRID_HEIGHTS, GRID_LATERALS, parse_grid_location
+from mura.murml_vocabulary import (
+    GRID_DISTANCES,
+    GRID_HEIGHTS,
+    GRID_LATERALS,
+    parse_grid_location,
+)
 from mura.values import FINGERS, BetweenLocation, BodySite, GridLocation, PointLocation
 
 

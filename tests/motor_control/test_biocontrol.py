@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.biocontrol import MANNERS, Manner, integrate_manner, minimum_jerk, movement_duration, profile
+from motor.trajectory.biocontrol import (
+    MANNERS,
+    Manner,
+    integrate_manner,
+    minimum_jerk,
+    movement_duration,
+    profile,
+)
 
 U = np.linspace(0.0, 1.0, 2001)
 

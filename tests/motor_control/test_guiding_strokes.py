@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.guiding_strokes import (
+from motor.trajectory.guiding_strokes import (
     circle_breakpoints,
     circle_from_start,
     curve_breakpoints,

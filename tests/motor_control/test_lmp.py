@@ -6,19 +6,19 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from motor.guiding_strokes import curve_breakpoints
-from motor.lmp import (
+from motor.arm.swivel import SwivelLMP
+from motor.arm.wrist_position import WristPositionLMP
+from motor.arm.wrist_rotation import WristRotationLMP
+from motor.hand.lmp import HandShapeLMP
+from motor.program.lmp import (
     ChannelState,
     ChannelTimeline,
-    HandShapeLMP,
     RetractionLMP,
-    SwivelLMP,
     TimePegs,
     VectorKeyframeLMP,
-    WristPositionLMP,
-    WristRotationLMP,
 )
-from motor.trajectory import Accent, fitts_duration
+from motor.trajectory.guiding_strokes import curve_breakpoints
+from motor.trajectory.spline import Accent, fitts_duration
 
 FPS = 120.0
 REST = np.array([0.2, 0.9, 0.1])

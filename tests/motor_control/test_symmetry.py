@@ -6,9 +6,15 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from motor.symmetry import mirror_directions, mirror_points, mirror_quaternions, mirror_trajectory, reflection_signs
-from motor.trajectory import plan_wrist_trajectory
-from mura.model import Symmetry
+from motor.trajectory.spline import plan_wrist_trajectory
+from motor.trajectory.symmetry import (
+    mirror_directions,
+    mirror_points,
+    mirror_quaternions,
+    mirror_trajectory,
+    reflection_signs,
+)
+from mura.constraints import Symmetry
 
 
 def sym(planes: str) -> Symmetry:

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicHermiteSpline
 
-from motor.guiding_strokes import ellipse_breakpoints
-from motor.trajectory import (
+from motor.trajectory.guiding_strokes import ellipse_breakpoints
+from motor.trajectory.spline import (
     Accent,
     WristTrajectory,
     breakpoint_velocities,

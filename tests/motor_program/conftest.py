@@ -8,12 +8,13 @@ from collections.abc import Sequence
 import numpy as np
 import pytest
 
-from motor.avatar import Avatar, load_avatar
+from motor.body.avatar import Avatar, load_avatar
+from motor.body.kinematics import Pose, forward_kinematics
 from motor.control import MotorControl
-from motor.kinematics import Pose, forward_kinematics
-from motor.lmp import TimePegs
 from motor.motion import Motion
-from mura.model import AbsoluteTiming, BehaviorSpec, Constraint, Gesture
+from motor.program.lmp import TimePegs
+from mura.constraints import Constraint
+from mura.model import AbsoluteTiming, BehaviorSpec, Gesture
 
 
 @pytest.fixture(scope="session")

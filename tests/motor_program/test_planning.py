@@ -6,12 +6,33 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from motor.arm.wrist_position import WristPositionLMP
+from motor.arm.wrist_rotation import WristRotationLMP
 from motor.control import MotorControl
-from motor.lmp import HandShapeLMP, RetractionLMP, WristPositionLMP, WristRotationLMP
-from motor.program import POINTING_REACH, GestureDemands, PlanningError, movement_time, rest_handshape
-from motor.trajectory import fitts_duration
-from mura.model import Arm, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static, Symmetrical, Symmetry
-from mura.values import Direction, GridLocation, HandShape, PalmOrientation, PointLocation
+from motor.hand.lmp import HandShapeLMP
+from motor.program.fragment import POINTING_REACH, PlanningError, movement_time
+from motor.program.gesture import GestureDemands, rest_handshape
+from motor.program.lmp import RetractionLMP
+from motor.trajectory.spline import fitts_duration
+from mura.constraints import (
+    Arm,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Sequence,
+    Static,
+    Symmetrical,
+    Symmetry,
+)
+from mura.values import (
+    Direction,
+    GridLocation,
+    HandShape,
+    PalmOrientation,
+    PointLocation,
+)
 from tests.motor_program.conftest import behavior, pegs
 
 CHEST = GridLocation("LocChest", "LocCenterRight", "LocNorm")

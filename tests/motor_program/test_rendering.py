@@ -10,12 +10,12 @@ import pytest
 
 from motor import control as control_module
 from motor import quaternion as quat
+from motor.body.collision import outside_torso
 from motor.control import MotorControl
-from motor.hand import hand_rotations, handshape_params
-from motor.lmp import TimePegs
-from motor.torso import outside_torso
+from motor.hand.shape import hand_rotations, handshape_params
+from motor.program.lmp import TimePegs
+from mura.constraints import Arm, Dynamic, Parallel, Segment, SegmentKind, Static
 from mura.lexicon import load_lexicon
-from mura.model import Arm, Dynamic, Parallel, Segment, SegmentKind, Static
 from mura.murml import load_utterance, load_utterances
 from mura.values import Direction, GridLocation, HandShape, PalmOrientation
 from tests.motor_program.conftest import behavior, joint_path, pegs, pose, render

@@ -3,7 +3,8 @@
 import pytest
 
 from mura.check import check_file
-from mura.model import AbsoluteTiming, Arm, Dynamic, Symmetrical, iter_leaves
+from mura.constraints import Arm, Dynamic, Symmetrical, iter_leaves
+from mura.model import AbsoluteTiming
 from mura.murml import load_utterance
 from mura.values import GridLocation, Vector
 

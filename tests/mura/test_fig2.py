@@ -2,17 +2,17 @@
 
 import pytest
 
-from mura.model import (
-    Affiliate,
-    Arm,
-    Dynamic,
-    Parallel,
-    SegmentKind,
-    Static,
-    Symmetrical,
-)
+from mura.constraints import Arm, Dynamic, Parallel, SegmentKind, Static, Symmetrical
+from mura.model import Affiliate
 from mura.murml import load_utterance
-from mura.values import Direction, GridLocation, HandShape, FingerBend, PalmOrientation, PointLocation
+from mura.values import (
+    Direction,
+    FingerBend,
+    GridLocation,
+    HandShape,
+    PalmOrientation,
+    PointLocation,
+)
 
 
 @pytest.fixture(scope="module")

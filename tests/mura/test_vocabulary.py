@@ -5,7 +5,12 @@ import math
 import pytest
 
 from mura.murml import parse_utterance
-from mura.murml_vocabulary import parse_direction, parse_grid_location, parse_handshape, parse_palm_orientation
+from mura.murml_vocabulary import (
+    parse_direction,
+    parse_grid_location,
+    parse_handshape,
+    parse_palm_orientation,
+)
 from mura.values import FingerBend, GridLocation
 
 R = 1 / math.sqrt(2)

@@ -9,9 +9,18 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from motor import quaternion as quat
-from motor.avatar import load_avatar
+from motor.arm.swivel import SwivelLMP
+from motor.arm.wrist_rotation import WristRotationLMP
+from motor.body.avatar import load_avatar
 from motor.control import MotorControl
-from motor.lmp import ChannelState, ChannelTimeline, RetractionLMP, SwivelLMP, TimePegs, WristRotationLMP, _blend, _locate
+from motor.program.lmp import (
+    ChannelState,
+    ChannelTimeline,
+    RetractionLMP,
+    TimePegs,
+    _blend,
+    _locate,
+)
 
 RNG = np.random.default_rng(7)
 HALF_TURNS = np.array([[0.0, 0.0, 0.0, 1.0], [0.70710678, 0.0, 0.70710678, 0.0], [0.0, -1.0, 0.0, 0.0], [0.0, 0.0, -1.0, 0.0]])
@@ -90,8 +99,9 @@ def avatar():
 
 
 def _programs(control):
-    from mura.murml import load_utterance
     from pathlib import Path
+
+    from mura.murml import load_utterance
 
     path = Path(__file__).resolve().parents[2] / "specs" / "utterances" / "assembly_two_bars.xml"
     gestures = [b for b in load_utterance(path).behaviors if b.gesture is not None]

@@ -12,9 +12,9 @@ import json
 
 import numpy as np
 import pytest
+from golden_cases import render, sources
 
 from blackboard.scheduler import SchedulerConfig
-from golden_cases import render, sources
 from motor.control import MotorControl
 
 CASES = sources()

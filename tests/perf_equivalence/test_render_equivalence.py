@@ -15,7 +15,6 @@ import math
 
 import numpy as np
 import pytest
-
 from golden_cases import GOLDEN, record, render, sources
 
 TOLERANCE = 1e-6

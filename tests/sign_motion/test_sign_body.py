@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from sign_helpers import sign_from
 
-from motor.sign_planning import SignPlanningError, plan_sign
-from motor.signing import head_movement, realize_signs
-from motor.torso import outside_torso
+from motor.body.collision import outside_torso
+from motor.signing.plan import SignPlanningError
+from motor.signing.planning import plan_sign
+from motor.signing.sequence import head_movement, realize_signs
 from mura.sigml import parse_sigml
 from mura.signs import HandPosture, NonmanualItem, Sign
 from mura.values import BodySite

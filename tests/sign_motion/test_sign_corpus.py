@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from motor.sign_planning import SignPlan, SignPlanningError, plan_signs
-from motor.signing import check_motion, realize_signs
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.planning import plan_signs
+from motor.signing.sequence import check_motion, realize_signs
 from mura.sigml import parse_sigml
 
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from sign_helpers import sign_from
 
-from motor.biocontrol import movement_duration
-from motor.kinematics import forward_kinematics
-from motor.sign_planning import SIZE_FRACTIONS, plan_sign
-from motor.signing import check_motion, realize_signs
+from motor.body.kinematics import forward_kinematics
+from motor.signing.planning import SIZE_FRACTIONS, plan_sign
+from motor.signing.sequence import check_motion, realize_signs
+from motor.trajectory.biocontrol import movement_duration
 
 HERE = "hamsymmlr hamfinger2 hamthumbacrossmod hamfingerbendmod hamextfingero hampalmd hamstomach hamlrat hammoved hamsmallmod hamrepeatfromstart"
 FIGURE_7 = """<sigml><hamgestural_sign gloss="here">
@@ -138,7 +138,7 @@ def test_parallel_symmetry_translates_instead_of_mirroring(avatar):
 
 
 def test_hand_constellation_puts_the_named_sites_together(avatar):
-    from motor.locations import resolve_location
+    from motor.body.locations import resolve_location
     from mura.values import BodySite
 
     symbols = "hamflathand hamparbegin hamextfingerol hampalml hamplus hamextfingeror hampalmr hamparend hamparbegin hamfingertip hamplus hampalm hamparend hamtouch"

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from agent import Agent
-from motor.kinematics import forward_kinematics
+from motor.body.kinematics import forward_kinematics
 from mura.errors import SpecError
 from mura.murml import load_utterance, parse_utterance
 
@@ -73,7 +73,7 @@ def test_the_two_handed_sign_is_mirrored_and_moves_down(performance):
 
 
 def test_same_behaviour_id_in_two_utterances_plans_each_sign():
-    from motor.avatar import load_avatar
+    from motor.body.avatar import load_avatar
     from motor.control import MotorControl
 
     control = MotorControl(load_avatar("max"))

@@ -5,11 +5,10 @@ from __future__ import annotations
 import re
 
 import pytest
+from signing_helpers import CORPORA
 
 from mura.sigml import parse_sigml
 from mura.signs import NonmanualItem, SigmlParseResult
-
-from signing_helpers import CORPORA
 
 _POSITIONED = re.compile(r"(symbol \w+ at position \d+|stream ends early at position \d+|hamaltbegin at position \d+)")
 

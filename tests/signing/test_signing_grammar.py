@@ -5,16 +5,24 @@ from __future__ import annotations
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from signing_helpers import hns_document, sign_of
 
+from mura.constraints import (
+    Arm,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Sequence,
+    Static,
+)
 from mura.errors import SpecError
 from mura.hamnosys import hamnosys_string, parse_hamnosys
 from mura.hamnosys_symbols import vocabulary
-from mura.model import Arm, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static
 from mura.sigml import parse_sigml
 from mura.signs import HandConstellation, SignSymmetry
 from mura.values import BetweenLocation, BodySite, Direction, FingerBend, HandShape
-
-from signing_helpers import hns_document, sign_of
 
 HERE = "hamsymmlr hamfinger2 hamthumbacrossmod hamfingerbendmod hamextfingero hampalmd hamstomach hamlrat hammoved hamsmallmod hamrepeatfromstart"
 DOWN = Direction((0.0, -1.0, 0.0), "hammoved")
@@ -308,7 +316,7 @@ def test_sign_made_by_the_nondominant_hand() -> None:
 
 
 def test_whole_sign_as_one_constraint_tree() -> None:
-    from mura.model import Symmetrical, Symmetry, iter_leaves
+    from mura.constraints import Symmetrical, Symmetry, iter_leaves
 
     sign = sign_of(HERE)
     tree = sign.to_constraint()

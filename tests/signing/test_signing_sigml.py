@@ -3,15 +3,22 @@
 from __future__ import annotations
 
 import pytest
+from signing_helpers import hns_document
 
 import mura.sigml
+from mura.constraints import (
+    Arm,
+    Dynamic,
+    Parallel,
+    Repetition,
+    Segment,
+    SegmentKind,
+    Sequence,
+)
 from mura.errors import SpecError
-from mura.model import Arm, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence
 from mura.sigml import parse_sigml
 from mura.signs import HandConstellation, NonmanualItem, SignSymmetry
 from mura.values import BetweenLocation, BodySite, Direction, HandShape
-
-from signing_helpers import hns_document
 
 FIGURE_7 = """<?xml version="1.0" encoding="utf-8"?>
 <sigml>

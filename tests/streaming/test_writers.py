@@ -7,12 +7,11 @@ import io
 import numpy as np
 import pytest
 
-from agent.agent import rest_motion
 from agent.export.bvh import StreamingBvh, bvh_text
 from agent.export.html import render_html, write_html_stream
-from agent.performance import SILENT_RATE
+from agent.performance import SILENT_RATE, rest_motion
 from agent.streaming import StreamingWav
-from motor.avatar import load_avatar
+from motor.body.avatar import load_avatar
 from motor.motion import Motion
 from tts.wav import read_wav, write_wav
 

@@ -8,7 +8,16 @@ import wave
 import numpy as np
 import pytest
 
-from tts import FakeSynthesizer, PlaybackUnavailable, SpeechError, SpeechRequest, make_player, play, read_wav, write_wav
+from tts import (
+    FakeSynthesizer,
+    PlaybackUnavailable,
+    SpeechError,
+    SpeechRequest,
+    make_player,
+    play,
+    read_wav,
+    write_wav,
+)
 
 
 @pytest.mark.parametrize("sample_rate", [16000, 22050, 44100])

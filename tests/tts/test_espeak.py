@@ -10,8 +10,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tts import (
+    BackendUnavailable,
+    EspeakSynthesizer,
+    SpeechError,
+    SpeechRequest,
+    TextMark,
+    UnknownVoice,
+)
 from tts.espeak import _Engine
-from tts import BackendUnavailable, EspeakSynthesizer, SpeechError, SpeechRequest, TextMark, UnknownVoice
 
 
 @pytest.fixture(scope="module")

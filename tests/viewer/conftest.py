@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from headless_chromium import Browser, find_chromium
 from scipy.spatial.transform import Rotation
 
-from headless_chromium import Browser, find_chromium
 from motor.motion import Motion
 
 FPS = 60.0

@@ -13,7 +13,7 @@ with σ the splay axis (normal to the palm), β the bend axis, λ the hand's lon
 
 Parameter layout (:data:`PARAMETER_COUNT` = 26):
 
-* ``[0:7]`` weights of the thumb postures of :data:`motor.avatar.THUMB_POSTURES` (sum 1);
+* ``[0:7]`` weights of the thumb postures of :data:`motor.body.avatar.THUMB_POSTURES` (sum 1);
 * ``[7]`` how much an explicit thumb bending overrides the posture's hinges, ``[8:10]`` that
   bending (middle, end) as proportions of the thumb's maximum bend;
 * ``[10 + 4k : 14 + 4k]`` for long finger k (index, middle, ring, pinky): base bend,
@@ -28,9 +28,22 @@ from dataclasses import replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import LONG_FINGERS, THUMB_POSTURES, Avatar, FingerCalibration, HandFrame
+from motor.body.avatar import (
+    LONG_FINGERS,
+    THUMB_POSTURES,
+    Avatar,
+    FingerCalibration,
+    HandFrame,
+)
 from mura.errors import SpecError
-from mura.values import BASIC_HANDSHAPES, FINGER_BENDINGS, FINGERS, OPENINGS, THUMB_POSITIONS, HandShape
+from mura.values import (
+    BASIC_HANDSHAPES,
+    FINGER_BENDINGS,
+    FINGERS,
+    OPENINGS,
+    THUMB_POSITIONS,
+    HandShape,
+)
 
 THUMB_WEIGHTS = slice(0, len(THUMB_POSTURES))
 THUMB_OVERRIDE = len(THUMB_POSTURES)

@@ -1,15 +1,15 @@
 """Signs realized by the motor core: SiGML/HamNoSys signs in a row → :class:`Motion`.
 
-Each sign is planned on its own clock (:func:`motor.sign_planning.plan_sign`) and placed
+Each sign is planned on its own clock (:func:`motor.signing.planning.plan_sign`) and placed
 on the utterance clock one after the other: the avatar stands in its ``rest`` posture for
 :data:`REST_LEAD` seconds, each sign begins with a *transition* from wherever the hands
 are to its first posture — lax, or targetted into a static sign (seed 000, 4.5) — lasting
-the longer of :func:`motor.biocontrol.movement_duration` and Fitts' law for the distance
+the longer of :func:`motor.trajectory.biocontrol.movement_duration` and Fitts' law for the distance
 the wrists travel, then performs its moves; after the last sign the hands return to rest
-along the lax profile in :func:`motor.program.retraction_duration` and stay there for
+along the lax profile in :func:`motor.program.gesture.retraction_duration` and stay there for
 :data:`REST_TAIL` seconds. A hand a sign does not use goes back to rest during that sign.
 
-The sign LMPs (:class:`motor.sign_lmp.SignChannelLMP`, one per channel of each arm and
+The sign LMPs (:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and
 sign) are activated on :class:`motor.control.MotorControl`, which samples them and solves
 both arms (analytic IK with the natural swivel, torso avoidance included) and hands for
 every frame. Non-manual tiers that name a head movement (nod, shake, tilt) turn the head
@@ -24,24 +24,20 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm_ik import solve_arm
-from motor.avatar import Avatar
-from motor.biocontrol import movement_duration, profile
+from motor.arm.ik import solve_arm
+from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.collision import outside_torso
+from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
-from motor.kinematics import forward_kinematics
-from motor.lmp import LMP, TimePegs
 from motor.motion import Motion
-from motor.program import ARMS, AVATAR_SIDE, rest_handshape, retraction_duration
-from motor.sign_lmp import SignChannelLMP
-from motor.sign_planning import (
-    HandPose,
-    SignPlan,
-    clear_paths,
-    plan_sign,
-    rotations_along,
-)
-from motor.torso import outside_torso
-from motor.trajectory import fitts_duration
+from motor.program.gesture import rest_handshape, retraction_duration
+from motor.program.lmp import LMP, TimePegs
+from motor.signing.lmp import SignChannelLMP
+from motor.signing.plan import HandPose, SignPlan
+from motor.signing.planning import plan_sign
+from motor.signing.reach import clear_paths, rotations_along
+from motor.trajectory.biocontrol import movement_duration, profile
+from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
 
 #: Standing at rest before the first sign and after the last, seconds.
@@ -103,7 +99,7 @@ class SignProgram:
 def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float = 25.0) -> SignedMotion:
     """Signs (or their plans) one after another as one motion at ``fps`` frames/s.
 
-    Raises :class:`motor.sign_planning.SignPlanningError` for a sign that cannot be
+    Raises :class:`motor.signing.planning.SignPlanningError` for a sign that cannot be
     planned (plan signs first with :func:`plan_sign` to skip such signs one by one).
     """
     plans = [item if isinstance(item, SignPlan) else plan_sign(avatar, item) for item in signs]
@@ -171,7 +167,7 @@ def _transition_ways(
 ) -> list[dict[str, np.ndarray]]:
     """Interior points of every straight wrist transition, one every
     :data:`TRANSITION_SPACING` metres, kept outside the torso and within reach
-    (:func:`motor.sign_planning.clear_paths`; a transition is not a path the sign chose)."""
+    (:func:`motor.signing.planning.clear_paths`; a transition is not a path the sign chose)."""
     ways: list[dict[str, np.ndarray]] = [{} for _ in legs]
     for arm in ARMS:
         paths, turns = [], []
@@ -190,7 +186,7 @@ def _transition_ways(
 def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
     """Frames whose upper arm entered the torso solved again, each with the better of two
     swivels by the IK's own penetration diagnostics: the per-frame natural swivel of
-    :func:`motor.arm_ik.solve_arm`, and the natural swivel of the wrist position alone
+    :func:`motor.arm.ik.solve_arm`, and the natural swivel of the wrist position alone
     (without the hand rotation's wrist-comfort terms), the hand still turned as asked.
 
     The control's swivel is sampled on a coarse grid and interpolated; where the natural

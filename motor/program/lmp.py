@@ -41,8 +41,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from motor import quaternion as quat
-from motor.biocontrol import TimeProfile, minimum_jerk, profile
-from motor.trajectory import Accent, WristTrajectory, fitts_duration, plan_wrist_trajectory, time_breakpoints
+from motor.trajectory.biocontrol import TimeProfile, minimum_jerk, profile
 
 Channel = tuple[str, str]
 #: Channels whose values are rotations (scalar-last quaternions); the rest are vectors.
@@ -51,7 +50,6 @@ ROTATION_CHANNELS: frozenset[str] = frozenset({"hand_rotation"})
 CHANNEL_SIZES: dict[str, int] = {"wrist_position": 3, "swivel": 1, "hand_rotation": 4}
 #: Step of the backward differences that estimate velocities, seconds.
 _DIFFERENCE_STEP = 1e-4
-_AT_REST = 1e-6
 
 
 @dataclass(frozen=True)
@@ -125,7 +123,7 @@ class LMP(Protocol):
     def activate(self, state: ChannelState) -> Realization: ...
 
 
-def _profile(source: TimeProfile | str) -> TimeProfile:
+def as_profile(source: TimeProfile | str) -> TimeProfile:
     return profile(source) if isinstance(source, str) else source
 
 
@@ -142,24 +140,6 @@ def _blend(times: np.ndarray, start: float, window: float) -> tuple[np.ndarray, 
     tau = np.clip(np.asarray(times, dtype=float) - start, 0.0, window)
     s = tau / window
     return tau * (1.0 - s) ** 2, np.where(tau < window, (1.0 - s) * (1.0 - 3.0 * s), 0.0)
-
-
-@dataclass(frozen=True, eq=False)
-class SplineRealization:
-    """A wrist position following a :class:`WristTrajectory`."""
-
-    trajectory: WristTrajectory
-
-    @property
-    def warnings(self) -> tuple[str, ...]:
-        return self.trajectory.warnings
-
-    def sample(self, times: np.ndarray) -> np.ndarray:
-        return self.trajectory.position(times)
-
-    def state(self, time: float) -> ChannelState:
-        t = np.array([time])
-        return ChannelState(self.trajectory.position(t)[0], self.trajectory.velocity(t)[0], float(time))
 
 
 @dataclass(frozen=True, eq=False)
@@ -228,12 +208,22 @@ class RotationKeyframes:
         return ChannelState(q[0], (4.0 * turns[0] - turns[1]) / (2.0 * h), float(time))
 
 
-def _check_activation(channel: Channel, state: ChannelState, first_target: float) -> None:
+def check_activation(channel: Channel, state: ChannelState, first_target: float) -> None:
     if not state.time < first_target:
         raise ValueError(f"{channel}: activated at {state.time}, not before its first target time {first_target}")
 
 
-def _key_times(pegs: TimePegs, count: int, given: np.ndarray | Sequence[float] | None, name: str) -> np.ndarray:
+def rotation_keyframes(
+    channel: Channel, state: ChannelState, keys: np.ndarray, times: np.ndarray, time_profile: TimeProfile
+) -> RotationKeyframes:
+    """Activation of a slerp through unit quaternions ``keys`` ``(m, 4)`` at ``times``."""
+    check_activation(channel, state, float(times[0]))
+    knots = np.concatenate([[state.time], times])
+    rotations = Rotation.from_quat(np.concatenate([np.asarray(state.value, dtype=float)[None], keys]))
+    return RotationKeyframes(knots, rotations, np.asarray(state.velocity, dtype=float), time_profile)
+
+
+def key_times(pegs: TimePegs, count: int, given: np.ndarray | Sequence[float] | None, name: str) -> np.ndarray:
     """Key times: given, or the first key at ``ready`` and the rest spread over the stroke."""
     if given is None:
         rest = np.linspace(pegs.stroke_start, pegs.stroke_end, count)[1:] if count > 1 else np.empty(0)
@@ -279,75 +269,17 @@ class VectorKeyframeLMP:
         if expected is not None and keys.shape[1] != expected:
             raise ValueError(f"{self.channel}: keys have {keys.shape[1]} values, the channel takes {expected}")
         object.__setattr__(self, "keys", keys)
-        object.__setattr__(self, "key_times", _key_times(self.pegs, keys.shape[0], self.key_times, str(self.channel)))
-        object.__setattr__(self, "time_profile", _profile(self.time_profile))
+        object.__setattr__(self, "key_times", key_times(self.pegs, keys.shape[0], self.key_times, str(self.channel)))
+        object.__setattr__(self, "time_profile", as_profile(self.time_profile))
 
     def activate(self, state: ChannelState) -> VectorKeyframes:
         value = np.asarray(state.value, dtype=float)
         if value.shape != self.keys.shape[1:]:
             raise ValueError(f"{self.channel}: activation value has shape {value.shape}, keys {self.keys.shape[1:]}")
-        _check_activation(self.channel, state, float(self.key_times[0]))
+        check_activation(self.channel, state, float(self.key_times[0]))
         knots = np.concatenate([[state.time], self.key_times])
         values = np.concatenate([value[None], self.keys])
         return VectorKeyframes(knots, values, np.asarray(state.velocity, dtype=float), self.time_profile)
-
-
-class HandShapeLMP(VectorKeyframeLMP):
-    """Interpolation of hand parameter vectors ``(m, P)`` on ``(side, "handshape")``."""
-
-    def __init__(
-        self,
-        side: str,
-        pegs: TimePegs,
-        shapes: np.ndarray,
-        key_times: np.ndarray | None = None,
-        time_profile: TimeProfile | str | None = None,
-    ) -> None:
-        super().__init__((side, "handshape"), pegs, shapes, key_times, time_profile or minimum_jerk())
-
-
-class SwivelLMP(VectorKeyframeLMP):
-    """Interpolation of the arm's swivel angle (radians) on ``(side, "swivel")``."""
-
-    def __init__(
-        self,
-        side: str,
-        pegs: TimePegs,
-        angles: np.ndarray | Sequence[float],
-        key_times: np.ndarray | None = None,
-        time_profile: TimeProfile | str | None = None,
-    ) -> None:
-        super().__init__((side, "swivel"), pegs, np.asarray(angles, dtype=float), key_times, time_profile or minimum_jerk())
-
-
-@dataclass(frozen=True, eq=False)
-class WristRotationLMP:
-    """Slerp of the hand's orientation through key quaternions ``(m, 4)`` (scalar-last)."""
-
-    side: str
-    pegs: TimePegs
-    keys: np.ndarray
-    key_times: np.ndarray | None = None
-    time_profile: TimeProfile | str = field(default_factory=minimum_jerk)
-
-    def __post_init__(self) -> None:
-        keys = np.atleast_2d(np.asarray(self.keys, dtype=float))
-        norms = np.linalg.norm(keys, axis=-1) if keys.ndim == 2 and keys.shape[1] == 4 else np.zeros(1)
-        if keys.ndim != 2 or keys.shape[1] != 4 or np.any(~np.isfinite(norms)) or np.any(norms < 1e-9):
-            raise ValueError(f"{self.channel}: keys must be non-zero (m, 4) quaternions, got shape {np.shape(self.keys)}")
-        object.__setattr__(self, "keys", keys / norms[:, None])
-        object.__setattr__(self, "key_times", _key_times(self.pegs, keys.shape[0], self.key_times, str(self.channel)))
-        object.__setattr__(self, "time_profile", _profile(self.time_profile))
-
-    @property
-    def channel(self) -> Channel:
-        return (self.side, "hand_rotation")
-
-    def activate(self, state: ChannelState) -> RotationKeyframes:
-        _check_activation(self.channel, state, float(self.key_times[0]))
-        knots = np.concatenate([[state.time], self.key_times])
-        rotations = Rotation.from_quat(np.concatenate([np.asarray(state.value, dtype=float)[None], self.keys]))
-        return RotationKeyframes(knots, rotations, np.asarray(state.velocity, dtype=float), self.time_profile)
 
 
 @dataclass(frozen=True, eq=False)
@@ -366,102 +298,14 @@ class RetractionLMP:
     def __post_init__(self) -> None:
         if self.pegs.ready <= self.pegs.start:
             raise ValueError(f"retraction on {self.channel}: ready {self.pegs.ready} must follow start {self.pegs.start}")
-        object.__setattr__(self, "time_profile", _profile(self.time_profile))
+        object.__setattr__(self, "time_profile", as_profile(self.time_profile))
 
     def activate(self, state: ChannelState) -> Realization:
         rest = np.atleast_1d(np.asarray(self.rest, dtype=float))
         times = np.array([self.pegs.ready])
         if self.channel[1] in ROTATION_CHANNELS:
-            return WristRotationLMP(self.channel[0], self.pegs, rest, times, self.time_profile).activate(state)
+            return rotation_keyframes(self.channel, state, rest[None], times, self.time_profile)
         return VectorKeyframeLMP(self.channel, self.pegs, rest[None], times, self.time_profile).activate(state)
-
-
-@dataclass(frozen=True, eq=False)
-class WristPositionLMP:
-    """Guiding strokes of the wrist, realized as a Hermite spline at activation.
-
-    Attributes:
-        side: ``"right"`` or ``"left"``.
-        pegs: time pegs; the preparation arrives at the first breakpoint at ``ready``,
-            the stroke runs through the breakpoints over ``[stroke_start, stroke_end]``.
-        breakpoints: ``(n, 3)`` positions, metres; one breakpoint is a static target.
-        breakpoint_times: ``(n,)`` explicit times, or None to time the stroke by the
-            power-law rule of :func:`motor.trajectory.time_breakpoints`.
-        curved: per-stroke curve flags (``n − 1``), for the 0.8 breakpoint gain.
-        accents: accents on strokes, indexed over ``breakpoints``.
-        warnings: notes from planning the breakpoints (e.g. a curve's default normal),
-            carried into the realization.
-    """
-
-    side: str
-    pegs: TimePegs
-    breakpoints: np.ndarray
-    breakpoint_times: np.ndarray | None = None
-    curved: tuple[bool, ...] | None = None
-    accents: tuple[Accent, ...] = ()
-    warnings: tuple[str, ...] = ()
-
-    def __post_init__(self) -> None:
-        points = np.atleast_2d(np.asarray(self.breakpoints, dtype=float))
-        if points.ndim != 2 or points.shape[1] != 3 or not np.all(np.isfinite(points)):
-            raise ValueError(f"{self.channel}: breakpoints must be finite (n, 3) positions, got {np.shape(self.breakpoints)}")
-        if self.pegs.ready <= self.pegs.start:
-            raise ValueError(f"{self.channel}: ready {self.pegs.ready} must follow start {self.pegs.start}")
-        if self.breakpoint_times is not None:
-            times = np.asarray(self.breakpoint_times, dtype=float)
-            if times.shape != (points.shape[0],) or times[0] < self.pegs.ready or np.any(np.diff(times) <= 0):
-                raise ValueError(f"{self.channel}: breakpoint times must increase from ready, one per breakpoint")
-        elif points.shape[0] > 1:
-            times = time_breakpoints(points, self.pegs.stroke_start, self.pegs.stroke_end)
-        else:
-            times = np.array([self.pegs.ready])
-        if self.curved is not None and len(self.curved) != points.shape[0] - 1:
-            raise ValueError(f"{self.channel}: curved needs one flag per stroke ({points.shape[0] - 1})")
-        object.__setattr__(self, "breakpoints", points)
-        object.__setattr__(self, "breakpoint_times", times)
-
-    @property
-    def channel(self) -> Channel:
-        return (self.side, "wrist_position")
-
-    def activate(self, state: ChannelState) -> SplineRealization:
-        _check_activation(self.channel, state, self.pegs.ready)
-        here = np.asarray(state.value, dtype=float)
-        velocity = np.asarray(state.velocity, dtype=float)
-        first, arrival = self.breakpoints[0], self.pegs.ready
-        amplitude = float(np.linalg.norm(first - here))
-        moving = float(np.linalg.norm(velocity)) > _AT_REST
-        warnings = list(self.warnings)
-        points, times = [here], [state.time]
-        if amplitude > _AT_REST or moving:
-            natural = float(fitts_duration(amplitude))
-            window = arrival - state.time
-            if natural > window:
-                warnings.append(
-                    f"{self.channel}: preparation of {amplitude:.3f} m squeezed into {window:.3f} s "
-                    f"(Fitts' law asks {natural:.3f} s)"
-                )
-            elif not moving and natural > 0.0 and arrival - natural > state.time:
-                points.append(here)
-                times.append(arrival - natural)
-            points.append(first)
-            times.append(arrival)
-        if self.breakpoint_times[0] > times[-1]:
-            points.append(first)
-            times.append(float(self.breakpoint_times[0]))
-        prefix = len(points) - 1
-        points.extend(self.breakpoints[1:])
-        times.extend(self.breakpoint_times[1:])
-        if len(points) == 1:
-            points.append(here)
-            times.append(max(self.pegs.end, state.time + _DIFFERENCE_STEP))
-        curved = None if self.curved is None else (False,) * prefix + tuple(self.curved)
-        accents = tuple(Accent(a.stroke + prefix, a.fraction) for a in self.accents)
-        trajectory = plan_wrist_trajectory(
-            np.array(points), np.array(times), start_velocity=velocity, curved=curved, accents=accents,
-            warnings=tuple(warnings),
-        )
-        return SplineRealization(trajectory)
 
 
 @dataclass(frozen=True, eq=False)

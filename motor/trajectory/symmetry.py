@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from motor.trajectory import WristTrajectory
-from mura.model import Symmetry
+from motor.trajectory.spline import WristTrajectory
+from mura.constraints import Symmetry
 
 _AXIS_OF_PLANE = {"S": 0, "T": 1, "F": 2}
 

@@ -27,9 +27,12 @@ import numpy as np
 from mura.murml_vocabulary import GRID_DISTANCES, GRID_HEIGHTS, GRID_LATERALS
 from mura.values import FINGERS
 
-AVATAR_DIR = Path(__file__).resolve().parents[1] / "specs" / "avatars"
+AVATAR_DIR = Path(__file__).resolve().parents[2] / "specs" / "avatars"
 
 SIDES: tuple[str, ...] = ("l", "r")
+#: The arms as the scheduler and the specs name them, and their side prefixes.
+ARMS: tuple[str, ...] = ("right", "left")
+AVATAR_SIDE: dict[str, str] = {"right": "r", "left": "l"}
 
 #: The trunk, neck and head joints every avatar has, root first.
 SPINE_JOINTS: tuple[str, ...] = (
@@ -39,7 +42,7 @@ SPINE_JOINTS: tuple[str, ...] = (
 #: Arm chain, shoulder girdle to wrist, without the side prefix.
 ARM_JOINTS: tuple[str, ...] = ("sternoclavicular", "shoulder", "elbow", "wrist")
 
-#: The 17 hand joints, in the order of :func:`motor.hand.hand_rotations`' output.
+#: The 17 hand joints, in the order of :func:`motor.hand.shape.hand_rotations`' output.
 HAND_JOINTS: tuple[str, ...] = (
     "thumb1", "thumb2", "thumb3",
     "index1", "index2", "index3",

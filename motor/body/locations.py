@@ -5,7 +5,7 @@ root joint at the origin at hip level, y up, +x the avatar's left, +z forward):
 
 * :class:`~mura.values.GridLocation`: the avatar's scaled MURML/ACE grid — lateral from
   the mid-sagittal plane, height above the hip level, distance in front of the chest
-  surface (see :class:`motor.avatar.Grid`);
+  surface (see :class:`motor.body.avatar.Grid`);
 * :class:`~mura.values.BodySite`: a HamNoSys site on the body, the arm or the hand, taken
   from the avatar's site table in the current posture (rest if none is given), then moved
   off the surface along the site's normal by the proximity, and sideways by ``lrat`` /
@@ -24,11 +24,18 @@ from __future__ import annotations
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import Avatar, check_side
-from motor.kinematics import Pose
+from motor.body.avatar import Avatar, check_side
+from motor.body.kinematics import Pose
 from mura.errors import SpecError
 from mura.murml_vocabulary import GRID_ALIASES
-from mura.values import FINGERS, BetweenLocation, BodySite, GridLocation, Location, PointLocation
+from mura.values import (
+    FINGERS,
+    BetweenLocation,
+    BodySite,
+    GridLocation,
+    Location,
+    PointLocation,
+)
 
 #: Sites on the head and trunk without a side.
 CENTRAL_SITES: tuple[str, ...] = (

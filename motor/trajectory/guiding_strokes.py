@@ -1,6 +1,6 @@
 """Guiding strokes: the breakpoints that approximate a movement segment (seed 004, 4.1).
 
-A movement phase is a polyline of breakpoints; the wrist trajectory (``motor.trajectory``)
+A movement phase is a polyline of breakpoints; the wrist trajectory (``motor.trajectory.spline``)
 later bends it into a smooth curve. This module turns the segment descriptions of MURML
 and HamNoSys into breakpoints: curves with a normal, shape, extent, roundness and
 skewedness; circles and ellipses; wavy and zigzag modulation of a straight path; and

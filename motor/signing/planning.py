@@ -2,11 +2,11 @@
 
 :func:`plan_sign` turns a :class:`mura.signs.Sign` into a :class:`SignPlan`: for each
 hand, the first posture (wrist, global hand rotation, hand parameters) and the sign's
-moves on its own clock ``[0, duration]``, one :class:`motor.sign_lmp.Move` per channel.
+moves on its own clock ``[0, duration]``, one :class:`motor.signing.lmp.Move` per channel.
 
 **Where the hand is.** A location names where the *palm centre* goes (the avatar's
 ``palm`` site of that hand); the wrist is placed so that it gets there with the hand in
-its orientation and shape. Locations come from :func:`motor.locations.resolve_location`:
+its orientation and shape. Locations come from :func:`motor.body.locations.resolve_location`:
 body sites with their proximity and side, the signing-space grid, and sites on the other
 arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
 a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
@@ -26,12 +26,12 @@ or arm in a one-handed sign brings the other hand up as a passive base
 
 **Movements.** Straight moves go ``SIZE_FRACTIONS`` of the arm's length (small, normal,
 large); arcs bulge by :data:`ARC_EXTENT` of the chord to the side their name gives;
-wavy and zigzag paths come from :mod:`motor.guiding_strokes`; circles and ellipses have
+wavy and zigzag paths come from :mod:`motor.trajectory.guiding_strokes`; circles and ellipses have
 radii ``CIRCLE_FRACTIONS`` of the arm's length and start where the hand is (clock
 positions choose where on the circle). Local movements: nodding and swinging turn the
 wrist by :data:`LOCAL_ANGLE` (down–up, side to side), twisting turns the forearm, finger
 play bends alternate fingers, stirring is a small horizontal circle. Durations are
-:func:`motor.biocontrol.movement_duration` of the movement kind in the sign's manner,
+:func:`motor.trajectory.biocontrol.movement_duration` of the movement kind in the sign's manner,
 independent of size. Time profiles: targetted for the sign's movements, linear for
 circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
 the fast/slow/tense tables for those manners. A static sign holds its posture for
@@ -41,43 +41,43 @@ the fast/slow/tense tables for those manners. A static sign holds its posture fo
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
-:data:`motor.torso.TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
+:data:`motor.body.collision.TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
 (:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
 near the shoulder step around its front, and positions so far across the body that the
 IK reports the upper arm in the torso step back toward the arm's side
-(:func:`within_reach`); midpoints are checked where that opened long chords
-(:func:`clear_paths`). A warning names every sign whose paths were changed. The upper arm
-is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm_ik`).
+(:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
+(:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
+is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm_ik import solve_arm
-from motor.avatar import Avatar
-from motor.biocontrol import movement_duration
-from motor.guiding_strokes import (
+from motor.arm.hand_orientation import hand_rotations_from_vectors
+from motor.arm.ik import solve_arm
+from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.collision import outside_torso
+from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
+from motor.hand.shape import hand_rotations, handshape_params
+from motor.signing.lmp import Move
+from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+from motor.signing.reach import arc_fractions, within_reach_all
+from motor.trajectory.biocontrol import movement_duration
+from motor.trajectory.guiding_strokes import (
     curve_breakpoints,
     default_normal,
     ellipse_breakpoints,
     wavy,
     zigzag,
 )
-from motor.hand import hand_rotations, handshape_params
-from motor.hand_orientation import hand_rotations_from_vectors
-from motor.kinematics import Pose, forward_kinematics, identity_rotations
-from motor.locations import ARM_SITES, FINGER_SITES, resolve_location
-from motor.program import ARMS, AVATAR_SIDE
-from motor.sign_lmp import Move
-from motor.symmetry import mirror_directions
-from motor.torso import outside_torso
-from mura.errors import SpecError
-from mura.model import (
+from motor.trajectory.symmetry import mirror_directions
+from mura.constraints import (
     Arm,
     Constraint,
     Dynamic,
@@ -90,7 +90,8 @@ from mura.model import (
     Symmetry,
     iter_leaves,
 )
-from mura.model import Sequence as SequenceNode
+from mura.constraints import Sequence as SequenceNode
+from mura.errors import SpecError
 from mura.signs import HandPosture, Sign
 from mura.values import (
     AXES,
@@ -117,21 +118,8 @@ ZIGS = 4
 LOCAL_ANGLE = 0.45
 #: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
 STATIC_HOLD = 0.5
-#: How far (m) the IK may fall short before a position is moved within reach, and the
-#: margin inside the reach limit that positions keep.
-REACH_TOLERANCE = 1e-3
-REACH_MARGIN = 0.03
-#: Upper-arm penetration (m, IK diagnostics) that moves a position back from across the
-#: body, in steps of CROSS_STEP metres, at most CROSS_STEPS of them.
-PENETRATION_TOLERANCE = 1e-3
-CROSS_STEP = 0.02
-CROSS_STEPS = 16
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
-#: Rounds of midpoints inserted between moved neighbours, and the spacing (m) above
-#: which neighbours get one anyway (see :func:`clear_paths`).
-REFINEMENTS = 4
-REFINE_SPACING = 0.06
 #: Neutral signing space of the right hand (mirrored for the left).
 NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
 #: Extended-finger direction and palm of a hand whose sign leaves them open.
@@ -156,47 +144,10 @@ _SAME = 1e-6
 _CHANNELS = ("wrist_position", "hand_rotation", "handshape")
 
 
-class SignPlanningError(ValueError):
-    """A sign that cannot be realized; the message names the sign and the reason."""
 
 
-@dataclass(frozen=True, eq=False)
-class HandPose:
-    """A hand's posture in numbers: wrist ``(3,)`` m, global rotation ``(4,)``, parameters."""
-
-    wrist: np.ndarray
-    rotation: np.ndarray
-    shape: np.ndarray
-
-    def channel(self, name: str) -> np.ndarray:
-        return {"wrist_position": self.wrist, "hand_rotation": self.rotation, "handshape": self.shape}[name]
 
 
-@dataclass(frozen=True, eq=False)
-class SignPlan:
-    """A sign ready to be placed on the clock.
-
-    Attributes:
-        gloss: the sign's name.
-        duration: length of the sign's own movement, seconds (0 < duration).
-        first: each active hand's first posture.
-        moves: ``(arm, channel)`` → moves on the sign's clock ``[0, duration]``.
-        static: the sign has no movement (the transition into it is then targetted).
-        nonmanual: the sign's nonmanual tiers, as parsed.
-        warnings: what was assumed or changed to realize it.
-    """
-
-    gloss: str
-    duration: float
-    first: Mapping[str, HandPose]
-    moves: Mapping[tuple[str, str], tuple[Move, ...]]
-    static: bool
-    nonmanual: Mapping[str, tuple] = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
-
-    @property
-    def arms(self) -> tuple[str, ...]:
-        return tuple(arm for arm in ARMS if arm in self.first)
 
 
 @dataclass(frozen=True, eq=False)
@@ -261,48 +212,9 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign]) -> list[SignPlan | SignPla
             drafts.append(error)
         except (SpecError, ValueError, KeyError) as error:
             drafts.append(SignPlanningError(f"sign {sign.gloss!r}: {error}"))
-    return _within_reach_all(avatar, drafts)
+    return within_reach_all(avatar, drafts)
 
 
-def _within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
-    """Plans with every wrist position moved within reach (:func:`within_reach`)."""
-    plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
-    fixed: dict[int, dict] = {id(plan): {"first": dict(plan.first), "moves": dict(plan.moves), "notes": []} for plan in plans}
-    for arm in ARMS:
-        points, turns, owners = [], [], []
-        for plan in plans:
-            if arm not in plan.first:
-                continue
-            first = plan.first[arm]
-            points.append(first.wrist[None])
-            turns.append(first.rotation[None])
-            for move, turn in zip(plan.moves[(arm, "wrist_position")], plan.moves[(arm, "hand_rotation")]):
-                points.append(move.values)
-                turns.append(rotations_along(turn.values, _arc_fractions(move.values)))
-            owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
-        if not points:
-            continue
-        cleared, _ = clear_paths(avatar, arm, points, turns)
-        pieces = iter(cleared)
-        originals = iter(points)
-        for plan, count in owners:
-            record = fixed[id(plan)]
-            parts = [next(pieces) for _ in range(count)]
-            before = [next(originals) for _ in range(count)]
-            changed = sum(int(len(a) != len(b) or np.any(np.abs(a - b) > 1e-12)) for a, b in zip(parts, before))
-            if changed:
-                record["notes"].append(f"{plan.gloss}: {changed} path(s) of the {arm} hand moved within reach or out of the body")
-            first = plan.first[arm]
-            record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
-            moves = plan.moves[(arm, "wrist_position")]
-            record["moves"][(arm, "wrist_position")] = tuple(replace(m, values=v) for m, v in zip(moves, parts[1:]))
-    return [
-        draft if not isinstance(draft, SignPlan) else replace(
-            draft, first=fixed[id(draft)]["first"], moves=fixed[id(draft)]["moves"],
-            warnings=draft.warnings + tuple(fixed[id(draft)]["notes"]),
-        )
-        for draft in drafts
-    ]  # fmt: skip
 
 
 class _SignCompiler:
@@ -755,7 +667,7 @@ class _SignCompiler:
             for move in moves:
                 start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
                 end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
-                fractions = _arc_fractions(move.locations)[:, None]
+                fractions = arc_fractions(move.locations)[:, None]
                 wrists.append(outside_torso(self.avatar, move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset)))
             result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
@@ -774,120 +686,12 @@ class _SignCompiler:
             self._offsets[key] = resolve_location(self.avatar, site, "l" if side == "r" else "r", pose) - wrist
         return self._offsets[key]
 
-def within_reach(
-    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None
-) -> tuple[np.ndarray, int, float]:
-    """Wrist positions ``(n, 3)`` the arm reaches, with its upper arm out of the torso.
-
-    Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
-    between two reachable positions can leave the reachable shell, whose shoulder moves
-    with the clavicle), are pulled in to that margin; positions too near the shoulder
-    for the elbow's flexion step away from it and forward (around the shoulder's front,
-    where the hand passes) by what they lack, at least :data:`CROSS_STEP`; positions so far across the body
-    that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
-    back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
-    many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
-    hand's global rotations there, which change the swivel the IK picks."""
-    side = AVATAR_SIDE[arm]
-    shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
-    outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
-    forward = np.array([0.0, 0.0, CROSS_STEP])
-    fixed = np.array(points, dtype=float)
-    moved = np.zeros(len(fixed), dtype=bool)
-    open_ = np.arange(len(fixed))
-    worst = 0.0
-    for _ in range(CROSS_STEPS):
-        if open_.size == 0:
-            break
-        here = fixed[open_]
-        turns = None if rotations is None else np.asarray(rotations)[open_]
-        away = here - shoulder
-        away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
-        far = solve_arm(avatar, side, here + REACH_MARGIN * away, turns)
-        near = solve_arm(avatar, side, here - REACH_MARGIN * away, turns)
-        # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
-        outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
-        short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
-        too_far = short & outer
-        too_near = short & ~outer
-        crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
-        bad = too_far | too_near | crossing
-        worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
-        here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
-        lacking = np.maximum(np.maximum(far.shortfall, near.shortfall), CROSS_STEP)
-        around = away + forward / CROSS_STEP
-        around /= np.maximum(np.linalg.norm(around, axis=1, keepdims=True), 1e-9)
-        here = here + (too_near * lacking)[:, None] * around + crossing[:, None] * outward
-        fixed[open_] = here
-        moved[open_[bad]] = True
-        open_ = open_[bad]
-    return fixed, int(moved.sum()), max(worst, 0.0)
 
 
-def clear_paths(
-    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], keep_ends: bool = False
-) -> tuple[list[np.ndarray], int]:
-    """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
-    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`), in
-    one IK call per arm and round; with ``keep_ends`` the first and last points stay.
-
-    Moving a point can open a chord to its neighbour that cuts the unreachable core around
-    the shoulder or the torso, so for :data:`REFINEMENTS` rounds each pair of neighbours of
-    which one moved (or that lie more than :data:`REFINE_SPACING` apart) gets its checked
-    midpoint inserted. Also returns how many points moved."""
-    masks = []
-    for path in paths:
-        mask = np.ones(len(path), dtype=bool)
-        if keep_ends:
-            mask[[0, -1]] = False
-        masks.append(mask)
-    paths, rotations, moved, total = _clear_points(avatar, arm, paths, rotations, masks)
-    for _ in range(REFINEMENTS):
-        new_paths, new_rotations, new_masks = [], [], []
-        for path, turn, change in zip(paths, rotations, moved):
-            gap = np.linalg.norm(np.diff(path, axis=0), axis=1)
-            split = (change[1:] | change[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
-            middles = 0.5 * (path[1:] + path[:-1])[split]
-            turns = quat.slerp(turn[:-1][split], turn[1:][split], 0.5)
-            order = np.argsort(np.concatenate([np.arange(len(path)), np.flatnonzero(split) + 0.5]), kind="stable")
-            new_paths.append(np.concatenate([path, middles])[order])
-            new_rotations.append(np.concatenate([turn, turns])[order])
-            new_masks.append(np.concatenate([np.zeros(len(path), dtype=bool), np.ones(len(middles), dtype=bool)])[order])
-        if not any(mask.any() for mask in new_masks):
-            break
-        paths, rotations, moved, more = _clear_points(avatar, arm, new_paths, new_rotations, new_masks)
-        total += more
-    return paths, total
 
 
-def _clear_points(
-    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], masks: list[np.ndarray]
-) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int]:
-    """The masked points of every path checked at once; which points moved."""
-    chosen = np.concatenate([path[mask] for path, mask in zip(paths, masks)])
-    if chosen.size == 0:
-        return paths, rotations, [np.zeros(len(p), dtype=bool) for p in paths], 0
-    turns = np.concatenate([turn[mask] for turn, mask in zip(rotations, masks)])
-    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns)[0]
-    changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
-    out, moved, start = [], [], 0
-    for path, mask in zip(paths, masks):
-        count = int(mask.sum())
-        path = path.copy()
-        path[mask] = fixed[start : start + count]
-        flags = np.zeros(len(path), dtype=bool)
-        flags[mask] = changed[start : start + count]
-        out.append(path)
-        moved.append(flags)
-        start += count
-    return out, rotations, moved, int(changed.sum())
 
 
-def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
-    """Rotations ``(n, 4)`` at fractions of the way through evenly spaced keys ``(m, 4)``."""
-    position = np.clip(fractions, 0.0, 1.0) * (len(keys) - 1)
-    index = np.minimum(position.astype(int), len(keys) - 2)
-    return quat.slerp(keys[index], keys[index + 1], position - index)
 
 
 def _flattened(node: Parallel) -> list[Constraint]:
@@ -935,9 +739,6 @@ def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
     )
 
 
-def _arc_fractions(points: np.ndarray) -> np.ndarray:
-    lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    return lengths / lengths[-1] if lengths[-1] > _SAME else np.linspace(0.0, 1.0, len(points))
 
 
 def _unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:

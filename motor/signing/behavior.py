@@ -2,8 +2,8 @@
 
 An utterance may carry a HamNoSys/SiGML sign as a behaviour (``<sign>`` in MURML). The
 scheduler times it like a gesture (preparation, stroke spanning the affiliate,
-retraction), and this module turns it into a :class:`motor.program.MotorProgram`: the
-sign is planned on its own clock (:func:`motor.sign_planning.plan_sign`), its moves are
+retraction), and this module turns it into a :class:`motor.program.gesture.MotorProgram`: the
+sign is planned on its own clock (:func:`motor.signing.planning.plan_sign`), its moves are
 stretched or compressed uniformly onto the stroke interval the scheduler chose, a
 transition leads into its first posture from wherever the hands are (lax, or targetted
 into a static sign, seed 000 section 4.5), and the hands retract to rest — or to the
@@ -18,19 +18,18 @@ from dataclasses import replace
 
 import numpy as np
 
-from motor.avatar import Avatar
-from motor.lmp import LMP, TimePegs
-from motor.program import (
-    ARMS,
-    AVATAR_SIDE,
+from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.program.fragment import PlanningError
+from motor.program.gesture import (
     GestureDemands,
     MotorProgram,
-    PlanningError,
     retraction_duration,
     retraction_lmp,
 )
-from motor.sign_lmp import Move, SignChannelLMP
-from motor.sign_planning import SignPlan, SignPlanningError, plan_sign
+from motor.program.lmp import LMP, TimePegs
+from motor.signing.lmp import Move, SignChannelLMP
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.planning import plan_sign
 from mura.model import BehaviorSpec
 from mura.signs import Sign
 

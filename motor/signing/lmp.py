@@ -9,7 +9,7 @@ seconds, and the manner whose table ``f: [0, 1] → [0, 1]`` maps the time fract
 fraction of the way travelled. Between moves the channel holds.
 
 :class:`SignChannelLMP` carries the moves of one channel for one sign and plugs into
-:class:`motor.lmp.ChannelTimeline` like any LMP: at activation (its ``start`` peg, the end
+:class:`motor.program.lmp.ChannelTimeline` like any LMP: at activation (its ``start`` peg, the end
 of the previous sign) it adds the *transition* from wherever the channel is to the
 sign's first value, in the transition manner (lax between signs, targetted into a static
 sign, seed 000).
@@ -22,8 +22,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.biocontrol import profile
-from motor.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
+from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
+from motor.trajectory.biocontrol import profile
 
 #: Step of the differences that estimate a channel's velocity, seconds.
 _STEP = 1e-4
@@ -36,7 +36,7 @@ class Move:
 
     Attributes:
         start, end: seconds (``end > start``).
-        manner: a :data:`motor.biocontrol.MANNERS` name, the time profile of the move.
+        manner: a :data:`motor.trajectory.biocontrol.MANNERS` name, the time profile of the move.
         values: ``(m, D)`` values along the way, ``m ≥ 2``: positions of a path (metres,
             travelled by distance), or quaternions / hand parameters at evenly spaced
             fractions of the way.

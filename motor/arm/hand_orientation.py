@@ -3,7 +3,7 @@
 HamNoSys and MURML give a hand's orientation as two directions: where the fingers point
 if they were straight (the *extended-finger direction*, EFD) and which way the palm faces.
 The rotation returned takes the avatar's hand at rest (finger axis λ = wrist → middle
-finger base, palm normal σ, see :class:`motor.avatar.HandFrame`) to one whose finger axis
+finger base, palm normal σ, see :class:`motor.body.avatar.HandFrame`) to one whose finger axis
 points along the EFD and whose palm normal points along the palm direction's component
 perpendicular to the EFD. The palm normal of each hand is its own (the left hand's mirrors
 the right's), so the same spec turns both palms the same way in space.
@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import Avatar, check_side
+from motor.body.avatar import Avatar, check_side
 from mura.values import Direction, PalmOrientation
 
 _OUT = np.array([0.0, 0.0, 1.0])

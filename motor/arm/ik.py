@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import Avatar, check_side
+from motor.body.avatar import Avatar, check_side
 
 #: Reach (fraction of arm length from the resting shoulder) where the clavicle starts to
 #: follow the hand, and where it reaches its limit.

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from motor.avatar import Avatar
+from motor.body.avatar import Avatar
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04

@@ -1,8 +1,6 @@
-"""Motor programs: a gesture's constraint tree planned into LMPs for each arm (seed 004, 4).
+"""A gesture's constraint tree compiled into a fragment: the stroke in its own time (seed 004, 4).
 
-Planning runs in two steps.
-
-**1. The stroke in its own time.** The constraint tree is compiled bottom-up into a
+The constraint tree is compiled bottom-up into a
 *fragment*: for every ``(arm, feature)`` — features ``location`` (wrist position),
 ``shape`` (hand parameters), ``fingers`` (extended-finger direction) and ``palm`` — a
 list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reached at
@@ -11,15 +9,15 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
 * ``static``: one key at 0, duration 0; placed in a longer interval it holds throughout.
 * ``dynamic``: keys at the segments' breakpoints. A ``HandLocation`` segment is linear
   from start to end, or from start along ``direction`` for ``distance`` metres; curves
-  come from :func:`motor.guiding_strokes.curve_breakpoints`, circles from
-  :func:`motor.guiding_strokes.circle_from_start`; a segment without a start starts
+  come from :func:`motor.trajectory.guiding_strokes.curve_breakpoints`, circles from
+  :func:`motor.trajectory.guiding_strokes.circle_from_start`; a segment without a start starts
   where the previous one ended (or, with nothing before it, at the arm's neutral
   gesture position, with a warning). Other slots key their start and end values.
   Segment durations: :func:`movement_time` — the biocontrol duration of the movement
   kind and manner (0.4 s straight, ×1.3 curved, ×1.7 circle), or the path length at
   the comfortable mean speed :data:`COMFORTABLE_SPEED`, whichever is longer; the
   breakpoints inside a segment are timed by the power law
-  (:func:`motor.trajectory.time_breakpoints`).
+  (:func:`motor.trajectory.spline.time_breakpoints`).
 * ``parallel``: children share the interval; each is stretched to the longest.
 * ``sequence``: children follow one another with a *transition* between them — the time
   to move every feature from the previous child's last value to the next child's first
@@ -41,25 +39,12 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
 
 A location out of the arm's reach (the IK falls short by more than :data:`REACH_TOLERANCE`)
 is replaced by the nearest point the arm reaches, with a warning; a stroke too fast for
-the wrist (above :data:`motor.trajectory.MAX_WRIST_SPEED`) is slowed by the trajectory
+the wrist (above :data:`motor.trajectory.spline.MAX_WRIST_SPEED`) is slowed by the trajectory
 planner, and the warning is carried into the program.
 
 ``mode="pointTo"`` with a point: the wrist goes on the line from the shoulder toward
 the point at :data:`POINTING_REACH` of the arm's length, and the fingers point from the
 wrist to the point.
-
-**2. LMPs on the utterance clock.** The fragment (repeated ``repetitions`` times) is
-scaled onto ``[stroke_start, stroke_end]``. Per arm: a :class:`WristPositionLMP` through
-the location breakpoints (its preparation arrives at the first at ``ready``), a
-:class:`WristRotationLMP` through hand rotations composed from fingers and palm (an arm
-whose location is constrained but not its orientation gets :data:`NEUTRAL_FINGERS`
-with the palm toward the body's midline), a :class:`HandShapeLMP`. Each starts at
-``start`` and holds its last value until ``relax``, where a :class:`RetractionLMP` per
-channel takes the arm back to rest (or the interim rest when another gesture follows)
-in :func:`retraction_duration`. The swivel is left to the arm IK's natural swivel.
-
-Non-arm slots (gaze, head, face …) are not realized by the motor programs; a warning
-names them.
 """
 
 from __future__ import annotations
@@ -69,29 +54,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from motor.arm_ik import solve_arm
-from motor.avatar import Avatar
-from motor.biocontrol import MANNERS, movement_duration
-from motor.guiding_strokes import circle_from_start, curve_breakpoints
-from motor.hand import handshape_params
-from motor.hand_orientation import hand_rotations_from_vectors
-from motor.lmp import (
-    LMP,
-    HandShapeLMP,
-    RetractionLMP,
-    TimePegs,
-    WristPositionLMP,
-    WristRotationLMP,
-)
-from motor.locations import resolve_location
-from motor.quaternion import between_vectors, continuous, rotate
-from motor.symmetry import mirror_directions, mirror_points
-from motor.torso import outside_torso
-from motor.trajectory import fitts_duration, plan_wrist_trajectory, time_breakpoints
-from mura.errors import SourceLocation, SpecError
-from mura.model import (
+from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.locations import resolve_location
+from motor.hand.shape import handshape_params
+from motor.trajectory.biocontrol import MANNERS, movement_duration
+from motor.trajectory.guiding_strokes import circle_from_start, curve_breakpoints
+from motor.trajectory.spline import time_breakpoints
+from motor.trajectory.symmetry import mirror_directions, mirror_points
+from mura.constraints import (
     Arm,
-    BehaviorSpec,
     Constraint,
     Dynamic,
     Parallel,
@@ -103,88 +74,56 @@ from mura.model import (
     Symmetrical,
     Symmetry,
 )
+from mura.errors import SourceLocation, SpecError
 from mura.values import (
     Direction,
-    FingerBend,
     GridLocation,
     HandShape,
     PalmOrientation,
     PointLocation,
 )
 
-#: The arms, as the scheduler names them, and the avatar's side prefixes.
-ARMS: tuple[str, ...] = ("right", "left")
-AVATAR_SIDE: dict[str, str] = {"right": "r", "left": "l"}
-
 #: Comfortable mean wrist speed of a stroke, m/s: long strokes take length / this.
 COMFORTABLE_SPEED = 0.5
+
+
 #: Time for a change of hand shape between two keys, seconds.
 SHAPE_CHANGE = 0.3
+
+
 #: Turning speed of the hand between orientation keys, rad/s, and the shortest turn, s.
 ANGULAR_SPEED = 3.0
+
+
 MIN_TURN = 0.2
+
+
 #: Fraction of the arm's length at which a pointing hand is held toward its target.
 POINTING_REACH = 0.75
-#: Shortest retraction, seconds (Fitts' law gives less for tiny distances).
-MIN_RETRACTION = 0.3
-#: Shortest stroke interval for a moving stroke; a shorter one is widened (warning).
-MIN_STROKE = 0.02
-#: Shortest preparation; a later ``start`` is moved back to leave this much (warning).
-MIN_PREPARATION = 1e-3
-#: Extended-finger direction of an arm whose orientation is not constrained: forward.
-NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
+
+
 #: Neutral gesture position (grid) of the right hand, for a path with no start.
 NEUTRAL_LOCATION = GridLocation("LocChest", "LocCCenterRight", "LocNorm")
-#: The relaxed hand: this fraction of the way from the flat hand to the rounded one.
-REST_CURL = 0.3
-#: How far (m) the IK may fall short of a planned location before it is moved in reach.
-REACH_TOLERANCE = 1e-3
+
+
 #: Closest two key times may be and still count as distinct, seconds.
-_SAME_TIME = 1e-9
+SAME_TIME = 1e-9
+
+
 _SAME_PLACE = 1e-4
+
+
 _MM = 0.001
 
+
 _FEATURES = {"HandLocation": "location", "HandShape": "shape", "ExtFingerOrientation": "fingers", "PalmOrientation": "palm"}
+
+
 _MANNER_SYNONYMS = {"rest": "lax", "halt": "sudden_stop"}
 
 
 class PlanningError(ValueError):
     """A gesture that cannot be planned; the message names the behaviour and the constraint."""
-
-
-@dataclass(frozen=True)
-class GestureDemands:
-    """What the scheduler must know about a gesture before timing it.
-
-    Attributes:
-        arms: ``{"right"}``, ``{"left"}``, both, or empty (no arm moves).
-        stroke_duration: natural stroke duration, seconds; 0 for a held posture.
-        dynamic: the stroke moves.
-        repeatable: the stroke can be performed again to fill a longer affiliate.
-        preparation_distance: metres from the rest position to the stroke's start (the
-            farthest of the arms used).
-    """
-
-    arms: frozenset[str]
-    stroke_duration: float
-    dynamic: bool
-    repeatable: bool
-    preparation_distance: float
-
-
-@dataclass(frozen=True, eq=False)
-class MotorProgram:
-    """A planned gesture: its LMPs on every channel it uses, and what planning changed.
-
-    ``pegs`` are the scheduler's pegs with ``end`` replaced by the end of the retraction
-    (and ``start``/``stroke_end`` moved when a rule had to widen them, see warnings).
-    """
-
-    behavior: str
-    lmps: tuple[LMP, ...]
-    warnings: tuple[str, ...]
-    pegs: TimePegs
-    arms: frozenset[str]
 
 
 @dataclass(frozen=True)
@@ -195,7 +134,7 @@ class PointTarget:
 
 
 @dataclass(frozen=True, eq=False)
-class _Key:
+class Key:
     """A feature value reached at ``start`` and held until ``end`` (local seconds).
 
     ``curved`` marks a location reached along a curve (for the breakpoint-speed gain).
@@ -211,25 +150,25 @@ Track = tuple[str, str]
 
 
 @dataclass(frozen=True, eq=False)
-class _Fragment:
+class Fragment:
     """Keys per ``(arm, feature)`` over a local clock ``[0, duration]``."""
 
     duration: float
-    tracks: Mapping[Track, tuple[_Key, ...]]
+    tracks: Mapping[Track, tuple[Key, ...]]
     warnings: tuple[str, ...] = ()
 
-    def placed(self, offset: float, length: float) -> _Fragment:
+    def placed(self, offset: float, length: float) -> Fragment:
         """The fragment stretched onto ``[offset, offset + length]``; a zero-duration
         fragment (static keys) holds over the whole interval."""
         scale = length / self.duration if self.duration > 0.0 else 0.0
 
-        def move(key: _Key) -> _Key:
+        def move(key: Key) -> Key:
             if self.duration <= 0.0:
                 return replace(key, start=offset, end=offset + length)
             return replace(key, start=offset + key.start * scale, end=offset + key.end * scale)
 
         tracks = {track: tuple(move(key) for key in keys) for track, keys in self.tracks.items()}
-        return _Fragment(length, tracks, self.warnings)
+        return Fragment(length, tracks, self.warnings)
 
     def last(self, track: Track) -> object | None:
         keys = self.tracks.get(track)
@@ -239,21 +178,21 @@ class _Fragment:
         keys = self.tracks.get(track)
         return keys[0].value if keys else None
 
-    def mapped(self, track: Track, change: Callable[[_Key], _Key]) -> _Fragment:
+    def mapped(self, track: Track, change: Callable[[Key], Key]) -> Fragment:
         tracks = dict(self.tracks)
         tracks[track] = tuple(change(key) for key in tracks[track])
-        return _Fragment(self.duration, tracks, self.warnings)
+        return Fragment(self.duration, tracks, self.warnings)
 
 
-def _merge(fragments: Iterable[_Fragment], duration: float, warnings: Iterable[str] = ()) -> _Fragment:
-    tracks: dict[Track, list[_Key]] = {}
+def merge_fragments(fragments: Iterable[Fragment], duration: float, warnings: Iterable[str] = ()) -> Fragment:
+    tracks: dict[Track, list[Key]] = {}
     notes = list(warnings)
     for fragment in fragments:
         notes.extend(fragment.warnings)
         for track, keys in fragment.tracks.items():
             tracks.setdefault(track, []).extend(keys)
     ordered = {track: tuple(sorted(keys, key=lambda k: k.start)) for track, keys in tracks.items()}
-    return _Fragment(duration, ordered, tuple(notes))
+    return Fragment(duration, ordered, tuple(notes))
 
 
 def movement_time(length: float, kind: str = "straight", manner: str | None = None) -> float:
@@ -269,21 +208,7 @@ def movement_time(length: float, kind: str = "straight", manner: str | None = No
     return max(base, length / COMFORTABLE_SPEED)
 
 
-def retraction_duration(distance: float) -> float:
-    """Seconds to retract the wrist over ``distance`` metres: Fitts' law, at least
-    :data:`MIN_RETRACTION`."""
-    return max(MIN_RETRACTION, float(fitts_duration(distance)))
-
-
-def rest_handshape() -> np.ndarray:
-    """Hand parameters of the relaxed hand at rest (see :data:`REST_CURL`)."""
-    flat = handshape_params(HandShape("flathand"))
-    fingers = ("index", "middle", "ring", "pinky")
-    rounded = handshape_params(HandShape("flathand", finger_bends=(FingerBend(fingers, "round"),)))
-    return (1.0 - REST_CURL) * flat + REST_CURL * rounded
-
-
-class _Compiler:
+class Compiler:
     """Compiles one gesture's constraint tree into a fragment for one avatar."""
 
     def __init__(self, avatar: Avatar, behavior: str) -> None:
@@ -296,7 +221,7 @@ class _Compiler:
 
     # -- tree -------------------------------------------------------------------------
 
-    def compile(self, node: Constraint, origin: Mapping[str, np.ndarray]) -> _Fragment:
+    def compile(self, node: Constraint, origin: Mapping[str, np.ndarray]) -> Fragment:
         if isinstance(node, Static):
             return self.static(node)
         if isinstance(node, Dynamic):
@@ -311,15 +236,15 @@ class _Compiler:
             return self.symmetrical(node, origin)
         raise self.error(f"unknown constraint {type(node).__name__}", None)
 
-    def parallel(self, node: Parallel, origin: Mapping[str, np.ndarray]) -> _Fragment:
+    def parallel(self, node: Parallel, origin: Mapping[str, np.ndarray]) -> Fragment:
         children = [self.compile(child, origin) for child in node.children]
         duration = max((child.duration for child in children), default=0.0)
-        return _merge((child.placed(0.0, duration) for child in children), duration)
+        return merge_fragments((child.placed(0.0, duration) for child in children), duration)
 
-    def sequence(self, nodes: Iterable[Constraint], origin: Mapping[str, np.ndarray]) -> _Fragment:
-        placed: list[_Fragment] = []
+    def sequence(self, nodes: Iterable[Constraint], origin: Mapping[str, np.ndarray]) -> Fragment:
+        placed: list[Fragment] = []
         here = dict(origin)
-        previous: _Fragment | None = None
+        previous: Fragment | None = None
         clock = 0.0
         for node in nodes:
             child = self.compile(node, here)
@@ -329,21 +254,21 @@ class _Compiler:
             clock += child.duration
             here.update(_last_locations(child))
             previous = child
-        return _merge(placed, clock)
+        return merge_fragments(placed, clock)
 
-    def repetition(self, node: Repetition, origin: Mapping[str, np.ndarray]) -> _Fragment:
+    def repetition(self, node: Repetition, origin: Mapping[str, np.ndarray]) -> Fragment:
         child = self.compile(node.child, origin)
         notes = [f"{self.behavior}: alternating repetition not realized; both hands move together"] if node.alternating else []
         return self.repeat(child, node.count, node.mode, notes)
 
-    def repeat(self, child: _Fragment, count: int, mode: str = "fromstart", notes: list[str] | None = None) -> _Fragment:
+    def repeat(self, child: Fragment, count: int, mode: str = "fromstart", notes: list[str] | None = None) -> Fragment:
         notes = list(notes or [])
         if count < 1:
             raise self.error(f"repetition count must be at least 1, got {count}", None)
         if child.duration <= 0.0:
             if count > 1:
                 notes.append(f"{self.behavior}: a held posture cannot be repeated; holding it once")
-            return _merge([child], 0.0, notes)
+            return merge_fragments([child], 0.0, notes)
         passes = [child]
         for index in range(1, count):
             if mode == "continue":
@@ -358,9 +283,9 @@ class _Compiler:
                 clock += self.transition(passes[index - 1], fragment)
             placed.append(fragment.placed(clock, fragment.duration))
             clock += fragment.duration
-        return _merge(placed, clock, notes)
+        return merge_fragments(placed, clock, notes)
 
-    def symmetrical(self, node: Symmetrical, origin: Mapping[str, np.ndarray]) -> _Fragment:
+    def symmetrical(self, node: Symmetrical, origin: Mapping[str, np.ndarray]) -> Fragment:
         child = self.compile(node.child, origin)
         dominant, other = node.dominant.side, node.dominant.other.side
         center = self.mirror_center(node, child)
@@ -369,9 +294,9 @@ class _Compiler:
             if arm != dominant or (other, feature) in child.tracks:
                 continue
             tracks[(other, feature)] = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
-        return _Fragment(child.duration, tracks, child.warnings)
+        return Fragment(child.duration, tracks, child.warnings)
 
-    def mirror_center(self, node: Symmetrical, child: _Fragment) -> np.ndarray:
+    def mirror_center(self, node: Symmetrical, child: Fragment) -> np.ndarray:
         """Center of the mirror planes, metres (module docstring)."""
         if node.center is not None:
             if len(node.center) < 3:
@@ -383,7 +308,7 @@ class _Compiler:
         mean = np.mean(points, axis=0) if points else np.zeros(3)
         return np.array([0.0, mean[1], mean[2]])
 
-    def transition(self, previous: _Fragment, following: _Fragment) -> float:
+    def transition(self, previous: Fragment, following: Fragment) -> float:
         """Time to bring every feature from ``previous``'s last to ``following``'s first value."""
         longest = 0.0
         for track in set(previous.tracks) & set(following.tracks):
@@ -401,13 +326,13 @@ class _Compiler:
             return Arm(scope).side
         return "right"
 
-    def static(self, leaf: Static) -> _Fragment:
+    def static(self, leaf: Static) -> Fragment:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return _Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
         arm = self.arm_of(leaf)
         value = self.value(feature, leaf.value, arm, leaf.mode, leaf.where)
-        return _Fragment(0.0, {(arm, feature): (_Key(0.0, 0.0, value),)})
+        return Fragment(0.0, {(arm, feature): (Key(0.0, 0.0, value),)})
 
     def unrealized(self, slot: str) -> str:
         return f"{self.behavior}: slot {slot} is not realized by the arm motor programs"
@@ -431,10 +356,10 @@ class _Compiler:
                     return PointTarget(value.position)
                 if not isinstance(value, Direction):
                     raise self.error(f"ExtFingerOrientation needs a direction, got {value!r}", where)
-                return _unit_vector(value.vector, self.error("ExtFingerOrientation has zero length", where))
+                return unit_vector(value.vector, self.error("ExtFingerOrientation has zero length", where))
             if not isinstance(value, PalmOrientation):
                 raise self.error(f"PalmOrientation needs a palm orientation, got {value!r}", where)
-            _unit_vector(value.direction, self.error("PalmOrientation has zero length", where))
+            unit_vector(value.direction, self.error("PalmOrientation has zero length", where))
             return value
         except SpecError as error:
             raise self.error(str(error), where) from None
@@ -450,23 +375,23 @@ class _Compiler:
 
     def pointing_position(self, target: np.ndarray, arm: str, where: SourceLocation | None) -> np.ndarray:
         shoulder = self.shoulder(arm)
-        toward = _unit_vector(target - shoulder, self.error("pointTo target lies at the shoulder", where))
+        toward = unit_vector(target - shoulder, self.error("pointTo target lies at the shoulder", where))
         return shoulder + POINTING_REACH * self.avatar.arm_length(AVATAR_SIDE[arm]) * toward
 
     def neutral_location(self, arm: str) -> np.ndarray:
         location = NEUTRAL_LOCATION if arm == "right" else replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
         return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
 
-    def dynamic(self, leaf: Dynamic, origin: Mapping[str, np.ndarray]) -> _Fragment:
+    def dynamic(self, leaf: Dynamic, origin: Mapping[str, np.ndarray]) -> Fragment:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return _Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
         if not leaf.segments:
             raise self.error(f"dynamic {leaf.slot} has no segments", leaf.where)
         arm = self.arm_of(leaf)
         if feature == "location":
             return self.path(leaf, arm, origin.get(arm))
-        keys: list[_Key] = []
+        keys: list[Key] = []
         clock = 0.0
         previous: object | None = None
         for segment in leaf.segments:
@@ -474,15 +399,15 @@ class _Compiler:
             end = None if segment.end is None else self.value(feature, segment.end, arm, None, segment.where)
             first = start if start is not None else previous
             if start is not None:
-                keys.append(_Key(clock, clock, start))
+                keys.append(Key(clock, clock, start))
             if end is not None:
                 clock += max(_change_time(feature, first, end), MIN_TURN) if first is not None else MIN_TURN
-                keys.append(_Key(clock, clock, end))
+                keys.append(Key(clock, clock, end))
             previous = end if end is not None else start
-        return _Fragment(clock, {(arm, feature): tuple(keys)})
+        return Fragment(clock, {(arm, feature): tuple(keys)})
 
-    def path(self, leaf: Dynamic, arm: str, origin: np.ndarray | None) -> _Fragment:
-        keys: list[_Key] = []
+    def path(self, leaf: Dynamic, arm: str, origin: np.ndarray | None) -> Fragment:
+        keys: list[Key] = []
         notes: list[str] = []
         clock = 0.0
         here = origin
@@ -498,7 +423,7 @@ class _Compiler:
             if keys and np.linalg.norm(points[0] - np.asarray(keys[-1].value)) > _SAME_PLACE:
                 clock += movement_time(float(np.linalg.norm(points[0] - np.asarray(keys[-1].value))))
             if not keys or np.linalg.norm(points[0] - np.asarray(keys[-1].value)) > _SAME_PLACE:
-                keys.append(_Key(clock, clock, points[0]))
+                keys.append(Key(clock, clock, points[0]))
             length = float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
             if length < _SAME_PLACE:
                 notes.append(f"{self.behavior}: a {segment.kind.value} segment of zero length is a hold")
@@ -506,10 +431,10 @@ class _Compiler:
                 continue
             duration = movement_time(length, kind, segment.manner)
             times = clock + time_breakpoints(points, 0.0, duration)
-            keys.extend(_Key(float(t), float(t), p, curved) for t, p in zip(times[1:], points[1:]))
+            keys.extend(Key(float(t), float(t), p, curved) for t, p in zip(times[1:], points[1:]))
             clock += duration
             here = points[-1]
-        return _Fragment(clock, {(arm, "location"): tuple(keys)}, tuple(notes))
+        return Fragment(clock, {(arm, "location"): tuple(keys)}, tuple(notes))
 
     def segment_points(
         self, segment: Segment, start: np.ndarray, arm: str, where: SourceLocation | None
@@ -541,7 +466,7 @@ class _Compiler:
         if segment.end is not None:
             return np.asarray(self.value("location", segment.end, arm, None, where), dtype=float)
         if segment.direction is not None and segment.distance is not None:
-            direction = _unit_vector(segment.direction.vector, self.error("segment direction has zero length", where))
+            direction = unit_vector(segment.direction.vector, self.error("segment direction has zero length", where))
             return start + direction * float(segment.distance)
         if segment.kind is SegmentKind.CIRCLE:
             return start
@@ -552,7 +477,7 @@ class _Compiler:
 _CIRCLE_RADIUS = {"small": 0.03, "large": 0.1, "": 0.06}
 
 
-def _unit_vector(vector: Iterable[float], error: Exception) -> np.ndarray:
+def unit_vector(vector: Iterable[float], error: Exception) -> np.ndarray:
     v = np.asarray(tuple(vector), dtype=float)
     norm = float(np.linalg.norm(v))
     if not np.isfinite(norm) or norm < 1e-9:
@@ -560,11 +485,11 @@ def _unit_vector(vector: Iterable[float], error: Exception) -> np.ndarray:
     return v / norm
 
 
-def _last_locations(fragment: _Fragment) -> dict[str, np.ndarray]:
+def _last_locations(fragment: Fragment) -> dict[str, np.ndarray]:
     return {arm: np.asarray(keys[-1].value) for (arm, feature), keys in fragment.tracks.items() if feature == "location" and keys}
 
 
-def _displacements(fragment: _Fragment) -> dict[str, np.ndarray]:
+def _displacements(fragment: Fragment) -> dict[str, np.ndarray]:
     return {
         arm: np.asarray(keys[-1].value) - np.asarray(keys[0].value)
         for (arm, feature), keys in fragment.tracks.items()
@@ -572,19 +497,19 @@ def _displacements(fragment: _Fragment) -> dict[str, np.ndarray]:
     }
 
 
-def _shifted(fragment: _Fragment, by: Mapping[str, np.ndarray]) -> _Fragment:
+def _shifted(fragment: Fragment, by: Mapping[str, np.ndarray]) -> Fragment:
     for arm, offset in by.items():
         fragment = fragment.mapped((arm, "location"), lambda key, o=offset: replace(key, value=np.asarray(key.value) + o))
     return fragment
 
 
-def _reversed(fragment: _Fragment) -> _Fragment:
+def _reversed(fragment: Fragment) -> Fragment:
     d = fragment.duration
     tracks = {
         track: tuple(replace(key, start=d - key.end, end=d - key.start) for key in reversed(keys))
         for track, keys in fragment.tracks.items()
     }
-    return _Fragment(d, tracks, fragment.warnings)
+    return Fragment(d, tracks, fragment.warnings)
 
 
 def _angle(a: np.ndarray, b: np.ndarray) -> float:
@@ -620,25 +545,22 @@ def _mirror(feature: str, value: object, symmetry: Symmetry, center: np.ndarray)
     return mirror_directions(np.asarray(value, dtype=float), symmetry)
 
 
-# -- from a fragment to LMPs ------------------------------------------------------------
-
-
-def _value_at(keys: tuple[_Key, ...], time: float) -> object:
+def value_at(keys: tuple[Key, ...], time: float) -> object:
     """The value in effect at ``time``: the latest key reached by then, else the first."""
     current = keys[0].value
     for key in keys:
-        if key.start <= time + _SAME_TIME:
+        if key.start <= time + SAME_TIME:
             current = key.value
     return current
 
 
-def _timed_values(keys: Iterable[_Key]) -> tuple[list[float], list[object]]:
+def timed_values(keys: Iterable[Key]) -> tuple[list[float], list[object]]:
     """Key times and values with holds expanded and equal times merged (the later wins)."""
     times: list[float] = []
     values: list[object] = []
     for key in keys:
-        for time in (key.start, key.end) if key.end - key.start > _SAME_TIME else (key.start,):
-            if times and time - times[-1] <= _SAME_TIME:
+        for time in (key.start, key.end) if key.end - key.start > SAME_TIME else (key.start,):
+            if times and time - times[-1] <= SAME_TIME:
                 values[-1] = key.value
                 continue
             times.append(time)
@@ -646,180 +568,13 @@ def _timed_values(keys: Iterable[_Key]) -> tuple[list[float], list[object]]:
     return times, values
 
 
-@dataclass(frozen=True, eq=False)
-class Planner:
-    """Plans gestures into motor programs for one avatar."""
-
-    avatar: Avatar
-
-    def fragment(self, behavior: BehaviorSpec) -> _Fragment:
-        if behavior.gesture is None:
-            return _Fragment(0.0, {}, (f"{behavior.id}: {behavior.kind} behaviour has no gesture to plan",))
-        return _Compiler(self.avatar, behavior.id).compile(behavior.gesture.constraints, {})
-
-    def rest_wrist(self, arm: str, posture: str = "rest") -> np.ndarray:
-        return np.asarray(self.avatar.postures[posture][AVATAR_SIDE[arm]].wrist, dtype=float)
-
-    def demands(self, behavior: BehaviorSpec) -> GestureDemands:
-        """Arms, natural stroke duration and preparation distance of a behaviour's gesture."""
-        fragment = self.fragment(behavior)
-        arms = frozenset(arm for arm, _ in fragment.tracks)
-        distance = max(
-            (float(np.linalg.norm(np.asarray(first_location(fragment, arm)) - self.rest_wrist(arm))) for arm in arms
-             if first_location(fragment, arm) is not None),
-            default=0.0,
-        )  # fmt: skip
-        dynamic = fragment.duration > 0.0
-        return GestureDemands(arms, fragment.duration, dynamic, dynamic, distance)
-
-    def plan(
-        self, behavior: BehaviorSpec, pegs: TimePegs, repetitions: int = 1, next_gesture_follows: bool = False
-    ) -> MotorProgram:
-        """The motor program of ``behavior`` on ``pegs`` (see the module docstring)."""
-        compiler = _Compiler(self.avatar, behavior.id)
-        fragment = self.fragment(behavior)
-        if repetitions != 1:
-            fragment = compiler.repeat(fragment, repetitions)
-        notes = list(fragment.warnings)
-        pegs = self.usable_pegs(behavior.id, pegs, fragment.duration > 0.0, notes)
-        stroke = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
-        arms = sorted({arm for arm, _ in stroke.tracks}, key=ARMS.index)
-        lmps: list[LMP] = []
-        retraction = 0.0
-        posture = "interim_rest" if next_gesture_follows else "rest"
-        for arm in arms:
-            arm_lmps, last_wrist = self.arm_lmps(compiler, stroke, arm, pegs, notes)
-            lmps.extend(arm_lmps)
-            distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
-            retraction = max(retraction, retraction_duration(distance))
-        end = pegs.relax + retraction if arms else pegs.relax
-        retract = TimePegs.movement(pegs.relax, end)
-        lmps.extend([self.retraction(lmp.channel, retract, posture) for lmp in lmps])
-        final = replace(pegs, end=end)
-        return MotorProgram(behavior.id, tuple(lmps), tuple(notes), final, frozenset(arms))
-
-    def usable_pegs(self, behavior: str, pegs: TimePegs, dynamic: bool, notes: list[str]) -> TimePegs:
-        """The scheduler's pegs, widened by the documented rules where they cannot work."""
-        if pegs.ready - pegs.start < MIN_PREPARATION:
-            notes.append(f"{behavior}: no time for the preparation (start {pegs.start:.3f} s, ready {pegs.ready:.3f} s); starting {MIN_PREPARATION} s earlier")
-            pegs = replace(pegs, start=pegs.ready - MIN_PREPARATION)
-        if dynamic and pegs.stroke_end - pegs.stroke_start < MIN_STROKE:
-            stroke_end = pegs.stroke_start + MIN_STROKE
-            notes.append(f"{behavior}: stroke interval of {pegs.stroke_end - pegs.stroke_start:.3f} s too short for a movement; widened to {MIN_STROKE} s")
-            pegs = replace(
-                pegs, stroke=min(max(pegs.stroke, pegs.stroke_start), stroke_end), stroke_end=stroke_end,
-                relax=max(pegs.relax, stroke_end), end=max(pegs.end, stroke_end),
-            )  # fmt: skip
-        return pegs
-
-    def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
-        """``points`` with those inside the torso pushed out in front of it and those the arm
-        cannot reach moved to the nearest it can (warnings)."""
-        clear = outside_torso(self.avatar, points)
-        moved = np.any(clear != points, axis=1)
-        if np.any(moved):
-            notes.append(
-                f"{behavior}: {int(np.sum(moved))} location(s) of the {arm} hand inside the torso by up to "
-                f"{float(np.max(np.abs(clear - points))):.3f} m; moved in front of it"
-            )
-            points = clear
-        solution = solve_arm(self.avatar, AVATAR_SIDE[arm], points)
-        short = solution.shortfall > REACH_TOLERANCE
-        if not np.any(short):
-            return points
-        notes.append(
-            f"{behavior}: {int(np.sum(short))} location(s) of the {arm} hand out of reach by up to "
-            f"{float(np.max(solution.shortfall)):.3f} m; moved to the nearest reachable point"
-        )
-        return np.where(short[:, None], solution.wrist, points)
-
-    def arm_lmps(
-        self, compiler: _Compiler, stroke: _Fragment, arm: str, pegs: TimePegs, notes: list[str]
-    ) -> tuple[list[LMP], np.ndarray | None]:
-        """The stroke LMPs of one arm, and its wrist position at the end of the stroke."""
-        held = replace(pegs, end=pegs.relax)
-        lmps: list[LMP] = []
-        locations = stroke.tracks.get((arm, "location"), ())
-        last_wrist = None
-        if locations:
-            times, values = _timed_values(locations)
-            curved_flags = tuple(_curved_into(locations, t) for t in times[1:])
-            points = self.within_reach(compiler.behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
-            if len(points) > 1:
-                notes.extend(f"{compiler.behavior}: {note}" for note in plan_wrist_trajectory(points, np.array(times), curved=curved_flags).warnings)
-            lmps.append(WristPositionLMP(arm, held, points, np.array(times), curved_flags))
-            last_wrist = points[-1]
-        shapes = stroke.tracks.get((arm, "shape"), ())
-        if shapes:
-            times, values = self.prepared(_timed_values(shapes), pegs.ready)
-            lmps.append(HandShapeLMP(arm, held, np.array(values), np.array(times)))
-        rotations = self.rotation_keys(compiler, stroke, arm, pegs.ready)
-        if rotations is not None:
-            times, values = rotations
-            lmps.append(WristRotationLMP(arm, held, values, times))
-        return lmps, last_wrist
-
-    @staticmethod
-    def prepared(timed: tuple[list[float], list[object]], ready: float) -> tuple[list[float], list[object]]:
-        """Keys with the first value reached at ``ready`` (the end of the preparation)."""
-        times, values = timed
-        if times[0] - ready > _SAME_TIME:
-            return [ready, *times], [values[0], *values]
-        return times, values
-
-    def rotation_keys(self, compiler: _Compiler, stroke: _Fragment, arm: str, ready: float) -> tuple[np.ndarray, np.ndarray] | None:
-        """Hand rotation keys composed from the fingers and palm tracks, or None when the
-        arm's orientation and location are both unconstrained."""
-        fingers = stroke.tracks.get((arm, "fingers"), ())
-        palms = stroke.tracks.get((arm, "palm"), ())
-        locations = stroke.tracks.get((arm, "location"), ())
-        if not (fingers or palms or locations):
-            return None
-        times = sorted({t for keys in (fingers, palms) for t in _timed_values(keys)[0]} or {locations[0].start})
-        merged: list[float] = []
-        for t in times:
-            if not merged or t - merged[-1] > _SAME_TIME:
-                merged.append(t)
-        inward = np.array([1.0 if arm == "right" else -1.0, 0.0, 0.0])
-        finger_vectors, palm_vectors = [], []
-        for t in merged:
-            wrist = np.asarray(_value_at(locations, t), dtype=float) if locations else compiler.shoulder(arm)
-            finger = _value_at(fingers, t) if fingers else NEUTRAL_FINGERS
-            if isinstance(finger, PointTarget):
-                finger = _unit_vector(
-                    np.asarray(finger.point) - wrist, compiler.error("pointTo target lies at the wrist", None)
-                )
-            palm = _value_at(palms, t) if palms else PalmOrientation(tuple(inward))
-            direction = np.asarray(palm.direction, dtype=float)
-            if palm.relative:
-                direction = rotate(between_vectors(np.array([0.0, 0.0, 1.0]), np.asarray(finger)), direction)
-            finger_vectors.append(np.asarray(finger, dtype=float))
-            palm_vectors.append(direction)
-        quaternions = hand_rotations_from_vectors(self.avatar, AVATAR_SIDE[arm], np.array(finger_vectors), np.array(palm_vectors))
-        quaternions = continuous(quaternions)
-        key_times, key_values = self.prepared((merged, list(quaternions)), ready)
-        return np.array(key_times), np.array(key_values)
-
-    def retraction(self, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
-        return retraction_lmp(self.avatar, channel, pegs, posture)
-
-
-def retraction_lmp(avatar: Avatar, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
-    """The LMP taking ``channel`` back to the avatar's ``posture`` (``rest`` or ``interim_rest``)."""
-    arm, name = channel
-    rest = avatar.postures[posture][AVATAR_SIDE[arm]]
-    target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
-    return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
-
-
-def first_location(fragment: _Fragment, arm: str) -> np.ndarray | None:
+def first_location(fragment: Fragment, arm: str) -> np.ndarray | None:
     """Where the stroke of ``arm`` starts, or None when its location is unconstrained."""
     value = fragment.first((arm, "location"))
     return None if value is None else np.asarray(value, dtype=float)
 
 
-def _curved_into(keys: tuple[_Key, ...], time: float) -> bool:
+def curved_into(keys: tuple[Key, ...], time: float) -> bool:
     """Whether the breakpoint at ``time`` is reached along a curve."""
-    return any(key.curved and abs(key.start - time) <= _SAME_TIME for key in keys)
-
+    return any(key.curved and abs(key.start - time) <= SAME_TIME for key in keys)
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
-from motor.avatar import Avatar
+from motor.body.avatar import Avatar
 
 
 @dataclass(frozen=True, eq=False)

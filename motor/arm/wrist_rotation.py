@@ -1,0 +1,50 @@
+"""The wrist rotation LMP: the hand's global orientation slerped through key orientations.
+
+Keys are scalar-last unit quaternions in the avatar frame; the targets come from the
+extended-finger direction and palm orientation (:mod:`motor.arm.hand_orientation`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from motor.program.lmp import (
+    Channel,
+    ChannelState,
+    RotationKeyframes,
+    TimePegs,
+    as_profile,
+    key_times,
+    rotation_keyframes,
+)
+from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
+
+
+@dataclass(frozen=True, eq=False)
+class WristRotationLMP:
+    """Slerp of the hand's orientation through key quaternions ``(m, 4)`` (scalar-last)."""
+
+    side: str
+    pegs: TimePegs
+    keys: np.ndarray
+    key_times: np.ndarray | None = None
+    time_profile: TimeProfile | str = field(default_factory=minimum_jerk)
+
+    def __post_init__(self) -> None:
+        keys = np.atleast_2d(np.asarray(self.keys, dtype=float))
+        norms = np.linalg.norm(keys, axis=-1) if keys.ndim == 2 and keys.shape[1] == 4 else np.zeros(1)
+        if keys.ndim != 2 or keys.shape[1] != 4 or np.any(~np.isfinite(norms)) or np.any(norms < 1e-9):
+            raise ValueError(f"{self.channel}: keys must be non-zero (m, 4) quaternions, got shape {np.shape(self.keys)}")
+        object.__setattr__(self, "keys", keys / norms[:, None])
+        object.__setattr__(self, "key_times", key_times(self.pegs, keys.shape[0], self.key_times, str(self.channel)))
+        object.__setattr__(self, "time_profile", as_profile(self.time_profile))
+
+    @property
+    def channel(self) -> Channel:
+        return (self.side, "hand_rotation")
+
+    def activate(self, state: ChannelState) -> RotationKeyframes:
+        return rotation_keyframes(self.channel, state, self.keys, self.key_times, self.time_profile)
+

@@ -1,0 +1,214 @@
+"""Sign paths kept within the arm's reach and out of the body (seed 000, section 4.4).
+
+Every wrist position a sign plan passes through is checked with the arm IK: positions out
+of reach are pulled in, positions too near the shoulder step around its front, positions
+so far across the body that no swivel keeps the upper arm out of the torso step back to
+the arm's own side; chords between moved neighbours are refined with checked midpoints.
+All positions are metres in the avatar frame; checks run in one vectorized IK call per
+arm and round.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.arm.ik import solve_arm
+from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.collision import outside_torso
+from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+
+#: Shortest path length that counts as a movement, metres.
+_SAME = 1e-6
+
+#: How far (m) the IK may fall short before a position is moved within reach, and the
+#: margin inside the reach limit that positions keep.
+REACH_TOLERANCE = 1e-3
+
+
+REACH_MARGIN = 0.03
+
+
+#: Upper-arm penetration (m, IK diagnostics) that moves a position back from across the
+#: body, in steps of CROSS_STEP metres, at most CROSS_STEPS of them.
+PENETRATION_TOLERANCE = 1e-3
+
+
+CROSS_STEP = 0.02
+
+
+CROSS_STEPS = 16
+
+
+#: Rounds of midpoints inserted between moved neighbours, and the spacing (m) above
+#: which neighbours get one anyway (see :func:`clear_paths`).
+REFINEMENTS = 4
+
+
+REFINE_SPACING = 0.06
+
+
+def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """Plans with every wrist position moved within reach (:func:`within_reach`)."""
+    plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
+    fixed: dict[int, dict] = {id(plan): {"first": dict(plan.first), "moves": dict(plan.moves), "notes": []} for plan in plans}
+    for arm in ARMS:
+        points, turns, owners = [], [], []
+        for plan in plans:
+            if arm not in plan.first:
+                continue
+            first = plan.first[arm]
+            points.append(first.wrist[None])
+            turns.append(first.rotation[None])
+            for move, turn in zip(plan.moves[(arm, "wrist_position")], plan.moves[(arm, "hand_rotation")]):
+                points.append(move.values)
+                turns.append(rotations_along(turn.values, arc_fractions(move.values)))
+            owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
+        if not points:
+            continue
+        cleared, _ = clear_paths(avatar, arm, points, turns)
+        pieces = iter(cleared)
+        originals = iter(points)
+        for plan, count in owners:
+            record = fixed[id(plan)]
+            parts = [next(pieces) for _ in range(count)]
+            before = [next(originals) for _ in range(count)]
+            changed = sum(int(len(a) != len(b) or np.any(np.abs(a - b) > 1e-12)) for a, b in zip(parts, before))
+            if changed:
+                record["notes"].append(f"{plan.gloss}: {changed} path(s) of the {arm} hand moved within reach or out of the body")
+            first = plan.first[arm]
+            record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
+            moves = plan.moves[(arm, "wrist_position")]
+            record["moves"][(arm, "wrist_position")] = tuple(replace(m, values=v) for m, v in zip(moves, parts[1:]))
+    return [
+        draft if not isinstance(draft, SignPlan) else replace(
+            draft, first=fixed[id(draft)]["first"], moves=fixed[id(draft)]["moves"],
+            warnings=draft.warnings + tuple(fixed[id(draft)]["notes"]),
+        )
+        for draft in drafts
+    ]  # fmt: skip
+
+
+def within_reach(
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None
+) -> tuple[np.ndarray, int, float]:
+    """Wrist positions ``(n, 3)`` the arm reaches, with its upper arm out of the torso.
+
+    Positions out of reach, or within :data:`REACH_MARGIN` of its limit (interpolation
+    between two reachable positions can leave the reachable shell, whose shoulder moves
+    with the clavicle), are pulled in to that margin; positions too near the shoulder
+    for the elbow's flexion step away from it and forward (around the shoulder's front,
+    where the hand passes) by what they lack, at least :data:`CROSS_STEP`; positions so far across the body
+    that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
+    back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
+    many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
+    hand's global rotations there, which change the swivel the IK picks."""
+    side = AVATAR_SIDE[arm]
+    shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
+    outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
+    forward = np.array([0.0, 0.0, CROSS_STEP])
+    fixed = np.array(points, dtype=float)
+    moved = np.zeros(len(fixed), dtype=bool)
+    open_ = np.arange(len(fixed))
+    worst = 0.0
+    for _ in range(CROSS_STEPS):
+        if open_.size == 0:
+            break
+        here = fixed[open_]
+        turns = None if rotations is None else np.asarray(rotations)[open_]
+        away = here - shoulder
+        away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
+        far = solve_arm(avatar, side, here + REACH_MARGIN * away, turns)
+        near = solve_arm(avatar, side, here - REACH_MARGIN * away, turns)
+        # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
+        outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
+        short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
+        too_far = short & outer
+        too_near = short & ~outer
+        crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
+        bad = too_far | too_near | crossing
+        worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
+        here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
+        lacking = np.maximum(np.maximum(far.shortfall, near.shortfall), CROSS_STEP)
+        around = away + forward / CROSS_STEP
+        around /= np.maximum(np.linalg.norm(around, axis=1, keepdims=True), 1e-9)
+        here = here + (too_near * lacking)[:, None] * around + crossing[:, None] * outward
+        fixed[open_] = here
+        moved[open_[bad]] = True
+        open_ = open_[bad]
+    return fixed, int(moved.sum()), max(worst, 0.0)
+
+
+def clear_paths(
+    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], keep_ends: bool = False
+) -> tuple[list[np.ndarray], int]:
+    """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
+    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`), in
+    one IK call per arm and round; with ``keep_ends`` the first and last points stay.
+
+    Moving a point can open a chord to its neighbour that cuts the unreachable core around
+    the shoulder or the torso, so for :data:`REFINEMENTS` rounds each pair of neighbours of
+    which one moved (or that lie more than :data:`REFINE_SPACING` apart) gets its checked
+    midpoint inserted. Also returns how many points moved."""
+    masks = []
+    for path in paths:
+        mask = np.ones(len(path), dtype=bool)
+        if keep_ends:
+            mask[[0, -1]] = False
+        masks.append(mask)
+    paths, rotations, moved, total = _clear_points(avatar, arm, paths, rotations, masks)
+    for _ in range(REFINEMENTS):
+        new_paths, new_rotations, new_masks = [], [], []
+        for path, turn, change in zip(paths, rotations, moved):
+            gap = np.linalg.norm(np.diff(path, axis=0), axis=1)
+            split = (change[1:] | change[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
+            middles = 0.5 * (path[1:] + path[:-1])[split]
+            turns = quat.slerp(turn[:-1][split], turn[1:][split], 0.5)
+            order = np.argsort(np.concatenate([np.arange(len(path)), np.flatnonzero(split) + 0.5]), kind="stable")
+            new_paths.append(np.concatenate([path, middles])[order])
+            new_rotations.append(np.concatenate([turn, turns])[order])
+            new_masks.append(np.concatenate([np.zeros(len(path), dtype=bool), np.ones(len(middles), dtype=bool)])[order])
+        if not any(mask.any() for mask in new_masks):
+            break
+        paths, rotations, moved, more = _clear_points(avatar, arm, new_paths, new_rotations, new_masks)
+        total += more
+    return paths, total
+
+
+def _clear_points(
+    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], masks: list[np.ndarray]
+) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int]:
+    """The masked points of every path checked at once; which points moved."""
+    chosen = np.concatenate([path[mask] for path, mask in zip(paths, masks)])
+    if chosen.size == 0:
+        return paths, rotations, [np.zeros(len(p), dtype=bool) for p in paths], 0
+    turns = np.concatenate([turn[mask] for turn, mask in zip(rotations, masks)])
+    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns)[0]
+    changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
+    out, moved, start = [], [], 0
+    for path, mask in zip(paths, masks):
+        count = int(mask.sum())
+        path = path.copy()
+        path[mask] = fixed[start : start + count]
+        flags = np.zeros(len(path), dtype=bool)
+        flags[mask] = changed[start : start + count]
+        out.append(path)
+        moved.append(flags)
+        start += count
+    return out, rotations, moved, int(changed.sum())
+
+
+def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Rotations ``(n, 4)`` at fractions of the way through evenly spaced keys ``(m, 4)``."""
+    position = np.clip(fractions, 0.0, 1.0) * (len(keys) - 1)
+    index = np.minimum(position.astype(int), len(keys) - 2)
+    return quat.slerp(keys[index], keys[index + 1], position - index)
+
+
+
+def arc_fractions(points: np.ndarray) -> np.ndarray:
+    lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    return lengths / lengths[-1] if lengths[-1] > _SAME else np.linspace(0.0, 1.0, len(points))
+
