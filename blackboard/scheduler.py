@@ -27,6 +27,9 @@ Absolutely timed behaviours of an utterance with speech are planned with the fir
 whose speech ends after their onset (the last chunk takes the rest); a gesture-only
 utterance (no text) is one chunk without speech. Other behaviours than gestures (facial,
 …) are listed in the timeline's ``other_behaviors`` but not performed; gestures and signs are.
+Behaviours of a BML block are timed by the block's sync constraints (:mod:`blackboard.synced`):
+those no motor module performs yet are timed and listed (``performed`` false), not performed;
+a BML speech reports its start, its sync markers and its end as behaviour feedback.
 """
 
 from __future__ import annotations
@@ -46,12 +49,15 @@ from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
 from blackboard.errors import BehaviorError, OverlappingGestures, ScheduleError
+from blackboard import synced
 from blackboard.events import (
+    ChunkPlanned,
     EventBus,
     FramesReady,
     Observer,
     SpeechEnded,
     SpeechStarted,
+    UtteranceEnded,
 )
 from blackboard.planning import PEG_NAMES, MotorControl, TimePegs
 from blackboard.timeline import BehaviorEntry, ChunkEntry, PlanningSlack, Timeline
@@ -60,6 +66,7 @@ from motor.motion import Motion
 from motor.trajectory.spline import fitts_duration
 from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
 from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
+from tts.speech import frozen_marks
 
 _EPS = 1e-9
 
@@ -248,8 +255,10 @@ class Scheduler:
         absolute = sorted((b for b in utterance.behaviors if isinstance(b.timing, AbsoluteTiming) and b.moves_arms),
                           key=lambda b: b.timing.onset)
         timeline = Timeline(name, self.motor.fps)
+        for warning in utterance.warnings:
+            timeline.warn(warning)
         for b in utterance.behaviors:
-            if not b.moves_arms:
+            if not b.moves_arms and not synced.is_synced(b):  # BML's reader says it of its own
                 timeline.warn(f"behaviour {b.id!r} ({b.kind}) is listed but not performed: only gestures and signs are scheduled")
         return _Job(utterance, name, chunks, timeline, absolute=list(absolute))
 
@@ -351,6 +360,8 @@ class Scheduler:
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
             self._at(onset, lambda: self._start_speech(job, board, onset))
+            if board.spec.speech is not None:
+                self._schedule_speech_feedback(board)
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
 
     def _start_speech(self, job: _Job, board: Blackboard, onset: float) -> None:
@@ -363,6 +374,15 @@ class Scheduler:
         job.sample_rate = speech.sample_rate
         job.audio_end = max(job.audio_end, int(round((onset - job.origin) * speech.sample_rate)) + len(speech.audio))
         board.speech = dataclasses.replace(speech, audio=None)
+
+    def _schedule_speech_feedback(self, board: Blackboard) -> None:
+        """A BML speech's progress: ``started`` at its start tag, ``sync`` at each marker, ``finished`` at its end."""
+        speech = board.spec.speech
+        for tag in board.spec.time_tags:
+            t = board.speech_onset + board.speech.marks[tag.id]
+            point = tag.id.split(":", 1)[1]
+            kind = {"start": "started", "end": "finished"}.get(point, "sync")
+            board.feedback_entries.append(self._at(t, lambda k=kind, p=point, t=t: board.post(speech, k, p, t)))
 
     def _schedule_feedback(self, board: Blackboard, gesture: PlannedGesture) -> None:
         pegs = gesture.program.pegs
@@ -510,7 +530,7 @@ class Scheduler:
         spec = job.chunks[index]
         now = self.clock.now()
         job.timeline.add_chunk(ChunkEntry(index, spec.text))
-        behaviors = job.utterance.behaviors_in_chunk(index) if job.utterance.chunks else ()
+        behaviors = job.utterance.behaviors_in_chunk(index)
         board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.moves_arms), job.origin, now, self.bus, job.timeline)
         job.boards.append(board)
         with self._lock:
@@ -526,7 +546,14 @@ class Scheduler:
             return board
         board.move(ChunkState.PENDING, self.clock.now())
         job.timeline.slack.append(PlanningSlack(index, self.clock.now() - job.origin, board.exec_start - job.origin))
+        self._announce_plan(board, job)
         return board
+
+    def _announce_plan(self, board: Blackboard, job: _Job) -> None:
+        tl, entry = job.timeline, job.timeline.chunk(board.index)
+        phases = {b.id: dict(b.phases) for b in list(tl.behaviors) if b.chunk == board.index}
+        tags = {t.id: tl.time_tags[t.id] for t in board.spec.time_tags if t.id in tl.time_tags}
+        self.bus.publish(ChunkPlanned(job.name, board.index, job.origin, entry.speech_onset, entry.speech_end, phases, tags, tuple(tl.warnings)))
 
     def _fill(self, board: Blackboard, job: _Job, previous: Blackboard | None, now: float) -> None:
         """Everything InPrep does: speech and demands concurrently, then timing, then motor programs."""
@@ -553,13 +580,21 @@ class Scheduler:
         board.behaviors = board.behaviors + tuple(absolute)
         for b in absolute:
             board.demands[b.id] = self.motor.demands(b)
+        unperformed = synced.unperformed(job.utterance, board.index)
+        board.demands.update({b.id: synced.nominal_demands(b) for b in unperformed})
         marks = dict(board.speech.marks) if board.speech is not None else {}
         self._check_marks(board, marks)
-        timing = self._solve(board, job, marks, earliest, onset_reason, arm_free, arm_reason)
+        retractions: dict[str, float] = {}
+        timing = self._solve(board, job, marks, earliest, onset_reason, arm_free, arm_reason, unperformed, retractions)
         board.timing = timing
         board.speech_end = timing.speech_onset + last_word
         board.gestures = self._program(board, job, timing, follows)
-        self._record(board, job, timing)
+        if self._retime_ends(board, timing, retractions):  # a named end: time it with the motor's own retraction
+            timing = self._solve(board, job, marks, earliest, onset_reason, arm_free, arm_reason, unperformed, retractions)
+            board.timing = timing
+            board.speech_end = timing.speech_onset + last_word
+            board.gestures = self._program(board, job, timing, follows)
+        self._record(board, job, timing, unperformed)
 
     def _contribute(self, function: Callable, *args) -> Future | object:
         if self._contributors is None:
@@ -585,9 +620,10 @@ class Scheduler:
         for b in board.behaviors:
             if isinstance(b.timing, Affiliate) and b.timing.onset in tags and b.timing.end in tags:
                 emphasis.append((tags[b.timing.onset].offset, tags[b.timing.end].offset))
+        names = {f"mark{n}" if ":" in t.id else t.id: t.id for n, t in enumerate(spec.time_tags)}  # SSML names have no colon
         request = SpeechRequest(
             text=spec.text,
-            marks=tuple(TextMark(t.id, t.offset) for t in spec.time_tags),
+            marks=tuple(TextMark(name, t.offset) for name, t in zip(names, spec.time_tags)),
             emphasis=tuple(sorted(emphasis)),
             final=follows is None,
             voice=self.config.voice,
@@ -595,9 +631,12 @@ class Scheduler:
             with_audio=self.config.with_audio,
         )
         try:
-            return self.tts.synthesize(request)
+            speech = self.tts.synthesize(request)
         except SpeechError as error:
             raise SpeechError(f"speech of chunk {spec.index + 1} ({spec.text!r}) failed: {error}") from error
+        if all(name == tag for name, tag in names.items()):
+            return speech
+        return dataclasses.replace(speech, marks=frozen_marks({names[name]: t for name, t in speech.marks.items()}))
 
     def _take_absolute(self, job: _Job, board: Blackboard, speech_end: float) -> list[BehaviorSpec]:
         last = board.index == len(job.chunks) - 1
@@ -612,30 +651,58 @@ class Scheduler:
                 if missing:
                     raise BehaviorError(f"behaviour {b.id!r}: the speech of chunk {board.index + 1} gave no time for tag(s) {missing}")
 
-    def _requests(self, board: Blackboard, job: _Job, prep: dict[str, float]) -> list[GestureRequest]:
+    def _requests(self, board: Blackboard, job: _Job, prep: dict[str, float], unperformed: tuple[BehaviorSpec, ...] = (),
+                  retractions: dict[str, float] | None = None) -> list[GestureRequest]:
         out = []
-        for b in board.behaviors:
+        for b in board.behaviors + unperformed:
             d = board.demands[b.id]
-            if isinstance(b.timing, Affiliate):
+            if synced.is_synced(b):
+                retraction = (retractions or {}).get(b.id, float(fitts_duration(d.preparation_distance))) if b.moves_arms else None
+                phases = synced.phases(b, self.config.timing, retraction)
+                out.append(GestureRequest(b.id, d, prep.get(b.id, synced.nominal_preparation(b)), synced=phases))
+            elif isinstance(b.timing, Affiliate):
                 out.append(GestureRequest(b.id, d, prep[b.id], affiliate=(b.timing.onset, b.timing.end)))
             else:
                 out.append(GestureRequest(b.id, d, prep[b.id], absolute=(job.origin + b.timing.onset, job.origin + b.timing.end)))
         return out
 
-    def _solve(self, board, job, marks, earliest, onset_reason, arm_free, arm_reason) -> ChunkTiming:
+    def _solve(self, board, job, marks, earliest, onset_reason, arm_free, arm_reason, unperformed=(), retractions=None) -> ChunkTiming:
         """Two passes: preparation times from where the arms are at the naive start, then at the solved start."""
         cfg = self.config.timing
         naive = {}
         for b in board.behaviors:
-            stroke = (earliest + marks[b.timing.onset] - cfg.stroke_lead) if isinstance(b.timing, Affiliate) else job.origin + b.timing.onset
+            if synced.is_synced(b):
+                stroke = arm_free  # not known before solving: prepare from where the arm is when free
+            else:
+                stroke = (earliest + marks[b.timing.onset] - cfg.stroke_lead) if isinstance(b.timing, Affiliate) else job.origin + b.timing.onset
             guess = float(fitts_duration(board.demands[b.id].preparation_distance))
             naive[b.id] = self.motor.preparation_duration(b, max(arm_free, stroke - guess))
         delay = job.absolute_delay
-        timing = time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, naive), cfg, delay)
+        links, foreign = synced.links(job.utterance, board.index)
+        fixed = synced.fixed_times(foreign, job.utterance, job.timeline, job.origin)
+
+        def solve(prep: dict[str, float]) -> ChunkTiming:
+            requests = self._requests(board, job, prep, unperformed, retractions)
+            return time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, requests, cfg, delay, links, fixed)
+
+        timing = solve(naive)
         solved = {g.behavior: self.motor.preparation_duration(b, g.prep_start) for g, b in zip(timing.gestures, board.behaviors)}
         if all(abs(solved[k] - naive[k]) < 1e-6 for k in solved):
             return timing
-        return time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, solved), cfg, delay)
+        return solve(solved)
+
+    def _retime_ends(self, board: Blackboard, timing: ChunkTiming, retractions: dict[str, float]) -> bool:
+        """For synced gestures whose ``end`` a constraint names: remember the motor's own
+        retraction where it differs from the estimate; True when timing must be solved again."""
+        named = synced.named_end(board.behaviors)
+        solved_end = {g.behavior: g.end for g in timing.gestures}
+        again = False
+        for planned in board.gestures:
+            b = planned.behavior.id
+            if b in named and b not in retractions and abs(planned.program.pegs.end - solved_end[b]) > 1e-6:
+                retractions[b] = planned.program.pegs.end - planned.program.pegs.relax
+                again = True
+        return again
 
     def _program(self, board: Blackboard, job: _Job, timing: ChunkTiming, follows) -> tuple[PlannedGesture, ...]:
         later_arms = self._arms_following(board, timing, follows)
@@ -643,7 +710,9 @@ class Scheduler:
         for g, b in zip(timing.gestures, board.behaviors):
             d = board.demands[b.id]
             retraction = float(fitts_duration(d.preparation_distance))
-            pegs = TimePegs(g.prep_start, g.stroke_start, g.stroke_start, g.stroke, g.stroke_end, g.relax, g.relax + retraction)
+            ready = g.ready if g.ready is not None else g.stroke_start
+            end = g.end if g.end is not None else g.relax + retraction
+            pegs = TimePegs(g.prep_start, ready, g.stroke_start, g.stroke, g.stroke_end, g.relax, end)
             next_follows = bool(d.arms & later_arms[b.id])
             program = self.motor.plan(b, pegs, repetitions=g.repetitions, next_gesture_follows=next_follows)
             for warning in program.warnings:
@@ -666,7 +735,7 @@ class Scheduler:
             out[g.behavior] = frozenset(arms)
         return out
 
-    def _record(self, board: Blackboard, job: _Job, timing: ChunkTiming) -> None:
+    def _record(self, board: Blackboard, job: _Job, timing: ChunkTiming, unperformed: tuple[BehaviorSpec, ...] = ()) -> None:
         tl, o, i = job.timeline, job.origin, board.index
         entry = tl.chunk(i)
         entry.speech_onset = timing.speech_onset - o
@@ -686,7 +755,9 @@ class Scheduler:
             b = g.behavior
             pegs = g.program.pegs
             affiliate = None
-            if isinstance(b.timing, Affiliate):
+            if synced.is_synced(b):
+                affiliate = None
+            elif isinstance(b.timing, Affiliate):
                 affiliate = {"onset": tl.time_tags[b.timing.onset], "end": tl.time_tags[b.timing.end]}
             else:
                 delay = timing.absolute_delay
@@ -696,6 +767,14 @@ class Scheduler:
                 {name: getattr(pegs, name) - o for name in PEG_NAMES}, affiliate,
                 g.timing.mode, g.timing.repetitions, g.timing.slowdown, False, g.next_gesture_follows,
             ))
+        for dropped in timing.dropped:
+            tl.warn(f"constraint {dropped} dropped: it conflicts with the rest of the block and is not required")
+        timed = {g.behavior: g for g in timing.gestures}
+        for b in unperformed:
+            g = timed[b.id]
+            phases = dict(zip(PEG_NAMES, (g.prep_start, g.ready, g.stroke_start, g.stroke, g.stroke_end, g.relax, g.end)))
+            tl.add_behavior(BehaviorEntry(b.id, i, b.kind, (), {name: t - o for name, t in phases.items()}, None,
+                                          g.mode, g.repetitions, g.slowdown, performed=False))
 
     # ----------------------------------------------------------------- results
 
@@ -723,6 +802,9 @@ class Scheduler:
             (self._active if job in self._active else self._queue).remove(job)
             for board in job.boards:
                 self._board_jobs.pop(board, None)
+        status = "interrupted" if job.interrupted else "failed" if failed is not None else "done"
+        error = f"{type(failed.error).__name__}: {failed.error}" if failed is not None and failed.error is not None else None
+        self.bus.publish(UtteranceEnded(job.name, job.end - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
         job.done.set()
 
     def _audio(self, job: _Job, performed: list[Blackboard]) -> tuple[np.ndarray | None, int | None]:

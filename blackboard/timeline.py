@@ -30,7 +30,8 @@ class ChunkEntry:
 
 @dataclass
 class BehaviorEntry:
-    """One behaviour's phases (the pegs its motor program realized) and affiliate times."""
+    """One behaviour's phases (the pegs its motor program realized) and affiliate times;
+    ``performed`` is False for a BML behaviour that is timed but that no motor module performs."""
 
     id: str
     chunk: int
@@ -43,6 +44,7 @@ class BehaviorEntry:
     slowdown: float = 1.0
     retraction_skipped: bool = False
     next_gesture_follows: bool = False
+    performed: bool = True
 
 
 @dataclass(frozen=True)
@@ -157,4 +159,5 @@ def _behavior_json(b: BehaviorEntry) -> dict:
         "slowdown": b.slowdown,
         "retraction_skipped": b.retraction_skipped,
         "next_gesture_follows": b.next_gesture_follows,
+        "performed": b.performed,
     }

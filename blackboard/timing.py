@@ -28,6 +28,21 @@ allows (published MURML asks for strokes at 1.0 s that take longer to prepare), 
 absolute time of the utterance is delayed alike, the least that makes them fit; the delay
 is reported like a stretched pause, and later chunks keep it.
 
+A behaviour timed by sync constraints (BML) has a point for each of its seven pegs
+(``start``, ``ready``, ``stroke_start``, ``stroke``, ``stroke_end``, ``relax``, ``end``)
+and the block's constraints between them (:class:`SyncLink`: equal, before, after, with
+offsets; times on the block clock are counted from the absolute clock start). Its phases
+keep their natural lengths unless the block names the pegs that bound them: the
+preparation takes at least its duration (a gesture starts it as soon as the arm is free,
+as for MURML; another behaviour keeps its nominal length unless its ``start`` is named),
+``ready`` is the stroke onset unless ``ready`` is named (then a pre-stroke hold), the
+stroke point lies ``lead`` into the stroke unless both are named, the stroke lasts at
+least its natural duration and goes on ``lead`` past its stroke point, ``relax`` is the
+stroke end unless named (then a post-stroke hold), and the retraction keeps its duration
+unless both ``relax`` and ``end`` are named. A constraint that is not required is dropped
+when it takes part in a conflict (named in :attr:`ChunkTiming.dropped`); points of
+earlier chunks enter as fixed times.
+
 How a stroke fills its span (``relax − stroke onset``), with ``f`` = span / natural
 duration: a static stroke holds its posture; ``f ≤ max_slowdown`` (1.5) slows one
 stroke to span it; a repeatable stroke with ``f ≥ 2`` is performed ``⌊f⌋`` times, each
@@ -44,7 +59,7 @@ from dataclasses import dataclass
 import networkx as nx
 
 from blackboard.errors import TimingConflict
-from blackboard.planning import GestureDemands
+from blackboard.planning import PEG_NAMES, GestureDemands
 
 _NS = 1_000_000_000
 ZERO = "utterance start"
@@ -61,14 +76,46 @@ class TimingConfig:
 
 
 @dataclass(frozen=True)
+class SyncedPhases:
+    """How a behaviour timed by sync constraints keeps its phases (module docstring).
+
+    ``named``: the pegs some constraint names; ``arm_bound``: a gesture, whose preparation
+    starts once the arm is free; ``lead``: seconds from the stroke onset to the stroke point
+    (and at least as long after it); ``retraction``: seconds from relax to end.
+    """
+
+    named: frozenset[str]
+    arm_bound: bool
+    lead: float
+    retraction: float
+
+
+@dataclass(frozen=True)
+class SyncLink:
+    """A constraint between two points of the network: ``t[point] − t[anchor]`` is
+    ``offset`` (``relation`` ``=``), at most (``<=``) or at least (``>=``) that, seconds.
+    ``name`` says it in the spec's words; a link that is not ``required`` may be dropped."""
+
+    point: str
+    anchor: str
+    relation: str
+    offset: float
+    name: str
+    behavior: str | None = None
+    required: bool = True
+
+
+@dataclass(frozen=True)
 class GestureRequest:
-    """One gesture to time in a chunk: exactly one of ``affiliate`` (onset tag, end tag) and ``absolute`` (onset, end, s)."""
+    """One gesture to time in a chunk: exactly one of ``affiliate`` (onset tag, end tag),
+    ``absolute`` (onset, end, s) and ``synced`` (timed by :class:`SyncLink` constraints)."""
 
     behavior: str
     demands: GestureDemands
     preparation: float
     affiliate: tuple[str, str] | None = None
     absolute: tuple[float, float] | None = None
+    synced: SyncedPhases | None = None
 
 
 @dataclass(frozen=True)
@@ -88,6 +135,8 @@ class GestureTiming:
     repetitions: int
     mode: str
     slowdown: float
+    ready: float | None = None
+    end: float | None = None
 
 
 @dataclass(frozen=True)
@@ -111,6 +160,7 @@ class ChunkTiming:
     stretch: PauseStretch | None
     absolute_delay: float = 0.0
     absolute_stretch: PauseStretch | None = None
+    dropped: tuple[str, ...] = ()
 
 
 def _ns(seconds: float) -> int:
@@ -182,6 +232,12 @@ def tag_point(tag: str) -> str:
     return f"time tag {tag}"
 
 
+def peg_point(behavior: str, peg: str) -> str:
+    """The network point of ``behavior``'s peg (one of ``PEG_NAMES``)."""
+    prep, onset, span_end = _points(behavior)
+    return {"start": prep, "stroke_start": onset, "relax": span_end}.get(peg, f"{peg.replace('_', ' ')} of {behavior}")
+
+
 def time_chunk(
     chunk: int,
     earliest_onset: float,
@@ -192,6 +248,8 @@ def time_chunk(
     gestures: Sequence[GestureRequest],
     config: TimingConfig = TimingConfig(),
     absolute_delay: float = 0.0,
+    links: Sequence[SyncLink] = (),
+    fixed: Mapping[str, float] | None = None,
 ) -> ChunkTiming:
     """Solve chunk ``chunk``'s timing.
 
@@ -201,18 +259,42 @@ def time_chunk(
     the time tags' times from the chunk's speech onset (the TTS's marks). Gestures on the
     same arm are ordered by their stroke onset as the spec asks for it. Absolute times are
     counted from the absolute clock start, at least ``absolute_delay`` after the utterance
-    start (the delay earlier chunks needed).
+    start (the delay earlier chunks needed). ``links`` are sync constraints between points
+    (:func:`peg_point`, :func:`tag_point`, :data:`ABSOLUTE`); ``fixed`` the times of points
+    already timed with earlier chunks.
     """
-    net = TemporalNetwork()
+
+    def network(active: Sequence[SyncLink], onsets: Mapping[str, float] | None) -> TemporalNetwork:
+        net = TemporalNetwork()
+        net.at_least(speech, ZERO, earliest_onset, onset_reason)
+        net.at_least(ABSOLUTE, ZERO, absolute_delay, f"absolute timings run {absolute_delay:.3f} s late")
+        for tag, offset in marks.items():
+            net.exactly(tag_point(tag), speech, offset, f"time tag {tag} at {offset:.3f} s into the speech of chunk {chunk + 1}")
+        for point, time in (fixed or {}).items():
+            net.exactly(point, ZERO, time, f"{point} at {time:.3f} s, timed with an earlier chunk")
+        for gesture in gestures:
+            _add_gesture(net, gesture, arm_free, arm_free_reason, config)
+        for link in active:
+            _add_link(net, link)
+        if onsets is not None:
+            _order_same_arm(net, gestures, marks, onsets)
+        return net
+
     speech = speech_point(chunk)
-    net.at_least(speech, ZERO, earliest_onset, onset_reason)
-    net.at_least(ABSOLUTE, ZERO, absolute_delay, f"absolute timings run {absolute_delay:.3f} s late")
-    for tag, offset in marks.items():
-        net.exactly(tag_point(tag), speech, offset, f"time tag {tag} at {offset:.3f} s into the speech of chunk {chunk + 1}")
-    for gesture in gestures:
-        _add_gesture(net, gesture, arm_free, arm_free_reason, config)
-    _order_same_arm(net, gestures, marks)
-    times, pred = net.solve(f"chunk {chunk + 1}")
+    active = list(links)
+    dropped: list[str] = []
+    onsets = _synced_onsets(network, active, gestures)
+    while True:
+        net = network(active, onsets)
+        try:
+            times, pred = net.solve(f"chunk {chunk + 1}")
+            break
+        except TimingConflict as conflict:
+            optional = [link for link in active if not link.required and link.name in conflict.constraints]
+            if not optional:
+                raise
+            active.remove(optional[0])
+            dropped.append(optional[0].name)
     onset = times[speech]
     stretch = None
     if onset - earliest_onset > 1e-9:
@@ -231,7 +313,25 @@ def time_chunk(
         chain = net.binding_chain(pred, ABSOLUTE)
         behaviors = [b for _, b in chain if b is not None]
         absolute_stretch = PauseStretch(chunk, delay - absolute_delay, "; ".join(name for name, _ in chain), behaviors[0] if behaviors else None)
-    return ChunkTiming(onset, timed, stretch, delay, absolute_stretch)
+    return ChunkTiming(onset, timed, stretch, delay, absolute_stretch, tuple(dropped))
+
+
+def _synced_onsets(network, links: Sequence[SyncLink], gestures: Sequence[GestureRequest]) -> dict[str, float]:
+    """Stroke onsets of the synced gestures solved without the same-arm order, to order them by."""
+    if not any(g.synced is not None and g.demands.arms for g in gestures):
+        return {}
+    try:
+        times, _ = network(links, None).solve("order")
+    except TimingConflict:
+        return {}
+    return {g.behavior: times[_points(g.behavior)[1]] for g in gestures if g.synced is not None}
+
+
+def _add_link(net: TemporalNetwork, link: SyncLink) -> None:
+    if link.relation in ("=", ">="):
+        net.at_least(link.point, link.anchor, link.offset, link.name, link.behavior)
+    if link.relation in ("=", "<="):
+        net.at_most(link.point, link.anchor, link.offset, link.name, link.behavior)
 
 
 def _points(behavior: str) -> tuple[str, str, str]:
@@ -241,6 +341,9 @@ def _points(behavior: str) -> tuple[str, str, str]:
 def _add_gesture(net: TemporalNetwork, g: GestureRequest, arm_free: float, arm_free_reason: str, config: TimingConfig) -> None:
     b = g.behavior
     prep, onset, span_end = _points(b)
+    if g.synced is not None:
+        _add_synced(net, g, arm_free, arm_free_reason)
+        return
     if g.absolute is not None:
         start, end = g.absolute
         net.exactly(onset, ABSOLUTE, start, f"{b}: stroke onset at absolute {start:.3f} s", b)
@@ -257,8 +360,39 @@ def _add_gesture(net: TemporalNetwork, g: GestureRequest, arm_free: float, arm_f
     net.at_least(prep, ZERO, arm_free, f"{b}: {arm_free_reason}", b)
 
 
-def _order_same_arm(net: TemporalNetwork, gestures: Sequence[GestureRequest], marks: Mapping[str, float]) -> None:
+def _add_synced(net: TemporalNetwork, g: GestureRequest, arm_free: float, arm_free_reason: str) -> None:
+    """The points of a synced behaviour and how its phases hold together (module docstring)."""
+    b, phases, named = g.behavior, g.synced, g.synced.named
+    start, ready, onset, stroke, stroke_end, relax, end = (peg_point(b, peg) for peg in PEG_NAMES)
+    natural = g.demands.stroke_duration if g.demands.dynamic else 0.0
+    if phases.arm_bound:
+        net.at_least(start, ZERO, arm_free, f"{b}: {arm_free_reason}", b)
+    net.at_least(ready, start, g.preparation, f"{b}: preparation takes {g.preparation:.3f} s", b)
+    if not phases.arm_bound and "start" not in named:
+        net.at_most(ready, start, g.preparation, f"{b}: preparation keeps its {g.preparation:.3f} s", b)
+    net.at_least(onset, ready, 0.0, f"{b}: stroke starts once ready", b)
+    if "ready" not in named:
+        net.at_most(onset, ready, 0.0, f"{b}: stroke starts when ready (no pre-stroke hold asked for)", b)
+    if {"stroke", "stroke_start"} <= named:
+        net.at_least(stroke, onset, 0.0, f"{b}: stroke point within the stroke", b)
+    else:
+        net.exactly(stroke, onset, phases.lead, f"{b}: stroke point {phases.lead:.3f} s into the stroke", b)
+    net.at_least(stroke_end, stroke, phases.lead, f"{b}: stroke goes on {phases.lead:.3f} s past its stroke point", b)
+    if natural > 0.0:
+        net.at_least(stroke_end, onset, natural, f"{b}: stroke lasts at least its natural {natural:.3f} s", b)
+    net.at_least(relax, stroke_end, 0.0, f"{b}: relax after the stroke", b)
+    if "relax" not in named:
+        net.at_most(relax, stroke_end, 0.0, f"{b}: relax when the stroke ends (no post-stroke hold asked for)", b)
+    net.at_least(end, relax, phases.retraction, f"{b}: retraction takes {phases.retraction:.3f} s", b)
+    if not {"relax", "end"} <= named:
+        net.at_most(end, relax, phases.retraction, f"{b}: retraction keeps its {phases.retraction:.3f} s", b)
+
+
+def _order_same_arm(net: TemporalNetwork, gestures: Sequence[GestureRequest], marks: Mapping[str, float],
+                    onsets: Mapping[str, float] | None = None) -> None:
     def requested_onset(g: GestureRequest) -> float:
+        if g.synced is not None:
+            return (onsets or {}).get(g.behavior, math.inf)
         return g.absolute[0] if g.absolute is not None else math.inf if g.affiliate is None else marks[g.affiliate[0]]
 
     ordered = sorted(gestures, key=requested_onset)
@@ -272,7 +406,28 @@ def _order_same_arm(net: TemporalNetwork, gestures: Sequence[GestureRequest], ma
             last_on_arm[arm] = g
 
 
+def _fill_synced(g: GestureRequest, times: Mapping[str, float], config: TimingConfig) -> GestureTiming:
+    """A synced behaviour's pegs as solved; the stroke fills its span as in :func:`_fill_stroke`,
+    a held stroke only when its stroke end is not named."""
+    start, ready, onset, stroke, stroke_end, relax, end = (times[peg_point(g.behavior, peg)] for peg in PEG_NAMES)
+    natural = g.demands.stroke_duration
+
+    def timing(stroke_end: float, count: int, mode: str, slowdown: float) -> GestureTiming:
+        return GestureTiming(g.behavior, start, onset, stroke, stroke_end, relax, count, mode, slowdown, ready, end)
+
+    if not g.demands.dynamic or natural <= 0:
+        return timing(stroke_end, 1, "static", 1.0)
+    factor = (stroke_end - onset) / natural
+    if g.demands.repeatable and factor >= 2.0 and factor / math.floor(factor) <= config.max_slowdown:
+        return timing(stroke_end, math.floor(factor), "repeated", factor / math.floor(factor))
+    if factor <= config.max_slowdown or "stroke_end" in g.synced.named:
+        return timing(stroke_end, 1, "slowed", factor)
+    return timing(max(onset + natural * config.max_slowdown, stroke), 1, "held", config.max_slowdown)
+
+
 def _fill_stroke(g: GestureRequest, times: Mapping[str, float], config: TimingConfig) -> GestureTiming:
+    if g.synced is not None:
+        return _fill_synced(g, times, config)
     prep, onset, span_end = (times[p] for p in _points(g.behavior))
     accent = times[tag_point(g.affiliate[0])] if g.affiliate is not None else onset
     accent = min(max(accent, onset), span_end)

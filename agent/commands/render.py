@@ -35,7 +35,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json and "
         "NAME.html into the output folder. Files appear only when complete.",
     )
-    parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
+    parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files or BML 1.0 blocks (.bml)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
     add_agent_options(parser)
     parser.set_defaults(func=run)
@@ -66,5 +66,6 @@ def render_one(agent: Agent, path: Path, output: Path) -> int:
         return 1
     print(f"{path}: {files.duration:.2f} s -> {files.html}")
     for warning in files.warnings:
-        print(f"{path}: warning: {warning}", file=sys.stderr)
+        located = warning.startswith(f"{path}:")  # a reader's warning names its own place
+        print(warning if located else f"{path}: warning: {warning}", file=sys.stderr)
     return 0
