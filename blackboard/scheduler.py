@@ -165,6 +165,11 @@ class LiveHandle:
     def timeline(self) -> Timeline:
         return self._job.timeline
 
+    @property
+    def done(self) -> bool:
+        """True once the utterance is over (performed, interrupted or failed)."""
+        return self._job.done.is_set()
+
 
 class Scheduler:
     """Plans and runs utterances chunk by chunk on ``clock`` (see the module docstring)."""
