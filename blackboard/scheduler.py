@@ -809,7 +809,8 @@ class Scheduler:
                 self._board_jobs.pop(board, None)
         status = "interrupted" if job.interrupted else "failed" if failed is not None else "done"
         error = f"{type(failed.error).__name__}: {failed.error}" if failed is not None and failed.error is not None else None
-        self.bus.publish(UtteranceEnded(job.name, job.end - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
+        ended = min(job.end, max(self._time, job.origin)) if job.interrupted else job.end  # not the unspoken rest of the audio
+        self.bus.publish(UtteranceEnded(job.name, ended - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
         job.done.set()
 
     def _audio(self, job: _Job, performed: list[Blackboard]) -> tuple[np.ndarray | None, int | None]:
