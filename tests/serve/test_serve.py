@@ -9,41 +9,20 @@ four times faster than real time; nothing here measures time except the tests' t
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
-import threading
 import urllib.error
 import urllib.request
 
 import pytest
 from websockets.exceptions import InvalidStatus
+from serve_process import TIMEOUT
 from websockets.sync.client import connect
 
 NS = 'xmlns="http://www.bml-initiative.org/bml/bml-1.0"'
-TIMEOUT = 60.0
 
 
 def block(block_id: str, composition: str = "APPEND", words: str = "Take <sync id=\"tm1\"/> this bar, please.") -> str:
     return (f'<bml {NS} id="{block_id}" composition="{composition}"><speech id="s1"><text>{words}</text></speech>'
             f'<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><head id="h1" lexeme="NOD" stroke="g1:strokeEnd"/></bml>')
-
-
-@pytest.fixture(scope="module")
-def server():
-    process = subprocess.Popen(
-        [sys.executable, "-m", "agent.cli", "serve", "--tts", "fake", "--no-audio", "--speedup", "4", "--port", "0"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )
-    lines: list[str] = []
-    reader = threading.Thread(target=lambda: lines.extend([process.stdout.readline(), process.stdout.readline()]), daemon=True)
-    reader.start()
-    reader.join(TIMEOUT)
-    if not lines or not lines[0].startswith("ws://127.0.0.1:"):
-        process.kill()
-        pytest.fail(f"mura serve did not print its address: {lines!r} {process.stderr.read() if process.poll() is not None else ''}")
-    yield lines[0].strip(), lines[1].strip()
-    process.terminate()
-    assert process.wait(TIMEOUT) == 0
 
 
 def until(ws, done, limit: int = 5000) -> list[dict]:
