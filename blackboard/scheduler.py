@@ -571,9 +571,10 @@ class Scheduler:
         last_word = board.speech.words[-1].end if board.has_speech else 0.0
 
         if previous is not None and previous.state is not ChunkState.FAILED:
-            earliest = max(previous.speech_end + (self.config.timing.min_pause if previous.has_speech else 0.0), now + margin)
+            # never before the utterance's own start (a queued utterance after an interrupted one)
+            earliest = max(previous.speech_end + (self.config.timing.min_pause if previous.has_speech else 0.0), now + margin, job.origin)
             onset_reason = f"speech onset of chunk {board.index + 1} at least {self.config.timing.min_pause:.3f} s after the previous speech end"
-            arm_free = max(previous.strokes_done, now + margin)
+            arm_free = max(previous.strokes_done, now + margin, job.origin)
             arm_reason = "arm free once the previous chunk's strokes are done"
         else:
             earliest = arm_free = max(job.origin, now + margin)
