@@ -26,3 +26,20 @@ def server():
     yield lines[0].strip(), lines[1].strip()
     process.terminate()
     assert process.wait(TIMEOUT) == 0
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """Headless Chromium, driven by the page tests' helper in ``tests/viewer``."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "viewer" / "headless_chromium.py"
+    spec = importlib.util.spec_from_file_location("serve_headless_chromium", path)
+    helper = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(helper)
+    executable = helper.find_chromium()
+    if executable is None:
+        pytest.skip("Chromium is not installed (apt-get install -y chromium); the page tests need it")
+    with helper.Browser(executable) as running:
+        yield running
