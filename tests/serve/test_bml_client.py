@@ -8,9 +8,10 @@ from agent.examples import bml_client
 def test_example_client_follows_its_blocks_to_the_end(server, capsys):
     assert bml_client.main([server[0]]) == 0
     lines = capsys.readouterr().out.splitlines()
-    greet_end = next(i for i, line in enumerate(lines) if line.startswith("greet: block end"))
+    greet_spoken = next(i for i, line in enumerate(lines) if line.startswith("greet: s1:end at "))
     offer_start = next(i for i, line in enumerate(lines) if line.startswith("offer: block start"))
-    assert greet_end < offer_start
+    assert greet_spoken < offer_start  # APPEND joins once the speech and strokes are over
+    assert any(line.startswith("greet: block end") and line.endswith("(DONE)") for line in lines)
     assert any(line.startswith("greet: predicted strokes: point ") for line in lines)
     assert any(line.startswith("offer: offer:stroke at ") for line in lines)
     assert lines[-1].startswith("offer: block end") and lines[-1].endswith("(DONE)")
