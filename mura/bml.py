@@ -35,7 +35,6 @@ times fixed.
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
@@ -58,64 +57,23 @@ from mura.model import (
     TimeTag,
     Utterance,
 )
+from mura.bml_vocabulary import (
+    BEHAVIORS,
+    BML_NAMESPACE,
+    COMPOSITIONS,
+    GAZE_INFLUENCES,
+    GESTURE_LEXEMES,
+    HEAD_LEXEMES,
+    MODES,
+    MURML_NAMESPACE,
+)
+from mura.bml_sync import NAME, chunks_of, number, parse_reference
 from mura.murml import function_gesture, read_gesture_element
 from mura.xml_source import XmlSource
 
-BML_NAMESPACE = "http://www.bml-initiative.org/bml/bml-1.0"
-#: The namespace AsapRealizer reads embedded MURML gestures in (``<murmlgesture>``).
-MURML_NAMESPACE = "http://www.techfak.uni-bielefeld.de/ags/soa/murml"
-COMPOSITIONS = ("MERGE", "APPEND", "REPLACE")
+__all__ = ["BML_NAMESPACE", "MURML_NAMESPACE", "BmlBlock", "BmlWarning", "is_bml", "load_bml", "parse_bml", "read_bml"]
 
-GESTURE_SYNC = ("start", "ready", "strokeStart", "stroke", "strokeEnd", "relax", "end")
-FACE_SYNC = ("start", "attackPeak", "relax", "end")
-HOLD_SYNC = ("start", "ready", "relax", "end")
-SHIFT_SYNC = ("start", "end")
-
-
-@dataclass(frozen=True)
-class BehaviorType:
-    """A BML behaviour element: its sync points, its own attributes (besides ``id`` and
-    the sync points) and what mura does with it: ``performed``, ``timed`` (timed, listed
-    and warned about, no motor module performs it yet) or ``unsupported`` (left out)."""
-
-    sync: tuple[str, ...]
-    attributes: frozenset[str]
-    support: str
-
-
-BEHAVIORS: Mapping[str, BehaviorType] = {
-    "speech": BehaviorType(SHIFT_SYNC, frozenset(), "performed"),
-    "gesture": BehaviorType(GESTURE_SYNC, frozenset({"lexeme", "mode", "target"}), "performed"),
-    "pointing": BehaviorType(GESTURE_SYNC, frozenset({"target", "mode"}), "performed"),
-    "murmlgesture": BehaviorType(GESTURE_SYNC, frozenset({"scope"}), "performed"),
-    "head": BehaviorType(GESTURE_SYNC, frozenset({"lexeme", "repetition", "amount"}), "timed"),
-    "headDirectionShift": BehaviorType(SHIFT_SYNC, frozenset({"target"}), "timed"),
-    "gaze": BehaviorType(HOLD_SYNC, frozenset({"target", "influence", "offsetAngle", "offsetDirection"}), "timed"),
-    "gazeShift": BehaviorType(SHIFT_SYNC, frozenset({"target", "influence", "offsetAngle", "offsetDirection"}), "timed"),
-    "faceLexeme": BehaviorType(FACE_SYNC, frozenset({"lexeme", "amount"}), "timed"),
-    "faceFacs": BehaviorType(FACE_SYNC, frozenset({"au", "side", "amount"}), "timed"),
-    "faceShift": BehaviorType(SHIFT_SYNC, frozenset({"lexeme", "amount"}), "timed"),
-    "posture": BehaviorType(HOLD_SYNC, frozenset(), "timed"),
-    "postureShift": BehaviorType(SHIFT_SYNC, frozenset(), "timed"),
-    "locomotion": BehaviorType(SHIFT_SYNC, frozenset({"target", "manner"}), "unsupported"),
-}
-
-#: BML gesture lexemes and the lexicon functions that perform them; any other lexeme is
-#: looked up as a lexicon function of the same name in lower case (``SHOW_SIZE``).
-GESTURE_LEXEMES: Mapping[str, str] = {
-    "BEAT": "emphasize",
-    "POINT": "refer_to_loc",
-    "SIZE": "show_size",
-    "OFFER": "present",
-    "NEGATE": "negate",
-}
-#: BML gesture modes and the arm mura gives the gesture (``None``: both hands, mirrored).
-MODES: Mapping[str, Arm | None] = {"RIGHT_HAND": Arm.RIGHT, "LEFT_HAND": Arm.LEFT, "BOTH_HANDS": None}
-HEAD_LEXEMES = ("NOD", "SHAKE", "TILT")
-GAZE_INFLUENCES = ("EYES", "HEAD", "SHOULDER", "WAIST", "WHOLE")
 _NUMERIC = {"repetition": "count", "amount": "number", "offsetAngle": "number", "au": "count"}
-_NAME = re.compile(r"^[^\W\d.\-:][\w.\-]*$", re.UNICODE)
-_OFFSET = re.compile(r"^(?P<ref>.*?)\s*(?P<sign>[+-])\s*(?P<value>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)$")
 
 
 @dataclass(frozen=True)
@@ -196,6 +154,8 @@ class _BlockReader:
     speech_syncs: dict[str, tuple[str, ...]] = field(default_factory=dict)
     constraints: list[SyncConstraint] = field(default_factory=list)
     block_id: str = ""
+    _points: dict[str, tuple[str, ...]] | None = None
+    _kinds: dict[str, str] = field(default_factory=dict)
 
     # -- the block --------------------------------------------------------------------
 
@@ -358,14 +318,14 @@ class _BlockReader:
         if mode is not None and mode not in MODES:
             raise self.source.error(f"mode {mode!r} is not one of {', '.join(MODES)}", element, "mode")
         if kind == "pointing":
-            function, params = "refer_to_loc", {"refloc": self._target(element, required=True)}
+            function, params = "refer_to_loc", {"refloc": self._target(element)}
         else:
             lexeme = self._required_attribute(element, "lexeme")
             function = GESTURE_LEXEMES.get(lexeme, lexeme.lower())
             if self.lexicon.entry(function) is None:
                 known = ", ".join(sorted(set(GESTURE_LEXEMES) | {name.upper() for name in self.lexicon.entries}))
                 raise _CannotRealize(f"gesture {behavior.id!r}: unknown lexeme {lexeme!r} (mura performs {known})", "lexeme")
-            params = {"refloc": self._target(element, required=True)} if function == "refer_to_loc" else {}
+            params = {"refloc": self._target(element)} if function == "refer_to_loc" else {}
         entry = self.lexicon.entry(function)
         arm = MODES.get(mode or "RIGHT_HAND")
         if "hand" in entry.params:
@@ -379,7 +339,7 @@ class _BlockReader:
             self._warn("UNKNOWN_ATTRIBUTE", f"gesture {behavior.id!r}: {function} is two-handed; mode {mode} ignored", element, "mode")
         return gesture
 
-    def _target(self, element: etree._Element, required: bool) -> str:
+    def _target(self, element: etree._Element) -> str:
         target = element.get("target")
         if target is None:
             raise self.source.error(f"<{etree.QName(element).localname}> needs a target (a place of the scene: {', '.join(sorted(self.lexicon.scene))})", element)
@@ -389,6 +349,8 @@ class _BlockReader:
         return f"${name}"
 
     def _murml_gesture(self, behavior: _Behavior) -> Gesture:
+        """The embedded MURML read by MURML's reader (its elements renamed to plain names in
+        place: a source is read once)."""
         element = behavior.element
         descriptions = [c for c in element if isinstance(c.tag, str) and etree.QName(c).localname == "murml-description"]
         if len(descriptions) != 1:
@@ -412,7 +374,7 @@ class _BlockReader:
             text = element.get(name)
             if text is None:
                 continue
-            value = _number(text)
+            value = number(text)
             if value is None or (kind == "count" and (value < 1 or value != int(value))):
                 expected = "a positive whole number" if kind == "count" else "a number"
                 raise self.source.error(f"{name} {text!r} of {behavior.id!r} is not {expected}", element, name)
@@ -461,52 +423,10 @@ class _BlockReader:
                 self.constraints.append(SyncConstraint(point, relation, anchor, required, point.where))
 
     def _reference(self, text: str, where: SourceLocation, allow_time: bool = True) -> SyncRef:
-        """A sync reference ``[block:]behaviour:syncpoint[±offset]`` or a time in seconds."""
-        text = text.strip()
-        value = _number(text)
-        if value is not None:
-            if not allow_time:
-                raise SpecError(f"a <sync> names a sync point, not a time ({text!r})", where)
-            if value < 0:
-                raise SpecError(f"time {text!r} lies before the block starts (times are seconds from the block start, ≥ 0)", where)
-            return SyncRef(None, None, value, where)
-        for ref, offset in self._readings(text):
-            parts = ref.split(":")
-            if len(parts) == 3 and parts[0] == self.block_id:
-                parts = parts[1:]
-            if len(parts) == 3:
-                raise SpecError(f"{text!r} refers to block {parts[0]!r}: mura reads references within the block only", where)
-            if len(parts) != 2 or not all(_NAME.match(p) for p in parts):
-                continue
-            behavior, point = parts
-            if behavior in self.behaviors and point in self._sync_points(self.behaviors[behavior]):
-                return SyncRef(behavior, point, offset, where)
-        return self._bad_reference(text, where)
-
-    def _readings(self, text: str) -> Iterator[tuple[str, float]]:
-        yield text, 0.0
-        match = _OFFSET.match(text)
-        if match is not None:
-            offset = float(match.group("value")) * (-1.0 if match.group("sign") == "-" else 1.0)
-            if math.isfinite(offset):
-                yield match.group("ref"), offset
-
-    def _bad_reference(self, text: str, where: SourceLocation) -> SyncRef:
-        ref = text
-        match = _OFFSET.match(text)
-        if match is not None and ":" in match.group("ref"):
-            ref = match.group("ref")
-        parts = ref.split(":")
-        if len(parts) == 3 and parts[0] == self.block_id:
-            parts = parts[1:]
-        if len(parts) != 2:
-            raise SpecError(f"{text!r} is neither a time in seconds nor a reference behaviour:syncpoint[+offset]", where)
-        behavior, point = parts
-        if behavior not in self.behaviors:
-            known = ", ".join(sorted(self.behaviors)) or "none"
-            raise SpecError(f"{text!r} names unknown behaviour {behavior!r} (block {self.block_id!r} has: {known})", where)
-        points = self._sync_points(self.behaviors[behavior])
-        raise SpecError(f"{text!r}: {self.behaviors[behavior].kind} {behavior!r} has no sync point {point!r} (it has: {', '.join(points)})", where)
+        if self._points is None:  # every behaviour and speech marker is known once the behaviours are read
+            self._points = {b.id: self._sync_points(b) for b in self.behaviors.values()}
+            self._kinds = {b.id: b.kind for b in self.behaviors.values()}
+        return parse_reference(text, where, self.block_id, self._points, self._kinds, allow_time)
 
     def _sync_points(self, behavior: _Behavior) -> tuple[str, ...]:
         if behavior.kind == "speech":
@@ -540,7 +460,7 @@ class _BlockReader:
             tags = tuple(TimeTag(t.id, index, t.offset, False, t.where) for t in spec.time_tags)
             chunks.append(ChunkSpec(index, spec.text, tags, speech))
         others = [b.id for b in self.behaviors.values() if b.kind != "speech" and not b.dropped]
-        chunk = _chunks_of(others, chunk_of_speech, constraints)
+        chunk = chunks_of(others, chunk_of_speech, constraints)
         named: dict[str, set[str]] = {b: set() for b in others}
         for constraint in constraints:
             for ref in (constraint.point, constraint.anchor):
@@ -560,7 +480,7 @@ class _BlockReader:
         value = element.get("id")
         if value is None:
             raise self.source.error(f"<{etree.QName(element).localname}> needs an id", element)
-        if not _NAME.match(value):
+        if not NAME.match(value):
             raise self.source.error(f"{what} id {value!r} is not a valid name (letters, digits, '.', '-', '_'; no ':')", element, "id")
         return value
 
@@ -611,29 +531,6 @@ class _CannotRealize(Exception):
         self.attribute = attribute
 
 
-def _chunks_of(behaviors: list[str], chunk_of_speech: Mapping[str, int], constraints: list[SyncConstraint]) -> dict[str, int]:
-    """Each behaviour's chunk: the first speech its group (behaviours tied by constraints) is tied to, else 0."""
-    group = {b: b for b in behaviors}
-
-    def find(b: str) -> str:
-        while group[b] != b:
-            group[b] = group[group[b]]
-            b = group[b]
-        return b
-
-    ties: dict[str, int] = {}
-    for constraint in constraints:
-        a, b = constraint.point.behavior, constraint.anchor.behavior
-        if a in group and b in group:
-            group[find(a)] = find(b)
-    for constraint in constraints:
-        for one, other in ((constraint.point.behavior, constraint.anchor.behavior), (constraint.anchor.behavior, constraint.point.behavior)):
-            if one in group and other in chunk_of_speech:
-                root = find(one)
-                ties[root] = min(ties.get(root, chunk_of_speech[other]), chunk_of_speech[other])
-    return {b: ties.get(find(b), 0) for b in behaviors}
-
-
 def _two_handed(tree: Constraint) -> bool:
     scopes = {leaf.scope for leaf in iter_leaves(tree) if isinstance(leaf.scope, Arm)}
     return len(scopes) == 2 or any(isinstance(node, Symmetrical) for node in _nodes(tree))
@@ -643,11 +540,3 @@ def _nodes(tree: Constraint) -> Iterator[Constraint]:
     yield tree
     for child in getattr(tree, "children", ()) or ((tree.child,) if hasattr(tree, "child") else ()):
         yield from _nodes(child)
-
-
-def _number(text: str) -> float | None:
-    try:
-        value = float(text)
-    except ValueError:
-        return None
-    return value if math.isfinite(value) else None
