@@ -39,9 +39,10 @@ as for MURML; another behaviour keeps its nominal length unless its ``start`` is
 stroke point lies ``lead`` into the stroke unless both are named, the stroke lasts at
 least its natural duration and goes on ``lead`` past its stroke point, ``relax`` is the
 stroke end unless named (then a post-stroke hold), and the retraction keeps its duration
-unless both ``relax`` and ``end`` are named. A constraint that is not required is dropped
-when it takes part in a conflict (named in :attr:`ChunkTiming.dropped`); points of
-earlier chunks enter as fixed times.
+unless both ``relax`` and ``end`` are named. When constraints conflict, the one stated
+last among those that are not required and take part in the conflict is dropped, and
+solving starts again (named in :attr:`ChunkTiming.dropped`); points of earlier chunks
+enter as fixed times.
 
 How a stroke fills its span (``relax − stroke onset``), with ``f`` = span / natural
 duration: a static stroke holds its posture; ``f ≤ max_slowdown`` (1.5) slows one
@@ -293,8 +294,8 @@ def time_chunk(
             optional = [link for link in active if not link.required and link.name in conflict.constraints]
             if not optional:
                 raise
-            active.remove(optional[0])
-            dropped.append(optional[0].name)
+            active.remove(optional[-1])  # the one stated last yields: what came first is kept
+            dropped.append(optional[-1].name)
     onset = times[speech]
     stretch = None
     if onset - earliest_onset > 1e-9:

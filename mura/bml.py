@@ -181,6 +181,7 @@ class _BlockReader:
         if not self.behaviors and not self.errors:
             self.errors.append(self.source.error(f"block {self.block_id!r} holds no behaviour", root))
         self._raise_errors()
+        self.constraints.sort(key=lambda c: (c.where.line, c.where.column))  # document order: the later yields in a conflict
         kept = self._kept_constraints()
         self._raise_errors()
         utterance = self._utterance(models, kept)

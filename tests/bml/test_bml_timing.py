@@ -194,6 +194,20 @@ def test_required_constraints_that_conflict_are_named(agent, relation):
     assert "g1:" in str(caught.value) and "<utterance>:1:" in str(caught.value)
 
 
-def test_example_block_renders(agent, repo: Path):
-    performance = agent.render(repo / "specs" / "bml" / "take_this_bar.bml")
-    assert {b["id"] for b in performance.timeline["behaviors"]} >= {"beat", "point"}
+def test_example_block_renders_with_every_constraint(agent, repo: Path):
+    path = repo / "specs" / "bml" / "take_this_bar.bml"
+    block, timeline = load_bml(path), agent.render(path).timeline
+    assert {b["id"] for b in timeline["behaviors"]} == {"beat", "point", "nod"}
+    assert not any("dropped" in w for w in timeline["warnings"])
+    speeches = {c.speech for c in block.utterance.chunks}
+    assert all(_holds(c, timeline, speeches) for c in block.utterance.constraints)
+
+
+def test_a_conflict_drops_the_later_optional_constraint(agent):
+    """Two strokes on one arm too close for the second preparation: the later one yields."""
+    body = (SPEECH + '<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><gesture id="g2" lexeme="NEGATE" stroke="s1:tm1+0.3"/>')
+    timeline = agent.render(f'<bml {NS} id="close">{body}</bml>').timeline
+    dropped = [w for w in timeline["warnings"] if "dropped" in w]
+    assert len(dropped) == 1 and dropped[0].startswith("constraint g2:stroke = s1:tm1+0.3")
+    g1 = next(b for b in timeline["behaviors"] if b["id"] == "g1")
+    assert g1["phases"]["stroke"] == pytest.approx(timeline["time_tags"]["s1:tm1"], abs=FRAME)
