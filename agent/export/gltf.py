@@ -21,6 +21,7 @@ from it when the file is written, so memory does not grow with the length.
 
 from __future__ import annotations
 
+import functools
 import io
 import json
 import os
@@ -32,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from agent.export.staging import staged_binary
+from motor.body.avatar import Avatar
 from motor.body.skinned import SkinnedBody
 from motor.motion import Motion
 
@@ -249,6 +251,7 @@ class AvatarModel:
     binding: Binding
 
 
+@functools.lru_cache(maxsize=8)
 def hanim_model(path: Path, joint_names: tuple[str, ...]) -> AvatarModel:
     """A GLB whose nodes carry mura's H-Anim names with identity rest rotations (what
     :func:`write_avatar_glb` makes): joints bind to nodes by name."""
@@ -369,7 +372,8 @@ def _add_animation(document: _Document, binding: Binding, first: Motion, frames:
         for k, node in enumerate(binding.track_nodes):
             channel(node, "rotation", "VEC4", 4,
                     lambda block, k=k: _hemisphere(binding.retarget(block[:, : 4 * joints].reshape(-1, joints, 4))[:, k]))  # fmt: skip
-    channel(binding.root_node, "translation", "VEC3", 3, lambda block: block[:, 4 * joints : 4 * joints + 3] * binding.root_scale)
+    if binding.root_node >= 0:
+        channel(binding.root_node, "translation", "VEC3", 3, lambda block: block[:, 4 * joints : 4 * joints + 3] * binding.root_scale)
     if binding.morph_node is not None and faces and binding.morph_names:
         columns = [first.face_names.index(name) if name in first.face_names else -1 for name in binding.morph_names]
         picks = np.array(columns)
@@ -388,3 +392,37 @@ def _hemisphere(quaternions: np.ndarray) -> np.ndarray:
     """Unit quaternions (normalized), their sign unchanged (glTF slerps the shorter way)."""
     norms = np.linalg.norm(quaternions, axis=-1, keepdims=True)
     return quaternions / np.maximum(norms, 1e-12)
+
+
+def motion_model(avatar: Avatar) -> AvatarModel | None:
+    """The model a performance on ``avatar`` is exported on: the built skinned GLB beside
+    its definition, the user's VRM/glTF (retargeted), or None for skeleton-only avatars."""
+    source = Path(avatar.source)
+    suffix = source.suffix.lower()
+    if suffix == ".json":
+        glb = source.with_suffix(".glb")
+        return hanim_model(glb, avatar.joint_names) if glb.is_file() else None
+    if suffix not in (".vrm", ".glb", ".gltf"):
+        return None
+    from pygltflib import GLTF2, BufferFormat
+
+    from motor.body.humanoid import read_humanoid, retarget
+
+    humanoid = read_humanoid(source.resolve())
+    if suffix == ".gltf":
+        loaded = GLTF2().load(str(source))
+        loaded.convert_buffers(BufferFormat.BINARYBLOB)
+        blob = loaded.binary_blob() or b""
+        gltf = json.loads(loaded.to_json())
+        for buffer in gltf.get("buffers", []):
+            buffer.pop("uri", None)
+    else:
+        gltf, blob = read_glb(source.read_bytes(), source.name)
+    parents = np.asarray(avatar.parents)
+    names = avatar.joint_names
+    nodes, _ = retarget(humanoid, names, parents, np.tile([0.0, 0.0, 0.0, 1.0], (1, avatar.joint_count, 1)))
+    binding = Binding(
+        nodes=np.full(avatar.joint_count, -1), root_node=-1, root_height=avatar.root_height,
+        retarget=lambda block: retarget(humanoid, names, parents, block)[1], track_nodes=nodes,
+    )  # fmt: skip
+    return AvatarModel(gltf, blob, binding)

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from motor.body.avatar import AvatarError
 from motor.body.definition import Body, Definition, Skin, derive_definition
 from motor.body.rest_pose import normalised_rest
 
@@ -72,7 +73,7 @@ REQUIRED: tuple[str, ...] = ("hips", "spine", "head") + tuple(
 )  # fmt: skip
 
 
-class HumanoidError(ValueError):
+class HumanoidError(AvatarError):
     """A file that is not a usable humanoid; the message names the file and what is missing."""
 
 
@@ -124,7 +125,11 @@ def _gltf(path: Path):
     from pygltflib import GLTF2  # read-only use; only user avatars need it
 
     try:
-        return GLTF2().load(str(path))
+        if path.suffix.lower() == ".gltf":
+            return GLTF2().load_json(str(path))
+        if path.read_bytes()[:4] != b"glTF":
+            raise ValueError("no GLB header (a .vrm/.glb file starts with 'glTF')")
+        return GLTF2().load_binary(str(path))
     except Exception as error:  # noqa: BLE001 - any failure to parse is "not a glTF file"
         raise HumanoidError(f"{path.name}: not a readable glTF/VRM file ({type(error).__name__}: {error})") from None
 
@@ -388,8 +393,9 @@ def _accessor(gltf, accessor_index: int) -> np.ndarray:
     return values
 
 
-def retarget(humanoid: Humanoid, avatar_parents: np.ndarray, locals_: np.ndarray) -> tuple[tuple[int, ...], np.ndarray]:
-    """Node rotations of the file's own nodes for mura local rotations ``(n, J, 4)``.
+def retarget(humanoid: Humanoid, joint_names: tuple[str, ...], avatar_parents: np.ndarray, locals_: np.ndarray) -> tuple[tuple[int, ...], np.ndarray]:
+    """Node rotations of the file's own nodes for mura local rotations ``(n, J, 4)`` of
+    the avatar's joints ``joint_names`` (parents ``avatar_parents``).
 
     Each mapped node's posed global rotation is ``W · R · G0`` (W mura's global rotation of
     its joint, R the rest normalisation, G0 the node's rest global rotation); other nodes
@@ -401,7 +407,7 @@ def retarget(humanoid: Humanoid, avatar_parents: np.ndarray, locals_: np.ndarray
         parent = avatar_parents[joint]
         q = Rotation.from_quat(locals_[:, joint].reshape(-1, 4))
         world[:, joint] = q.as_quat() if parent < 0 else (Rotation.from_quat(world[:, parent]) * q).as_quat()
-    joint_index = {name: i for i, name in enumerate(humanoid.joint_names)}
+    joint_index = {name: i for i, name in enumerate(joint_names)}
     turn = Rotation.from_euler("y", np.pi) if humanoid.kind == "vrm0" else Rotation.identity()
     count = len(humanoid.node_parents)
     node_global: list[Rotation | None] = [None] * count

@@ -297,6 +297,14 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
       draw();
       return view.current;
     },
+    // Where a joint is drawn on the stage, CSS pixels from its top-left corner.
+    screenOf: (name) => {
+      const bone = root.getObjectByName(name);
+      if (!bone) return null;
+      const p = bone.getWorldPosition(new Vector3()).project(view.camera);
+      const rect = view.renderer.domElement.getBoundingClientRect();
+      return [((p.x + 1) / 2) * rect.width, ((1 - p.y) / 2) * rect.height];
+    },
     camera: () => ({ position: view.camera.position.toArray(), target: view.controls.target.toArray(), aspect: view.camera.aspect }),
     // World position of a joint in the drawn pose, scene units (cm).
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
