@@ -239,7 +239,8 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   };
   frameView(view, boxes, 'front');
   addFloor(view, boxes);
-  const places = addPlaces(view.scene, raw.places, boxes.whole.min.y);
+  pose(motionStart);
+  const places = addPlaces(view.scene, raw.places, boxes.whole.min.y, root.getWorldPosition(new Vector3()));
   const show = (name) => {
     frameView(view, boxes, name);
     Object.entries(ui.viewButtons).forEach(([key, button]) => button.classList.toggle('active', key === name));

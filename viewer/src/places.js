@@ -1,7 +1,8 @@
 // Scene places named in the lexicon (`$Loc-Bar_1`), drawn as simple objects with their
 // name, so that a pointing gesture points at something. The timeline lists them as
-// `places: [{name, position: [x, y, z]}]`, metres in the avatar frame (root at the origin).
-import { CanvasTexture, CylinderGeometry, Mesh, MeshStandardMaterial, SphereGeometry, Sprite, SpriteMaterial } from 'three';
+// `places: [{name, position: [x, y, z]}]`, metres relative to the avatar's root joint (the
+// hips), as the lexicon gives them; `origin` is where the root is drawn (scene units).
+import { CanvasTexture, CylinderGeometry, Mesh, MeshStandardMaterial, SphereGeometry, Sprite, SpriteMaterial, Vector3 } from 'three';
 import { UNIT } from './skeleton.js';
 
 export const PLACE_COLOUR = '#d9a441';
@@ -24,7 +25,7 @@ function label(text) {
 }
 
 // Add the places to the scene; returns the objects added.
-export function addPlaces(scene, places, floor) {
+export function addPlaces(scene, places, floor, origin) {
   if (!Array.isArray(places)) return [];
   const added = [];
   for (const place of places) {
@@ -35,9 +36,9 @@ export function addPlaces(scene, places, floor) {
     const geometry = bar ? new CylinderGeometry(0.012 * UNIT, 0.012 * UNIT, 0.25 * UNIT, 16) : new SphereGeometry(0.03 * UNIT, 20, 14);
     const object = new Mesh(geometry, MATERIAL);
     if (bar) object.rotation.x = Math.PI / 2;
-    object.position.set(x * UNIT, y * UNIT, z * UNIT);
+    object.position.set(x * UNIT, y * UNIT, z * UNIT).add(origin);
     const tag = label(name);
-    tag.position.set(x * UNIT, y * UNIT + 0.07 * UNIT, z * UNIT);
+    tag.position.copy(object.position).add(new Vector3(0, 0.07 * UNIT, 0));
     object.userData.floor = floor;
     scene.add(object, tag);
     added.push(object);
