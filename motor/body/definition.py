@@ -207,7 +207,6 @@ def _scales(m: _Measure, reference: dict) -> dict:
         m.guessed.append("top of the head: skull base plus 0.3 of the head's distance to the shoulders, scaled")
         crown = float(at["skullbase"][1] + 1.6 * (at["skullbase"][1] - shoulder_y))
     stature = crown + m.body.floor
-    ref = {j["name"]: np.array(j["offset"]) for j in reference["joints"]}
     return {
         "stature": float(stature), "crown": float(crown), "shoulder_y": float(shoulder_y), "width": float(width),
         "arm": arm, "hand": hand,
