@@ -180,7 +180,7 @@ def test_a_true_conflict_names_its_constraints():
     assert any("long: stroke spans its affiliate up to t3" in n for n in names)
     assert any("overlapping prepares after the stroke of long" in n for n in names)
     assert any("overlapping: stroke onset 0.200 s before affiliate onset t2" in n for n in names)
-    assert str(caught.value).startswith("chunk 3:") and "after relaxing" in str(caught.value)
+    assert str(caught.value).startswith("chunk 3:") and "no relaxation satisfies them" in str(caught.value)
 
 
 def test_same_arm_gestures_follow_each_other_without_retraction():
