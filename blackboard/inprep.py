@@ -186,9 +186,8 @@ def _record(board: Blackboard, job: Job, timing: ChunkTiming, anchors: Mapping[s
     entry = tl.chunk(i)
     entry.speech_onset = timing.speech_onset - o
     entry.speech_end = board.speech_end - o
-    for stretch in (timing.stretch, timing.absolute_stretch):
-        if stretch is not None:
-            tl.stretches.append(stretch)
+    if timing.stretch is not None:
+        tl.stretches.append(timing.stretch)  # the absolute clock's delay is in absolute_delay
     job.absolute_delay = timing.absolute_delay
     tl.absolute_delay = timing.absolute_delay
     onset = timing.speech_onset - o
