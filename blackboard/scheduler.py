@@ -30,13 +30,12 @@ A gesture-only utterance (no text) is one chunk without speech. Other behaviours
 from __future__ import annotations
 
 import dataclasses
-import heapq
-import itertools
 import math
 import threading
 from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
 
+from blackboard.agenda import Agenda
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
@@ -90,9 +89,7 @@ class Scheduler:
         self.clock = clock if clock is not None else VirtualClock()
         self.config = config
         self.bus = EventBus()
-        self._agenda: list[tuple[float, int, Callable[[], None]]] = []
-        self._cancelled: set[int] = set()
-        self._counter = itertools.count()
+        self._agenda = Agenda()
         self._frame_cursor: float | None = None
         self._time = 0.0  # the scheduler's own time: how far frames and events have been processed
         self._arm_last: dict[str, tuple[Blackboard, PlannedGesture]] = {}
@@ -183,7 +180,7 @@ class Scheduler:
             while board is not None:
                 board = self._perform_chunk(board)
             while self._agenda:
-                self._advance_to(self._agenda[0][0])
+                self._advance_to(self._agenda.next_time())
             with self._lock:
                 leftover = [j for j in self._active if not j.done.is_set()]
             for job in leftover:
@@ -339,29 +336,22 @@ class Scheduler:
     # ----------------------------------------------------------------- time and frames
 
     def _at(self, t: float, action: Callable[[], None]) -> int:
-        key = next(self._counter)
-        heapq.heappush(self._agenda, (t, key, action))
-        return key
+        return self._agenda.at(t, action)
 
     def _cancel(self, key: int) -> None:
-        self._cancelled.add(key)
+        self._agenda.cancel(key)
 
     def _advance_to(self, t: float) -> None:
         """Let time pass until ``t``: sample frames window by window and fire due agenda events."""
         while True:
             self._handle_interrupts()
-            next_event = self._agenda[0][0] if self._agenda else math.inf
-            stop = min(t, next_event, self._frame_cursor + self._frame_window())
+            stop = min(t, self._agenda.next_time(), self._frame_cursor + self._frame_window())
             self.clock.sleep_until(stop)
             self._time = max(self._time, stop)
             self._sample_frames(stop)
-            while self._agenda and self._agenda[0][0] <= stop + _EPS:
-                _, key, action = heapq.heappop(self._agenda)
-                if key in self._cancelled:
-                    self._cancelled.discard(key)
-                    continue
+            while (action := self._agenda.pop_due(stop + _EPS)) is not None:
                 action()
-            if stop >= t - _EPS and not (self._agenda and self._agenda[0][0] <= t + _EPS):
+            if stop >= t - _EPS and not self._agenda.next_time() <= t + _EPS:
                 return
 
     def _frame_window(self) -> float:
