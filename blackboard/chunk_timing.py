@@ -269,13 +269,19 @@ def _add_gesture(net: TemporalNetwork, g: GestureRequest, previous: Mapping[str,
 
 
 def _stroke_lasts(net: TemporalNetwork, g: GestureRequest, minimum: list[float], name: str) -> None:
-    """Stroke span ≥ ``minimum[0]``; each further entry (one more written repetition dropped) a whole give."""
+    """Stroke span ≥ ``minimum[0]``; ``minimum[k]`` is the minimum with ``k`` written
+    repetitions dropped, each drop that shortens it a whole give (of as many repetitions as
+    it takes to shorten it)."""
     if not g.demands.dynamic or minimum[0] <= 0:
         return
-    gives = tuple(Give(RelaxationStep.DROPPED_REPETITION, a - b, whole=True, amount=1.0, unit="repetitions")
-                  for a, b in zip(minimum, minimum[1:]) if a - b > _EPS)
+    gives, kept, count = [], minimum[0], 0
+    for shorter in minimum[1:]:
+        count += 1
+        if kept - shorter > _EPS:
+            gives.append(Give(RelaxationStep.DROPPED_REPETITION, kept - shorter, whole=True, amount=float(count), unit="repetitions"))
+            kept, count = shorter, 0
     _, onset, span_end = _points(g.behavior)
-    net.at_least(span_end, onset, minimum[0], name, g.behavior, gives)
+    net.at_least(span_end, onset, minimum[0], name, g.behavior, tuple(gives))
 
 
 def _stroke_to_stroke(g: GestureRequest, previous: Mapping[str, GestureRequest]) -> dict[str, float]:

@@ -63,7 +63,8 @@ class Relaxation:
     """One relaxation taken: ``step`` applied to ``behavior`` by ``amount`` ``unit``.
 
     ``constraint`` names the constraint that gave way; ``conflict`` the constraints that
-    could not all hold without it; ``seconds`` is how far the constraint's bound moved.
+    could not all hold without it (the cycle it keeps consistent); ``seconds`` is how far
+    the constraint's bound moved (0 for ``hold_instead_of_repeat``, which moves none).
     """
 
     behavior: str | None
