@@ -1,8 +1,8 @@
 """Relax, never refuse: the steps by which conflicting timing constraints give way, in order.
 
 A performable utterance always renders. When the constraints of a chunk (or of the
-absolute clock) cannot all hold, the scheduler relaxes them in this order, each step only
-as far as needed, and reports every step with its amount:
+absolute clock) cannot all hold, the scheduler relaxes them in this order and reports
+every step with its amount:
 
 1. ``co_articulation`` — a gesture that follows another on the same arm prepares from
    where the earlier stroke ended: the earlier retraction is skipped and the preparation
@@ -22,13 +22,14 @@ as far as needed, and reports every step with its amount:
    the speech of a chunk is never cut inside); for absolutely timed behaviours, the
    absolute clock starts later. Amount: seconds.
 6. ``longer_stroke`` — an absolutely timed stroke too short for its path at its speed
-   budget ends later than its ``<timing end>``. Amount: seconds.
+   budget (the whole path as one minimum-jerk movement) ends later than its
+   ``<timing end>``. Amount: seconds.
 7. ``dropped_repetition`` — a repetition written in the gesture (``<repetition count>``)
    is performed fewer times. Amount: repetitions dropped.
 
-Within one conflict (a negative cycle of the temporal network, see
-:mod:`blackboard.timing`) the earliest step that can give is taken first; a spec that no
-step can satisfy fails with the names of the constraints in conflict.
+A later step is used only as far as the earlier ones cannot make room (the temporal
+network finds this lexicographic minimum, see :mod:`blackboard.timing`); a spec that no
+relaxation satisfies fails with the names of the constraints in conflict.
 """
 
 from __future__ import annotations
