@@ -1,10 +1,13 @@
 """Behaviours timed by sync constraints (BML) on the blackboard.
 
 What the scheduler needs to time a BML block's behaviours in the same temporal network as
-MURML's affiliates (:mod:`blackboard.timing`): the timing request of each behaviour, the
-block's constraints as :class:`~blackboard.timing.SyncLink` between network points, and
-the times of points already timed with an earlier chunk. A constraint is solved with the
-later of the chunks its two ends belong to (a time on the block clock belongs to none).
+MURML's affiliates (:mod:`blackboard.chunk_timing`): the timing request of each behaviour,
+the block's constraints as :class:`~blackboard.chunk_timing.SyncLink` between network
+points, and the times of points already timed with an earlier chunk. A constraint is
+solved with the later of the chunks its two ends belong to (a time on the block clock
+belongs to none). A speech's sync points are anchored on the audio like MURML's time
+tags: ``start`` and each ``<sync>`` at the acoustic onset of the word after it, ``end``
+at the acoustic end of the last word.
 
 Behaviours no motor module performs yet (head, gaze, face, posture) are still timed, so
 that the block's constraints hold for them and the timeline lists them; their phases take
@@ -16,9 +19,9 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+from blackboard.chunk_timing import ABSOLUTE, SyncedPhases, SyncLink, TimingConfig, end_point, onset_point, peg_point
 from blackboard.planning import GestureDemands
 from blackboard.timeline import Timeline
-from blackboard.timing import ABSOLUTE, SyncedPhases, SyncLink, TimingConfig, peg_point, tag_point
 from mura.model import BML_SYNC_PEGS, BehaviorSpec, SyncRef, SyncTiming, Utterance
 
 #: Nominal (preparation, stroke, retraction) seconds of behaviours without a motor module;
@@ -53,17 +56,14 @@ def nominal_demands(behavior: BehaviorSpec) -> GestureDemands:
     return GestureDemands(frozenset(), stroke, stroke > 0.0, False, 0.0)
 
 
-def nominal_preparation(behavior: BehaviorSpec) -> float:
-    return NOMINAL_PHASES.get(behavior.kind, (0.0, 0.0, 0.0))[0]
-
-
 def phases(behavior: BehaviorSpec, config: TimingConfig, retraction: float | None = None) -> SyncedPhases:
     """How ``behavior``'s phases hold together; ``retraction`` (s) for a performed gesture
-    (its motor's estimate), nominal otherwise."""
+    (its motor's estimate); a behaviour no motor performs takes its nominal phases."""
     lead = config.stroke_lead if behavior.kind in STROKED else 0.0
-    if retraction is None:
-        retraction = NOMINAL_PHASES.get(behavior.kind, (0.0, 0.0, 0.0))[2]
-    return SyncedPhases(behavior.timing.named, behavior.moves_arms, lead, retraction)
+    if behavior.moves_arms:
+        return SyncedPhases(behavior.timing.named, True, lead, retraction or 0.0)
+    preparation, _, nominal_retraction = NOMINAL_PHASES.get(behavior.kind, (0.0, 0.0, 0.0))
+    return SyncedPhases(behavior.timing.named, False, lead, nominal_retraction, preparation)
 
 
 def links(utterance: Utterance, chunk: int) -> tuple[list[SyncLink], set[str]]:
@@ -89,15 +89,17 @@ def node(ref: SyncRef, utterance: Utterance) -> str:
     if ref.behavior is None:
         return ABSOLUTE
     if ref.behavior in _speeches(utterance):
-        return tag_point(f"{ref.behavior}:{ref.point}")
+        tag = f"{ref.behavior}:{ref.point}"
+        return end_point(tag) if ref.point == "end" else onset_point(tag)
     return peg_point(ref.behavior, BML_SYNC_PEGS[ref.point])
 
 
 def fixed_times(points: set[str], utterance: Utterance, timeline: Timeline, origin: float) -> dict[str, float]:
     """The session-clock times of ``points`` as earlier chunks timed them."""
     known: dict[str, float] = {}
-    for tag, time in dict(timeline.time_tags).items():
-        known[tag_point(tag)] = origin + time
+    for tag, anchor in dict(timeline.tag_anchors).items():
+        known[onset_point(tag)] = origin + anchor["acoustic_onset"]
+        known[end_point(tag)] = origin + anchor["acoustic_end"]
     for entry in list(timeline.behaviors):
         for peg, time in entry.phases.items():
             known[peg_point(entry.id, peg)] = origin + time
