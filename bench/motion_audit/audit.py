@@ -33,6 +33,8 @@ from bench.motion_audit.timeline import Behaviour, Timeline, TimelineError, time
 from bench.motion_audit.volumes import audit_volumes
 
 SIDES = ("l", "r")
+#: The joints every audited skeleton must have (H-Anim names).
+REQUIRED_JOINTS = tuple(f"{side}_{joint}" for side in SIDES for joint in ("shoulder", "elbow", "wrist"))
 #: An arm takes part in a behaviour when its wrist travels at least this far (metres)
 #: between the behaviour's start and its stroke end.
 ARM_MOVES = 0.03
@@ -148,6 +150,9 @@ def audit_file(path: Path, name: str, avatars: list[AvatarFile]) -> FileAudit:
     ``AvatarError``, ``TimelineError``, ``AudioError``), each naming the file.
     """
     motion = read_bvh(path)
+    missing = [name for name in REQUIRED_JOINTS if name not in motion.joint_names]
+    if missing:
+        raise BvhError(f"{path}: no joint {', '.join(missing)}: the audit needs the H-Anim arm joints {', '.join(REQUIRED_JOINTS)}")
     avatar, scale = match_avatar(motion, avatars)
     kinematics = forward_kinematics(motion, scale)
     timeline = timeline_for(path)
@@ -188,8 +193,10 @@ def _twist_in(pinning: twist.TwistPinning, file: str) -> twist.TwistPinning:
     return twist.TwistPinning(pinning.gesture_frames, pinning.pinned_frames, _in_file(pinning.worst, file))
 
 
-#: Errors that fail one file of a folder, never the audit.
-FILE_ERRORS = (BvhError, AvatarError, TimelineError, AudioError)
+#: Errors that fail one file of a folder, never the audit: the readers' own (BvhError,
+#: AvatarError, TimelineError, AudioError are ValueErrors naming the file) and any other
+#: ValueError or lookup error a strange file may cause, reported with its type.
+FILE_ERRORS = (ValueError, LookupError)
 
 
 def audit_folder(
@@ -204,6 +211,8 @@ def audit_folder(
             progress(name)
         try:
             audits.append(audit_file(path, name, avatars))
-        except FILE_ERRORS as error:
+        except (BvhError, AvatarError, TimelineError, AudioError) as error:
             failures.append(Failure(name, str(error)))
+        except FILE_ERRORS as error:
+            failures.append(Failure(name, f"{type(error).__name__}: {error}"))
     return audits, failures

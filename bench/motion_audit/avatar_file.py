@@ -20,6 +20,8 @@ from bench.motion_audit.bvh_reader import BvhMotion
 AVATARS = Path(__file__).resolve().parents[2] / "specs" / "avatars"
 #: A BVH bone may differ from the avatar's (after scaling) by this much, metres.
 BONE_TOLERANCE = 0.002
+#: Length units a BVH file may be written in, as metres per unit (m, cm, mm, inch).
+UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "inch": 0.0254}
 #: Largest avatar file read, bytes.
 MAX_AVATAR_BYTES = 8 * 1024 * 1024
 
@@ -107,9 +109,10 @@ def known_avatars() -> list[AvatarFile]:
 
 
 def unit_scale(motion: BvhMotion, avatar: AvatarFile) -> float:
-    """The factor that turns the BVH's lengths into metres for ``avatar``: the ratio of
-    the summed bone lengths of the joints both share. AvatarError naming the joint when
-    a bone, scaled, is off the avatar's by more than :data:`BONE_TOLERANCE`."""
+    """The factor that turns the BVH's lengths into metres for ``avatar``: of the
+    :data:`UNITS`, the one nearest the ratio of the summed bone lengths of the joints both
+    share. AvatarError naming the joint when a bone, scaled, is off the avatar's by more
+    than :data:`BONE_TOLERANCE` (so a skeleton scaled as a whole is another avatar)."""
     shared = [joint for joint in motion.joints if joint.name in avatar.offsets]
     if len(shared) < len(motion.joints) // 2 or not shared:
         raise AvatarError(f"{motion.path}: the skeleton shares {len(shared)} of {len(motion.joints)} joints with avatar {avatar.name!r}")
@@ -118,7 +121,8 @@ def unit_scale(motion: BvhMotion, avatar: AvatarFile) -> float:
     total = float(np.linalg.norm(written, axis=1).sum())
     if total <= 0.0:
         raise AvatarError(f"{motion.path}: every bone has zero length")
-    scale = float(np.linalg.norm(expected, axis=1).sum()) / total
+    ratio = float(np.linalg.norm(expected, axis=1).sum()) / total
+    scale = min(UNITS.values(), key=lambda unit: abs(np.log(ratio / unit)) if ratio > 0 else np.inf)
     error = np.linalg.norm(written * scale - expected, axis=1)
     worst = int(np.argmax(error))
     if error[worst] > BONE_TOLERANCE:

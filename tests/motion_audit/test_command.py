@@ -27,6 +27,9 @@ def renders(tmp_path):
     (folder / "faulty").mkdir()
     swivel(FRAMES, step_profile(FRAMES, FAULT_FRAME), 90.0).write(folder / "faulty", "synthetic_pop")
     (folder / "faulty" / "truncated.bvh").write_text(SyntheticMotion(5).bvh()[:-40])
+    stretched = SyntheticMotion(5)
+    stretched.offsets = stretched.offsets * 1.2  # no known avatar has these bones
+    (folder / "faulty" / "stretched.bvh").write_text(stretched.bvh())
     (folder / "faulty" / "stranger.bvh").write_text("HIERARCHY\nROOT hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Zrotation Xrotation Yrotation\n End Site\n {\n  OFFSET 0 1 0\n }\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n")
     return folder
 
@@ -36,10 +39,14 @@ def test_folder_audit_names_faults_and_failures(renders, tmp_path, capsys):
     assert main([str(renders), "--json", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "faulty/synthetic_pop.bvh @ 1.00 s: r_elbow" in printed
-    assert "failed: faulty/truncated.bvh:" in printed and "failed: faulty/stranger.bvh:" in printed
     data = json.loads(out.read_text())
     summary = data["summary"]
-    assert summary["files"] == 2 and len(summary["failed"]) == 2
+    reasons = {failure["file"]: failure["reason"] for failure in summary["failed"]}
+    assert "expected 5 frames" in reasons["faulty/truncated.bvh"]
+    assert "matches no avatar" in reasons["faulty/stretched.bvh"]
+    assert "no joint l_shoulder" in reasons["faulty/stranger.bvh"]
+    assert all(f"failed: {name}: " in printed for name in reasons)
+    assert summary["files"] == 2 and len(reasons) == 3
     assert summary["elbow_pop_events"] == 1 and summary["elbow_pop_worst"]["file"] == "faulty/synthetic_pop.bvh"
     assert data["groups"]["clean"]["elbow_pop_events"] == 0
     assert {f["file"] for f in data["files"]} == {"clean/synthetic_raise.bvh", "faulty/synthetic_pop.bvh"}
