@@ -253,7 +253,7 @@ class Scheduler:
             board.move(ChunkState.IN_EXEC, self._time)
         pending = self._submit_next(board)  # Fig. 6: the next chunk is prepared while this one executes
         if not job.interrupted:
-            self._advance_to(max(board.strokes_done, self._time))
+            self._advance_to(max(board.strokes_done, self._time), unless=lambda: job.interrupted)  # REPLACE goes on at once
         following = result(pending)
         if job.interrupted:
             return following
@@ -369,10 +369,13 @@ class Scheduler:
     def _cancel(self, key: int) -> None:
         self._agenda.cancel(key)
 
-    def _advance_to(self, t: float) -> None:
-        """Let time pass until ``t``: sample frames window by window and fire due agenda events."""
+    def _advance_to(self, t: float, unless: Callable[[], bool] | None = None) -> None:
+        """Let time pass until ``t``: sample frames window by window and fire due agenda
+        events; return early once ``unless()`` holds (checked after each interrupt check)."""
         while True:
             self._handle_interrupts()
+            if unless is not None and unless():
+                return
             stop = min(t, self._agenda.next_time(), self._frame_cursor + self._frame_window())
             self.clock.sleep_until(stop)
             self._time = max(self._time, stop)
