@@ -19,13 +19,14 @@ names them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.ik import solve_arm
-from motor.arm.wrist_position import WristPositionLMP
+from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
@@ -36,7 +37,6 @@ from motor.program.fragment import (
     Compiler,
     Fragment,
     PointTarget,
-    curved_into,
     first_location,
     timed_values,
     unit_vector,
@@ -44,7 +44,8 @@ from motor.program.fragment import (
 )
 from motor.program.lmp import LMP, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
-from motor.trajectory.spline import fitts_duration, plan_wrist_trajectory
+from motor.trajectory.speed_budget import SpeedBudget, budget
+from motor.trajectory.spline import fitts_duration, plan_wrist_trajectory, stretch_factor
 from mura.model import BehaviorSpec
 from mura.values import FingerBend, HandShape, PalmOrientation
 
@@ -60,6 +61,11 @@ NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
 REST_CURL = 0.3
 #: How far (m) the IK may fall short of a planned location before it is moved in reach.
 REACH_TOLERANCE = 1e-3
+#: The manner whose speed budget (:mod:`motor.trajectory.speed_budget`) MURML gestures keep.
+GESTURE_MANNER = "targetted"
+#: Rounds of lengthening a stroke until it is within its budget (the second rarely acts).
+_STRETCH_ROUNDS = 3
+_PEG_NAMES = tuple(f.name for f in fields(TimePegs))
 
 
 
@@ -114,8 +120,8 @@ class MotorProgram:
 
 def retraction_duration(distance: float) -> float:
     """Seconds to retract the wrist over ``distance`` metres: Fitts' law, at least
-    :data:`MIN_RETRACTION`."""
-    return max(MIN_RETRACTION, float(fitts_duration(distance)))
+    :data:`MIN_RETRACTION`, and long enough to stay within the lax manner's speed budget."""
+    return max(MIN_RETRACTION, float(fitts_duration(distance)), budget("lax").shortest_duration(distance))
 
 
 def rest_handshape() -> np.ndarray:
@@ -180,23 +186,35 @@ class Planner:
         return GestureDemands(arms, fragment.duration, dynamic, dynamic, distance)
 
     def plan(
-        self, behavior: BehaviorSpec, pegs: TimePegs, repetitions: int = 1, next_gesture_follows: bool = False
+        self,
+        behavior: BehaviorSpec,
+        pegs: TimePegs,
+        repetitions: int = 1,
+        next_gesture_follows: bool = False,
+        start_wrists: Mapping[str, np.ndarray] | None = None,
     ) -> MotorProgram:
-        """The motor program of ``behavior`` on ``pegs`` (see the module docstring)."""
+        """The motor program of ``behavior`` on ``pegs`` (see the module docstring).
+
+        ``start_wrists`` are the arms' wrist positions at ``pegs.start`` (default: the rest
+        posture), from which the preparation is checked against the speed budget.
+        """
         compiler = Compiler(self.avatar, behavior.id)
         fragment = self.fragment(behavior)
         if repetitions != 1:
             fragment = compiler.repeat(fragment, repetitions)
         notes = list(fragment.warnings)
         pegs = self.usable_pegs(behavior.id, pegs, fragment.duration > 0.0, notes)
+        tentative = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
+        arms = sorted({arm for arm, _ in tentative.tracks}, key=ARMS.index)
+        points = {arm: self.stroke_points(behavior.id, tentative, arm, notes) for arm in arms}
+        pegs = self.within_budget(behavior.id, tentative, points, pegs, start_wrists or {}, notes)
         stroke = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
-        arms = sorted({arm for arm, _ in stroke.tracks}, key=ARMS.index)
         lmps: list[LMP] = []
         retraction = 0.0
         posture = "interim_rest" if next_gesture_follows else "rest"
         for arm in arms:
-            arm_lmps, last_wrist = self.arm_lmps(compiler, stroke, arm, pegs, notes)
-            lmps.extend(arm_lmps)
+            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, points[arm]))
+            last_wrist = None if points[arm] is None else points[arm][-1]
             distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
             retraction = max(retraction, retraction_duration(distance))
         end = pegs.relax + retraction if arms else pegs.relax
@@ -204,6 +222,75 @@ class Planner:
         lmps.extend([self.retraction(lmp.channel, retract, posture) for lmp in lmps])
         final = replace(pegs, end=end)
         return MotorProgram(behavior.id, tuple(lmps), tuple(notes), final, frozenset(arms))
+
+    def stroke_points(self, behavior: str, stroke: Fragment, arm: str, notes: list[str]) -> np.ndarray | None:
+        """The wrist breakpoints of ``arm``'s stroke, moved out of the torso and into reach
+        (warnings), or None when its location is unconstrained."""
+        locations = stroke.tracks.get((arm, "location"), ())
+        if not locations:
+            return None
+        _, values = timed_values(locations)
+        return self.within_reach(behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+
+    def within_budget(
+        self,
+        behavior: str,
+        stroke: Fragment,
+        points: Mapping[str, np.ndarray | None],
+        pegs: TimePegs,
+        start_wrists: Mapping[str, np.ndarray],
+        notes: list[str],
+    ) -> TimePegs:
+        """The pegs with the stroke lengthened and then delayed as far as the speed budget of
+        :data:`GESTURE_MANNER` needs, the preparation's arrival (``ready``) before the
+        pre-stroke hold, and one warning naming what changed and by how much."""
+        limits = budget(GESTURE_MANNER)
+        changes: list[str] = []
+        factor = max((self.stroke_stretch(stroke, arm, p, limits) for arm, p in points.items() if p is not None), default=1.0)
+        if factor > 1.0:
+            length = pegs.stroke_end - pegs.stroke_start
+            stroke_end = pegs.stroke_start + factor * length
+            changes.append(f"the stroke needs {factor * length:.3f} s instead of {length:.3f} s; it ends {stroke_end - pegs.stroke_end:.3f} s later")
+            relax = max(pegs.relax, stroke_end)
+            pegs = replace(
+                pegs, stroke=pegs.stroke_start + factor * (pegs.stroke - pegs.stroke_start), stroke_end=stroke_end,
+                relax=relax, end=max(pegs.end, relax + pegs.end - pegs.relax),
+            )  # fmt: skip
+        window = pegs.stroke_start - pegs.start
+        amplitudes = {
+            arm: float(np.linalg.norm(p[0] - np.asarray(start_wrists.get(arm, self.rest_wrist(arm)), dtype=float)))
+            for arm, p in points.items()
+            if p is not None
+        }
+        shortest = max((limits.shortest_duration(a) for a in amplitudes.values()), default=0.0)
+        if shortest > window:
+            delay = shortest - window
+            changes.append(f"the preparation needs {shortest:.3f} s, the plan gives {window:.3f} s; the stroke starts {delay:.3f} s later")
+            pegs = TimePegs(*(getattr(pegs, name) + (0.0 if name == "start" else delay) for name in _PEG_NAMES))
+        if changes:
+            notes.append(
+                f"{behavior}: kept within the {GESTURE_MANNER} speed budget ({limits.peak_speed} m/s, "
+                f"{limits.peak_acceleration} m/s²): " + "; ".join(changes)
+            )
+        window = pegs.stroke_start - pegs.start
+        holds = [preparation_timing(a, window)[1] for a in amplitudes.values()]
+        return replace(pegs, ready=pegs.stroke_start - min(holds)) if holds and min(holds) > 0.0 else pegs
+
+    @staticmethod
+    def stroke_stretch(stroke: Fragment, arm: str, points: np.ndarray, limits: SpeedBudget) -> float:
+        """How much longer (≥ 1) ``arm``'s stroke must last to stay within ``limits``."""
+        times, _ = timed_values(stroke.tracks[(arm, "location")])
+        if len(times) < 2:
+            return 1.0
+        times = np.array(times)
+        factor = 1.0
+        for _ in range(_STRETCH_ROUNDS):
+            step = stretch_factor(plan_wrist_trajectory(points, times), limits.peak_speed, limits.peak_acceleration)
+            if step <= 1.0 + 1e-6:
+                break
+            factor *= step * (1.0 + 1e-6)
+            times = times[0] + (times - times[0]) * step * (1.0 + 1e-6)
+        return factor
 
     def usable_pegs(self, behavior: str, pegs: TimePegs, dynamic: bool, notes: list[str]) -> TimePegs:
         """The scheduler's pegs, widened by the documented rules where they cannot work."""
@@ -240,22 +327,13 @@ class Planner:
         )
         return np.where(short[:, None], solution.wrist, points)
 
-    def arm_lmps(
-        self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, notes: list[str]
-    ) -> tuple[list[LMP], np.ndarray | None]:
-        """The stroke LMPs of one arm, and its wrist position at the end of the stroke."""
+    def arm_lmps(self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, points: np.ndarray | None) -> list[LMP]:
+        """The stroke LMPs of one arm; ``points`` its wrist breakpoints (or None)."""
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
-        locations = stroke.tracks.get((arm, "location"), ())
-        last_wrist = None
-        if locations:
-            times, values = timed_values(locations)
-            curved_flags = tuple(curved_into(locations, t) for t in times[1:])
-            points = self.within_reach(compiler.behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
-            if len(points) > 1:
-                notes.extend(f"{compiler.behavior}: {note}" for note in plan_wrist_trajectory(points, np.array(times), curved=curved_flags).warnings)
-            lmps.append(WristPositionLMP(arm, held, points, np.array(times), curved_flags))
-            last_wrist = points[-1]
+        if points is not None:
+            times, _ = timed_values(stroke.tracks[(arm, "location")])
+            lmps.append(WristPositionLMP(arm, held, points, np.array(times)))
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
             times, values = self.prepared(timed_values(shapes), pegs.ready)
@@ -264,7 +342,7 @@ class Planner:
         if rotations is not None:
             times, values = rotations
             lmps.append(WristRotationLMP(arm, held, values, times))
-        return lmps, last_wrist
+        return lmps
 
     @staticmethod
     def prepared(timed: tuple[list[float], list[object]], ready: float) -> tuple[list[float], list[object]]:

@@ -284,16 +284,17 @@ class VectorKeyframeLMP:
 
 @dataclass(frozen=True, eq=False)
 class RetractionLMP:
-    """Back to a rest (or interim rest) value, arriving at ``pegs.ready``, lax by default.
+    """Back to a rest (or interim rest) value, arriving at ``pegs.ready``.
 
     Works on any channel: vector channels move along a straight line, rotation channels
-    slerp.
+    slerp. The default profile is the minimum-jerk one: a retraction from a hold is a
+    single straight movement from rest to rest, and the smoothest is the most relaxed.
     """
 
     channel: Channel
     pegs: TimePegs
     rest: np.ndarray
-    time_profile: TimeProfile | str = "lax"
+    time_profile: TimeProfile | str = field(default_factory=minimum_jerk)
 
     def __post_init__(self) -> None:
         if self.pegs.ready <= self.pegs.start:
