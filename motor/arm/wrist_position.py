@@ -50,6 +50,9 @@ PRE_STROKE_HOLD = 0.15
 _AT_REST = 1e-6
 #: Shortest time (s) an LMP holds a single target, when its pegs give none.
 _DIFFERENCE_STEP = 1e-4
+#: Shortest approach from a moving state tried, and how many times it is stretched.
+_SHORTEST_APPROACH = 0.05
+_APPROACH_ROUNDS = 6
 
 
 def preparation_timing(amplitude: float, window: float, manner: str | None = None) -> tuple[float, float]:
@@ -61,6 +64,27 @@ def preparation_timing(amplitude: float, window: float, manner: str | None = Non
     if window <= natural:
         return window, 0.0
     return natural, min(PRE_STROKE_HOLD, window - natural)
+
+
+def shortest_preparation(state: ChannelState, target: np.ndarray, manner: str | None = None) -> float:
+    """Shortest time (s) in which a preparation from ``state`` (value and velocity) brings
+    the wrist to rest at ``target`` within ``manner``'s speed budget: from rest, the
+    budget's minimum-jerk duration; while moving, the approach stretched until it fits
+    (the longest it tries is a few rounds; a wrist already faster than the budget never
+    fits and gets the last one)."""
+    limits = budget(manner)
+    here = np.asarray(state.value, dtype=float)
+    amplitude = float(np.linalg.norm(np.asarray(target, dtype=float) - here))
+    if float(np.linalg.norm(state.velocity)) <= _AT_REST:
+        return limits.shortest_duration(amplitude)
+    duration = max(limits.shortest_duration(amplitude), _SHORTEST_APPROACH)
+    for _ in range(_APPROACH_ROUNDS):
+        trial = approach(here, np.asarray(state.velocity, dtype=float), 0.0, np.asarray(target, dtype=float), duration)
+        factor = stretch_factor(trial, limits.peak_speed, limits.peak_acceleration)
+        if factor <= 1.0:
+            break
+        duration *= factor
+    return duration
 
 
 @dataclass(frozen=True, eq=False)

@@ -40,7 +40,7 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
   image than the avatar's palm thickness (:func:`motor.hand.contact.palm_thickness`) is
   moved apart, both hands equally, to that distance.
 
-A location out of the arm's reach (the IK falls short by more than :data:`REACH_TOLERANCE`)
+A location out of the arm's reach (the IK falls short of it; :mod:`motor.arm.wrist_path`)
 is replaced by the nearest point the arm reaches, with a warning; a stroke too fast for
 the speed budget is lengthened by the gesture planner (:mod:`motor.program.gesture`), with
 a warning.

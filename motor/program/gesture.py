@@ -25,11 +25,10 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
-from motor.arm.ik import solve_arm
-from motor.arm.wrist_position import WristPositionLMP, preparation_timing
+from motor.arm.wrist_path import followable, placed
+from motor.arm.wrist_position import WristPositionLMP, preparation_timing, shortest_preparation
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
 from motor.hand.lmp import HandShapeLMP
 from motor.hand.shape import handshape_params
 from motor.program.fragment import (
@@ -42,7 +41,7 @@ from motor.program.fragment import (
     unit_vector,
     value_at,
 )
-from motor.program.lmp import LMP, RetractionLMP, TimePegs
+from motor.program.lmp import LMP, ChannelState, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
 from motor.trajectory.speed_budget import SpeedBudget, budget
 from motor.trajectory.spline import fitts_duration, plan_wrist_trajectory, stretch_factor
@@ -59,8 +58,6 @@ MIN_PREPARATION = 1e-3
 NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
 #: The relaxed hand: this fraction of the way from the flat hand to the rounded one.
 REST_CURL = 0.3
-#: How far (m) the IK may fall short of a planned location before it is moved in reach.
-REACH_TOLERANCE = 1e-3
 #: The manner whose speed budget (:mod:`motor.trajectory.speed_budget`) MURML gestures keep.
 GESTURE_MANNER = "targetted"
 #: Rounds of lengthening a stroke until it is within its budget (the second rarely acts).
@@ -191,12 +188,13 @@ class Planner:
         pegs: TimePegs,
         repetitions: int = 1,
         next_gesture_follows: bool = False,
-        start_wrists: Mapping[str, np.ndarray] | None = None,
+        start_states: Mapping[str, ChannelState] | None = None,
     ) -> MotorProgram:
         """The motor program of ``behavior`` on ``pegs`` (see the module docstring).
 
-        ``start_wrists`` are the arms' wrist positions at ``pegs.start`` (default: the rest
-        posture), from which the preparation is checked against the speed budget.
+        ``start_states`` are the arms' wrist states (position and velocity) at
+        ``pegs.start`` (default: still in the rest posture), from which the preparation is
+        checked against the speed budget.
         """
         compiler = Compiler(self.avatar, behavior.id)
         fragment = self.fragment(behavior)
@@ -207,13 +205,13 @@ class Planner:
         tentative = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
         arms = sorted({arm for arm, _ in tentative.tracks}, key=ARMS.index)
         points = {arm: self.stroke_points(behavior.id, tentative, arm, notes) for arm in arms}
-        pegs = self.within_budget(behavior.id, tentative, points, pegs, start_wrists or {}, notes)
+        pegs = self.within_budget(behavior.id, tentative, points, pegs, start_states or {}, notes)
         stroke = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
         lmps: list[LMP] = []
         retraction = 0.0
         posture = "interim_rest" if next_gesture_follows else "rest"
         for arm in arms:
-            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, points[arm]))
+            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, points[arm], notes))
             last_wrist = None if points[arm] is None else points[arm][-1]
             distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
             retraction = max(retraction, retraction_duration(distance))
@@ -238,7 +236,7 @@ class Planner:
         stroke: Fragment,
         points: Mapping[str, np.ndarray | None],
         pegs: TimePegs,
-        start_wrists: Mapping[str, np.ndarray],
+        start_states: Mapping[str, ChannelState],
         notes: list[str],
     ) -> TimePegs:
         """The pegs with the stroke lengthened and then delayed as far as the speed budget of
@@ -257,12 +255,12 @@ class Planner:
                 relax=relax, end=max(pegs.end, relax + pegs.end - pegs.relax),
             )  # fmt: skip
         window = pegs.stroke_start - pegs.start
-        amplitudes = {
-            arm: float(np.linalg.norm(p[0] - np.asarray(start_wrists.get(arm, self.rest_wrist(arm)), dtype=float)))
+        states = {
+            arm: start_states.get(arm) or ChannelState.at_rest(self.rest_wrist(arm), pegs.start)
             for arm, p in points.items()
             if p is not None
         }
-        shortest = max((limits.shortest_duration(a) for a in amplitudes.values()), default=0.0)
+        shortest = max((shortest_preparation(states[arm], points[arm][0], GESTURE_MANNER) for arm in states), default=0.0)
         if shortest > window:
             delay = shortest - window
             changes.append(f"the preparation needs {shortest:.3f} s, the plan gives {window:.3f} s; the stroke starts {delay:.3f} s later")
@@ -273,16 +271,15 @@ class Planner:
                 f"{limits.peak_acceleration} m/s²): " + "; ".join(changes)
             )
         window = pegs.stroke_start - pegs.start
-        holds = [preparation_timing(a, window)[1] for a in amplitudes.values()]
+        holds = [preparation_timing(float(np.linalg.norm(points[arm][0] - states[arm].value)), window)[1] for arm in states]
         return replace(pegs, ready=pegs.stroke_start - min(holds)) if holds and min(holds) > 0.0 else pegs
 
-    @staticmethod
-    def stroke_stretch(stroke: Fragment, arm: str, points: np.ndarray, limits: SpeedBudget) -> float:
+    def stroke_stretch(self, stroke: Fragment, arm: str, points: np.ndarray, limits: SpeedBudget) -> float:
         """How much longer (≥ 1) ``arm``'s stroke must last to stay within ``limits``."""
         times, _ = timed_values(stroke.tracks[(arm, "location")])
         if len(times) < 2:
             return 1.0
-        times = np.array(times)
+        points, times, _ = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
         factor = 1.0
         for _ in range(_STRETCH_ROUNDS):
             step = stretch_factor(plan_wrist_trajectory(points, times), limits.peak_speed, limits.peak_acceleration)
@@ -308,32 +305,36 @@ class Planner:
 
     def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
         """``points`` with those inside the torso pushed out in front of it and those the arm
-        cannot reach moved to the nearest it can (warnings)."""
-        clear = outside_torso(self.avatar, points)
-        moved = np.any(clear != points, axis=1)
-        if np.any(moved):
+        cannot reach moved to the nearest it can (:func:`motor.arm.wrist_path.placed`;
+        warnings)."""
+        placement = placed(self.avatar, AVATAR_SIDE[arm], points)
+        if placement.inside:
             notes.append(
-                f"{behavior}: {int(np.sum(moved))} location(s) of the {arm} hand inside the torso by up to "
-                f"{float(np.max(np.abs(clear - points))):.3f} m; moved in front of it"
+                f"{behavior}: {placement.inside} location(s) of the {arm} hand inside the torso by up to "
+                f"{placement.depth:.3f} m; moved in front of it"
             )
-            points = clear
-        solution = solve_arm(self.avatar, AVATAR_SIDE[arm], points)
-        short = solution.shortfall > REACH_TOLERANCE
-        if not np.any(short):
-            return points
-        notes.append(
-            f"{behavior}: {int(np.sum(short))} location(s) of the {arm} hand out of reach by up to "
-            f"{float(np.max(solution.shortfall)):.3f} m; moved to the nearest reachable point"
-        )
-        return np.where(short[:, None], solution.wrist, points)
+        if placement.short:
+            notes.append(
+                f"{behavior}: {placement.short} location(s) of the {arm} hand out of reach by up to "
+                f"{placement.shortfall:.3f} m; moved to the nearest reachable point"
+            )
+        return placement.points
 
-    def arm_lmps(self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, points: np.ndarray | None) -> list[LMP]:
+    def arm_lmps(
+        self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, points: np.ndarray | None, notes: list[str]
+    ) -> list[LMP]:
         """The stroke LMPs of one arm; ``points`` its wrist breakpoints (or None)."""
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
         if points is not None:
             times, _ = timed_values(stroke.tracks[(arm, "location")])
-            lmps.append(WristPositionLMP(arm, held, points, np.array(times)))
+            points, times, replaced = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
+            if replaced:
+                notes.append(
+                    f"{compiler.behavior}: the {arm} hand's path left the reach or entered the torso between its "
+                    f"locations in {replaced} movement(s); kept where the arm can follow it"
+                )
+            lmps.append(WristPositionLMP(arm, held, points, times))
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
             times, values = self.prepared(timed_values(shapes), pegs.ready)

@@ -50,7 +50,7 @@ CURVED_TURN = math.pi / 3.0
 #: Width (standard deviation, seconds) of the Gaussian that smooths the logarithm of the
 #: curvature along the law time before the law uses it: the speed cannot change faster
 #: than the hand accelerates (an inflection or a kink would otherwise ask for a jump).
-SMOOTHING = 0.015
+SMOOTHING = 0.008
 #: Knots per second of the sampled phase.
 KNOT_RATE = 240.0
 #: Fewest knots of a phase.
