@@ -8,15 +8,16 @@ At activation the LMP takes the channel's value and velocity and prepends the
 (:func:`motor.trajectory.spline.approach`).
 
 **The stroke onset is visible** (Kendon's pre-stroke hold, as Greta does). The preparation
-always arrives at rest — a speed minimum of zero at the preparation–stroke breakpoint, so
-the stroke starts from a standstill exactly at its first breakpoint time (the program's
-``stroke_start``) — and when the window leaves time for it the hand also holds there
-first (:func:`preparation_timing`): the preparation takes its natural duration (the
-longer of Fitts' law ``0.24 ln(100 A + 1)`` and the shortest duration the speed budget
-allows, :mod:`motor.trajectory.speed_budget`), the hold takes what the window leaves
-beyond that, up to :data:`PRE_STROKE_HOLD`, and from rest the wrist waits before it
-starts moving with what is left. A window shorter than the natural duration is used
-whole (the planner keeps it within the budget beforehand, see
+always arrives at rest, by the ``ready`` peg — a speed minimum of zero at the
+preparation–stroke breakpoint — and the wrist holds there until the stroke starts from a
+standstill exactly at its first breakpoint time (the program's ``stroke_start``). The rule
+(:func:`preparation_timing`; the gesture planner applies it to set ``ready``, the same
+for both arms): the preparation takes its natural duration, the longer of Fitts' law
+``0.24 ln(100 A + 1)`` and the shortest duration the speed budget allows
+(:mod:`motor.trajectory.speed_budget`); the pre-stroke hold takes what the window from
+``start`` to ``stroke_start`` leaves beyond that, up to :data:`PRE_STROKE_HOLD`; from rest
+the wrist waits before it starts moving with what is left. A window shorter than the
+natural duration is used whole (the planner keeps it within the budget beforehand, see
 :mod:`motor.program.gesture`); one that would need more than the absolute peak speed
 makes the stroke start late, with a warning.
 
@@ -164,8 +165,8 @@ class WristPositionLMP:
         pieces: list[WristTrajectory] = []
         arrival = state.time
         if amplitude > _AT_REST or moving:
-            duration, hold = preparation_timing(max(amplitude, _AT_REST * 2.0), onset - state.time)
-            arrival = onset - hold
+            arrival = self.pegs.ready
+            duration, _ = preparation_timing(max(amplitude, _AT_REST * 2.0), arrival - state.time)
             begin = state.time if moving else arrival - duration
             if begin > state.time:
                 pieces.append(held(here, state.time, begin))

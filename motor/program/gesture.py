@@ -241,7 +241,9 @@ class Planner:
     ) -> TimePegs:
         """The pegs with the stroke lengthened and then delayed as far as the speed budget of
         :data:`GESTURE_MANNER` needs, the preparation's arrival (``ready``) before the
-        pre-stroke hold, and one warning naming what changed and by how much."""
+        pre-stroke hold, and one warning naming what changed and by how much. Both arms
+        share the hold (the shorter of theirs); a stroke whose wrists do not move has none:
+        the hand's arrival is its onset."""
         limits = budget(GESTURE_MANNER)
         changes: list[str] = []
         factor = max((self.stroke_stretch(stroke, arm, p, limits) for arm, p in points.items() if p is not None), default=1.0)
@@ -272,7 +274,8 @@ class Planner:
             )
         window = pegs.stroke_start - pegs.start
         holds = [preparation_timing(float(np.linalg.norm(points[arm][0] - states[arm].value)), window)[1] for arm in states]
-        return replace(pegs, ready=pegs.stroke_start - min(holds)) if holds and min(holds) > 0.0 else pegs
+        moves = any(float(np.ptp(points[arm], axis=0).max()) > 0.0 for arm in states)
+        return replace(pegs, ready=pegs.stroke_start - min(holds)) if moves and holds and min(holds) > 0.0 else pegs
 
     def stroke_stretch(self, stroke: Fragment, arm: str, points: np.ndarray, limits: SpeedBudget) -> float:
         """How much longer (≥ 1) ``arm``'s stroke must last to stay within ``limits``."""

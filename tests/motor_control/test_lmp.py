@@ -33,14 +33,15 @@ def frames(start: float, end: float) -> np.ndarray:
 
 
 def gesture_then_retraction(second_start: float) -> list:
-    """Gesture 1, its retraction at relax, and gesture 2 starting at ``second_start``."""
+    """Gesture 1, its retraction at relax, and gesture 2 starting at ``second_start``, in
+    activation order."""
     first = WristPositionLMP("right", TimePegs(0.2, 0.8, 0.8, 1.0, 1.3, 1.5, 1.5), STROKE)
     retract = RetractionLMP(WRIST, TimePegs.movement(1.5, 2.3), REST)
     second = WristPositionLMP(
         "right", TimePegs(*(second_start + np.array([0.0, 0.5, 0.5, 0.6, 0.7, 0.9, 0.9]))),
         np.array([[0.1, 1.3, 0.3], [0.2, 1.1, 0.3]]),
     )
-    return [second, retract, first]
+    return [first, retract, second]
 
 
 def assert_continuous(values: np.ndarray, times: np.ndarray, handovers: np.ndarray) -> None:
@@ -68,10 +69,10 @@ def _passes(path: np.ndarray, point: np.ndarray) -> bool:
 
 
 def test_wrist_lmp_from_rest_waits_moves_in_natural_time_holds_and_passes_its_breakpoints() -> None:
-    lmp = WristPositionLMP("right", TimePegs(0.0, 1.2, 1.2, 1.4, 1.6, 1.8, 1.8), STROKE)
+    arrival = 1.2 - PRE_STROKE_HOLD
+    lmp = WristPositionLMP("right", TimePegs(0.0, arrival, 1.2, 1.4, 1.6, 1.8, 1.8), STROKE)
     realization = lmp.activate(ChannelState.at_rest(REST, 0.0))
     natural = float(fitts_duration(np.linalg.norm(STROKE[0] - REST)))
-    arrival = 1.2 - PRE_STROKE_HOLD
     assert realization.warnings == ()
     np.testing.assert_allclose(realization.sample(np.array([0.0, arrival - natural - 0.01])), [REST, REST], atol=1e-12)
     assert np.linalg.norm(realization.sample(np.array([arrival - natural + 0.02]))[0] - REST) > 1e-5
@@ -144,6 +145,17 @@ def test_too_fast_stroke_is_slowed_and_never_nan() -> None:
     assert np.all(np.isfinite(values))
     speeds = np.linalg.norm(np.diff(values, axis=0), axis=1) * FPS
     assert speeds.max() <= 3.0 * 1.01
+
+
+@pytest.mark.parametrize("second_start", [0.9, 1.2, 1.5])
+def test_a_retraction_is_dropped_when_a_later_gesture_starts_first(second_start: float) -> None:
+    """The second gesture was activated after the first (and its retraction) but starts
+    before the retraction would: the arm goes straight on to it."""
+    first, retract, second = gesture_then_retraction(second_start)
+    timeline = ChannelTimeline.build(WRIST, [first, retract, second], ChannelState.at_rest(REST))
+    assert timeline.lmps == (first, second)
+    values = timeline.sample(frames(second.pegs.ready, second.pegs.ready + 0.5))
+    assert np.min(np.linalg.norm(values - REST, axis=1)) > 0.05
 
 
 def test_timeline_hands_over_with_coarticulation() -> None:

@@ -12,7 +12,7 @@ from motor.control import MotorControl
 from motor.hand.lmp import HandShapeLMP
 from motor.program.fragment import POINTING_REACH, PlanningError, movement_time
 from motor.program.gesture import GestureDemands, rest_handshape
-from motor.program.lmp import RetractionLMP
+from motor.program.lmp import ChannelState, RetractionLMP
 from motor.trajectory.spline import fitts_duration
 from mura.constraints import (
     Arm,
@@ -236,7 +236,7 @@ def test_activation_warnings_are_collected(control, avatar) -> None:
     """A program planned for an arm already at its stroke (no preparation) but activated
     with the arm at rest cannot prepare in time: its stroke starts late, and says so."""
     start = control.planner.fragment(behavior(line(0.1))).first(("right", "location"))
-    program = control.planner.plan(behavior(line(0.1)), pegs(0.0, 0.05, 0.1, 0.6), start_wrists={"right": start})
+    program = control.planner.plan(behavior(line(0.1)), pegs(0.0, 0.05, 0.1, 0.6), start_states={"right": ChannelState.at_rest(start)})
     control.activate(program)
     assert any("late" in note for note in control.warnings())
 
