@@ -86,17 +86,20 @@ def followable(avatar: Avatar, side: str, points: np.ndarray, times: np.ndarray)
     """The breakpoints ``(n, 3)`` and times ``(n,)`` of a wrist path of the arm on ``side``,
     with every phase that leaves the reach or enters the torso replaced by its samples,
     placed (module docstring); and how many phases were replaced."""
+    spans = phases(points)
+    if not spans:
+        return points, times, 0
+    sampled = [_samples(points[first : last + 1]) for first, last in spans]
+    every = np.concatenate([samples for samples, _ in sampled])
+    placed_all = np.split(placed(avatar, side, every).points, np.cumsum([samples.shape[0] for samples, _ in sampled])[:-1])
     kept_points, kept_times = [points[:1]], [times[:1]]
     replaced = 0
     previous = 0
-    for first, last in phases(points):
+    for (first, last), (samples, fractions), cleared in zip(spans, sampled, placed_all):
         kept_points.append(points[previous + 1 : first + 1])
         kept_times.append(times[previous + 1 : first + 1])
-        piece = points[first : last + 1]
-        samples, fractions = _samples(piece)
-        cleared = placed(avatar, side, samples).points
         if np.array_equal(cleared, samples):
-            kept_points.append(piece[1:])
+            kept_points.append(points[first + 1 : last + 1])
             kept_times.append(times[first + 1 : last + 1])
         else:
             replaced += 1

@@ -26,7 +26,7 @@ Positions are metres in the avatar frame, times seconds on the utterance clock.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -121,7 +121,8 @@ class WristPositionLMP:
             breakpoints in between are passed as the power law times them.
         warnings: notes from planning the breakpoints (e.g. a curve's default normal),
             carried into the realization.
-        stroke: the stroke's trajectory, formed from the breakpoints (not given).
+        stroke: the stroke's trajectory through the breakpoints at their times, when the
+            planner has formed it already; otherwise it is formed here.
     """
 
     side: str
@@ -129,7 +130,7 @@ class WristPositionLMP:
     breakpoints: np.ndarray
     breakpoint_times: np.ndarray | None = None
     warnings: tuple[str, ...] = ()
-    stroke: WristTrajectory | None = field(default=None, init=False)
+    stroke: WristTrajectory | None = None
 
     def __post_init__(self) -> None:
         points = np.atleast_2d(np.asarray(self.breakpoints, dtype=float))
@@ -147,7 +148,10 @@ class WristPositionLMP:
             times = np.array([self.pegs.ready])
         object.__setattr__(self, "breakpoints", points)
         object.__setattr__(self, "breakpoint_times", times)
-        if points.shape[0] > 1:
+        if self.stroke is not None:
+            if abs(self.stroke.start - times[0]) > 1e-9 or abs(self.stroke.end - times[-1]) > 1e-9:
+                raise ValueError(f"{self.channel}: the given stroke spans [{self.stroke.start}, {self.stroke.end}], not its breakpoint times")
+        elif points.shape[0] > 1:
             object.__setattr__(self, "stroke", plan_wrist_trajectory(points, times))
 
     @property
@@ -192,7 +196,4 @@ class WristPositionLMP:
         could not arrive in time); a single target holds until the pegs' end."""
         if self.stroke is None:
             return held(self.breakpoints[0], onset, max(self.pegs.end, onset + _DIFFERENCE_STEP))
-        if late <= 0.0:
-            return self.stroke
-        s = self.stroke
-        return WristTrajectory(s.times + late, s.positions, s.velocities, s.accelerations, s.warnings)
+        return self.stroke.shifted(late) if late > 0.0 else self.stroke

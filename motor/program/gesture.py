@@ -44,7 +44,7 @@ from motor.program.fragment import (
 from motor.program.lmp import LMP, ChannelState, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
 from motor.trajectory.speed_budget import SpeedBudget, budget
-from motor.trajectory.spline import fitts_duration, plan_wrist_trajectory, stretch_factor
+from motor.trajectory.spline import WristTrajectory, fitts_duration, plan_wrist_trajectory, stretch_factor
 from mura.model import BehaviorSpec
 from mura.values import FingerBend, HandShape, PalmOrientation
 
@@ -86,6 +86,26 @@ class GestureDemands:
     dynamic: bool
     repeatable: bool
     preparation_distance: float
+
+
+@dataclass(frozen=True, eq=False)
+class WristPath:
+    """One arm's stroke path: breakpoints ``(n, 3)`` (metres), their times ``(n,)`` (s) and
+    the trajectory through them (None for a single location)."""
+
+    points: np.ndarray
+    times: np.ndarray
+    trajectory: WristTrajectory | None
+
+    def stretched(self, origin: float, factor: float) -> WristPath:
+        """The path timed ``factor`` times slower about ``origin`` (the trajectory planned
+        anew on those times)."""
+        times = origin + (self.times - origin) * factor
+        return WristPath(self.points, times, None if self.trajectory is None else plan_wrist_trajectory(self.points, times))
+
+    def shifted(self, delay: float) -> WristPath:
+        """The path ``delay`` seconds later."""
+        return WristPath(self.points, self.times + delay, None if self.trajectory is None else self.trajectory.shifted(delay))
 
 
 @dataclass(frozen=True, eq=False)
@@ -204,15 +224,15 @@ class Planner:
         pegs = self.usable_pegs(behavior.id, pegs, fragment.duration > 0.0, notes)
         tentative = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
         arms = sorted({arm for arm, _ in tentative.tracks}, key=ARMS.index)
-        points = {arm: self.stroke_points(behavior.id, tentative, arm, notes) for arm in arms}
-        pegs = self.within_budget(behavior.id, tentative, points, pegs, start_states or {}, notes)
+        paths = {arm: self.stroke_path(behavior.id, tentative, arm, notes) for arm in arms}
+        pegs, paths = self.within_budget(behavior.id, paths, pegs, start_states or {}, notes)
         stroke = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
         lmps: list[LMP] = []
         retraction = 0.0
         posture = "interim_rest" if next_gesture_follows else "rest"
         for arm in arms:
-            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, points[arm], notes))
-            last_wrist = None if points[arm] is None else points[arm][-1]
+            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, paths[arm]))
+            last_wrist = None if paths[arm] is None else paths[arm].points[-1]
             distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
             retraction = max(retraction, retraction_duration(distance))
         end = pegs.relax + retraction if arms else pegs.relax
@@ -221,32 +241,44 @@ class Planner:
         final = replace(pegs, end=end)
         return MotorProgram(behavior.id, tuple(lmps), tuple(notes), final, frozenset(arms))
 
-    def stroke_points(self, behavior: str, stroke: Fragment, arm: str, notes: list[str]) -> np.ndarray | None:
-        """The wrist breakpoints of ``arm``'s stroke, moved out of the torso and into reach
-        (warnings), or None when its location is unconstrained."""
+    def stroke_path(self, behavior: str, stroke: Fragment, arm: str, notes: list[str]) -> WristPath | None:
+        """The wrist path of ``arm``'s stroke as placed in ``stroke``: its locations moved out
+        of the torso and into reach, the curve between them kept where the arm can follow it
+        (:mod:`motor.arm.wrist_path`; warnings), and its trajectory; None when the arm's
+        location is unconstrained."""
         locations = stroke.tracks.get((arm, "location"), ())
         if not locations:
             return None
-        _, values = timed_values(locations)
-        return self.within_reach(behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+        times, values = timed_values(locations)
+        points = self.within_reach(behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+        if len(times) < 2:
+            return WristPath(points, np.array(times), None)
+        points, times, replaced = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
+        if replaced:
+            notes.append(
+                f"{behavior}: the {arm} hand's path left the reach or entered the torso between its "
+                f"locations in {replaced} movement(s); kept where the arm can follow it"
+            )
+        return WristPath(points, times, plan_wrist_trajectory(points, times))
 
     def within_budget(
         self,
         behavior: str,
-        stroke: Fragment,
-        points: Mapping[str, np.ndarray | None],
+        paths: Mapping[str, WristPath | None],
         pegs: TimePegs,
         start_states: Mapping[str, ChannelState],
         notes: list[str],
-    ) -> TimePegs:
+    ) -> tuple[TimePegs, dict[str, WristPath | None]]:
         """The pegs with the stroke lengthened and then delayed as far as the speed budget of
         :data:`GESTURE_MANNER` needs, the preparation's arrival (``ready``) before the
-        pre-stroke hold, and one warning naming what changed and by how much. Both arms
-        share the hold (the shorter of theirs); a stroke whose wrists do not move has none:
-        the hand's arrival is its onset."""
+        pre-stroke hold, and one warning naming what changed and by how much; and the
+        paths retimed to match. Both arms share the hold (the shorter of theirs); a stroke
+        whose wrists do not move has none: the hand's arrival is its onset."""
         limits = budget(GESTURE_MANNER)
         changes: list[str] = []
-        factor = max((self.stroke_stretch(stroke, arm, p, limits) for arm, p in points.items() if p is not None), default=1.0)
+        moving = {arm: path for arm, path in paths.items() if path is not None}
+        origin = pegs.stroke_start
+        factor = max((self.stroke_stretch(path, limits) for path in moving.values()), default=1.0)
         if factor > 1.0:
             length = pegs.stroke_end - pegs.stroke_start
             stroke_end = pegs.stroke_start + factor * length
@@ -256,40 +288,39 @@ class Planner:
                 pegs, stroke=pegs.stroke_start + factor * (pegs.stroke - pegs.stroke_start), stroke_end=stroke_end,
                 relax=relax, end=max(pegs.end, relax + pegs.end - pegs.relax),
             )  # fmt: skip
+            moving = {arm: path.stretched(origin, factor) for arm, path in moving.items()}
         window = pegs.stroke_start - pegs.start
-        states = {
-            arm: start_states.get(arm) or ChannelState.at_rest(self.rest_wrist(arm), pegs.start)
-            for arm, p in points.items()
-            if p is not None
-        }
-        shortest = max((shortest_preparation(states[arm], points[arm][0], GESTURE_MANNER) for arm in states), default=0.0)
+        states = {arm: start_states.get(arm) or ChannelState.at_rest(self.rest_wrist(arm), pegs.start) for arm in moving}
+        shortest = max((shortest_preparation(states[arm], path.points[0], GESTURE_MANNER) for arm, path in moving.items()), default=0.0)
         if shortest > window:
             delay = shortest - window
             changes.append(f"the preparation needs {shortest:.3f} s, the plan gives {window:.3f} s; the stroke starts {delay:.3f} s later")
             pegs = TimePegs(*(getattr(pegs, name) + (0.0 if name == "start" else delay) for name in _PEG_NAMES))
+            moving = {arm: path.shifted(delay) for arm, path in moving.items()}
         if changes:
             notes.append(
                 f"{behavior}: kept within the {GESTURE_MANNER} speed budget ({limits.peak_speed} m/s, "
                 f"{limits.peak_acceleration} m/s²): " + "; ".join(changes)
             )
         window = pegs.stroke_start - pegs.start
-        holds = [preparation_timing(float(np.linalg.norm(points[arm][0] - states[arm].value)), window)[1] for arm in states]
-        moves = any(float(np.ptp(points[arm], axis=0).max()) > 0.0 for arm in states)
-        return replace(pegs, ready=pegs.stroke_start - min(holds)) if moves and holds and min(holds) > 0.0 else pegs
+        holds = [preparation_timing(float(np.linalg.norm(path.points[0] - states[arm].value)), window)[1] for arm, path in moving.items()]
+        if any(path.trajectory is not None for path in moving.values()) and holds and min(holds) > 0.0:
+            pegs = replace(pegs, ready=pegs.stroke_start - min(holds))
+        return pegs, {arm: moving.get(arm) for arm in paths}
 
-    def stroke_stretch(self, stroke: Fragment, arm: str, points: np.ndarray, limits: SpeedBudget) -> float:
-        """How much longer (≥ 1) ``arm``'s stroke must last to stay within ``limits``."""
-        times, _ = timed_values(stroke.tracks[(arm, "location")])
-        if len(times) < 2:
+    @staticmethod
+    def stroke_stretch(path: WristPath, limits: SpeedBudget) -> float:
+        """How much longer (≥ 1) a stroke must last to stay within ``limits``."""
+        if path.trajectory is None:
             return 1.0
-        points, times, _ = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
         factor = 1.0
+        trajectory = path.trajectory
         for _ in range(_STRETCH_ROUNDS):
-            step = stretch_factor(plan_wrist_trajectory(points, times), limits.peak_speed, limits.peak_acceleration)
+            step = stretch_factor(trajectory, limits.peak_speed, limits.peak_acceleration)
             if step <= 1.0 + 1e-6:
                 break
             factor *= step * (1.0 + 1e-6)
-            times = times[0] + (times - times[0]) * step * (1.0 + 1e-6)
+            trajectory = path.stretched(path.times[0], factor).trajectory
         return factor
 
     def usable_pegs(self, behavior: str, pegs: TimePegs, dynamic: bool, notes: list[str]) -> TimePegs:
@@ -323,21 +354,12 @@ class Planner:
             )
         return placement.points
 
-    def arm_lmps(
-        self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, points: np.ndarray | None, notes: list[str]
-    ) -> list[LMP]:
-        """The stroke LMPs of one arm; ``points`` its wrist breakpoints (or None)."""
+    def arm_lmps(self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, path: WristPath | None) -> list[LMP]:
+        """The stroke LMPs of one arm; ``path`` its wrist path (or None)."""
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
-        if points is not None:
-            times, _ = timed_values(stroke.tracks[(arm, "location")])
-            points, times, replaced = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
-            if replaced:
-                notes.append(
-                    f"{compiler.behavior}: the {arm} hand's path left the reach or entered the torso between its "
-                    f"locations in {replaced} movement(s); kept where the arm can follow it"
-                )
-            lmps.append(WristPositionLMP(arm, held, points, times))
+        if path is not None:
+            lmps.append(WristPositionLMP(arm, held, path.points, path.times, stroke=path.trajectory))
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
             times, values = self.prepared(timed_values(shapes), pegs.ready)

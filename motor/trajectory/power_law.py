@@ -108,21 +108,22 @@ def _cumulative(density: np.ndarray, u: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(u))])
 
 
-def law_time(spline: CubicSpline, rate: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+def law_time(spline: CubicSpline, flat_time: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Spline parameters ``u`` on a fine grid and the law time ``τ(u)`` there.
 
-    ``τ`` accumulates ``R̃^{−β}`` per metre of arc. With ``rate`` (law time per second
-    where the envelope is flat) the logarithm of the clamped curvature is first smoothed
-    over :data:`SMOOTHING` seconds of motion.
+    ``τ`` accumulates ``R̃^{−β}`` per metre of arc. Given ``flat_time`` (s, what the phase's
+    envelope amounts to at its flat rate, so that the law time runs at ``τ_total /
+    flat_time`` per second there) the logarithm of the clamped curvature is smoothed over
+    :data:`SMOOTHING` seconds of that motion first.
     """
     u = _parameter_grid(spline)
     first, second = spline(u, 1), spline(u, 2)
     speed = np.maximum(np.linalg.norm(first, axis=1), 1e-12)
     log_curvature = np.log(clamped_curvature(np.linalg.norm(np.cross(first, second), axis=1) / speed**3))
     tau = _cumulative(speed * np.exp(EXPONENT * log_curvature), u)
-    if rate is None or tau[-1] <= 0.0:
+    if flat_time is None or tau[-1] <= 0.0:
         return u, tau
-    width = SMOOTHING * rate
+    width = SMOOTHING * float(tau[-1]) / flat_time
     step = min(width / 4.0, float(tau[-1]) / 8.0)
     grid = np.linspace(0.0, float(tau[-1]), int(math.ceil(float(tau[-1]) / step)) + 1)
     smooth = gaussian_filter1d(np.interp(grid, tau, log_curvature), width / (grid[1] - grid[0]), mode="nearest")
@@ -166,8 +167,7 @@ def phase_knots(
     duration = end - start
     spline = path_spline(points)
     ramp = ramp_of(points, duration) if ramp is None else min(ramp, 0.5 * duration)
-    _, rough = law_time(spline)
-    u, tau = law_time(spline, float(rough[-1]) / _flat_time(duration, ramp))
+    u, tau = law_time(spline, _flat_time(duration, ramp))
     total = float(tau[-1])
     inverse = CubicSpline(tau, u)
     count = max(MIN_KNOTS, math.ceil(duration * KNOT_RATE) + 1)

@@ -231,6 +231,10 @@ class WristTrajectory:
         """Largest acceleration (m/s²), sampled densely between the knots."""
         return float(np.max(np.linalg.norm(self.acceleration(self._dense()), axis=1)))
 
+    def shifted(self, delay: float) -> WristTrajectory:
+        """The same motion ``delay`` seconds later."""
+        return WristTrajectory(self.times + delay, self.positions, self.velocities, self.accelerations, self.warnings)
+
     def with_warnings(self, warnings: Sequence[str]) -> WristTrajectory:
         """The same trajectory carrying ``warnings`` after its own."""
         return WristTrajectory(self.times, self.positions, self.velocities, self.accelerations, (*self.warnings, *warnings))
