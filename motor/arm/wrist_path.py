@@ -58,6 +58,7 @@ def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
     depth = float(np.max(np.abs(clear - points))) if np.any(inside) else 0.0
     if not np.any(short):
         return Placement(clear, int(np.sum(inside)), depth, 0, 0.0)
+    shortfall = float(np.max(solution.shortfall))
     reached = np.where(short[:, None], solution.wrist, clear)
     for _ in range(_ROUNDS):
         cleared = outside_torso(avatar, reached)
@@ -65,7 +66,7 @@ def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
         reached = np.where((solution.shortfall > REACH_TOLERANCE)[:, None], solution.wrist, cleared)
         if np.array_equal(reached, cleared):
             break
-    return Placement(reached, int(np.sum(inside)), depth, int(np.sum(short)), float(np.max(solution.shortfall, initial=0.0)))
+    return Placement(reached, int(np.sum(inside)), depth, int(np.sum(short)), shortfall)
 
 
 def _samples(piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -62,8 +62,8 @@ def preparation_timing(amplitude: float, window: float, manner: str | None = Non
     if amplitude <= _AT_REST:
         return 0.0, 0.0
     natural = max(float(fitts_duration(amplitude)), budget(manner).shortest_duration(amplitude))
-    if window <= natural:
-        return window, 0.0
+    if window <= natural + _AT_REST:
+        return min(window, natural), 0.0
     return natural, min(PRE_STROKE_HOLD, window - natural)
 
 

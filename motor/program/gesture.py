@@ -58,6 +58,9 @@ MIN_PREPARATION = 1e-3
 NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
 #: The relaxed hand: this fraction of the way from the flat hand to the rounded one.
 REST_CURL = 0.3
+#: A location this far (m) out of reach or more is reported when it is moved into reach
+#: (closer ones are rounding and are moved silently).
+NOTICEABLE_SHORTFALL = 1e-3
 #: The manner whose speed budget (:mod:`motor.trajectory.speed_budget`) MURML gestures keep.
 GESTURE_MANNER = "targetted"
 #: Rounds of lengthening a stroke until it is within its budget (the second rarely acts).
@@ -347,7 +350,7 @@ class Planner:
                 f"{behavior}: {placement.inside} location(s) of the {arm} hand inside the torso by up to "
                 f"{placement.depth:.3f} m; moved in front of it"
             )
-        if placement.short:
+        if placement.short and placement.shortfall >= NOTICEABLE_SHORTFALL:
             notes.append(
                 f"{behavior}: {placement.short} location(s) of the {arm} hand out of reach by up to "
                 f"{placement.shortfall:.3f} m; moved to the nearest reachable point"
