@@ -8,15 +8,18 @@ it is both. The gesture planner places every breakpoint so, but the curve throug
 on its front surface, or bulge past the reach — and the motor control would then push the
 wrist out of the body with a jump, or the arm stop short. So each rest-to-rest phase of the
 path (:func:`motor.trajectory.spline.phases`) is sampled every :data:`SPACING` metres along
-its curve; if any sample has to be moved, the phase is replaced by the samples, placed, as
-its new breakpoints (timed evenly by arc length between the phase's own start and end
-times, which are all the power law keeps of them). Holds and reversals stay where they
-were. Positions are metres in the avatar frame, times seconds.
+its curve; if any sample has to be moved, the phase is replaced by the samples, placed and
+their corners rounded (:data:`ROUNDING`), as its new breakpoints (timed evenly by arc
+length between the phase's own start and end times, which are all the power law keeps of
+them). Holds and reversals stay where they
+were (a reversal next to a replaced phase as a hold of :data:`STOP`). Positions are
+metres in the avatar frame, times seconds.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.ndimage import gaussian_filter1d
 
 from dataclasses import dataclass
 
@@ -28,6 +31,10 @@ from motor.trajectory.spline import phases
 
 #: Arc length between the samples of a phase checked against the torso, metres.
 SPACING = 0.01
+#: Arc length (m) over which the corners of a placed path are rounded.
+ROUNDING = 0.03
+#: Hold (s) that keeps the stop at a reversal between two phases of which one was replaced.
+STOP = 1e-3
 #: How far (m) the IK may fall short of a point before it is moved into reach (rounding
 #: only: a point left just out of reach would make the wrist stop short and jerk).
 REACH_TOLERANCE = 1e-6
@@ -83,6 +90,18 @@ def _samples(piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return samples, fractions
 
 
+def _rounded(avatar: Avatar, side: str, samples: np.ndarray) -> np.ndarray:
+    """Placed samples with the corners that placing leaves (where the path meets the torso
+    or the reach) rounded: smoothed by a Gaussian of :data:`ROUNDING` metres of arc and
+    placed again, twice; the ends stay."""
+    out = samples
+    for _ in range(2):
+        smooth = gaussian_filter1d(out, ROUNDING / SPACING, axis=0, mode="nearest")
+        smooth[[0, -1]] = samples[[0, -1]]
+        out = placed(avatar, side, smooth).points
+    return out
+
+
 def followable(avatar: Avatar, side: str, points: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """The breakpoints ``(n, 3)`` and times ``(n,)`` of a wrist path of the arm on ``side``,
     with every phase that leaves the reach or enters the torso replaced by its samples,
@@ -93,20 +112,27 @@ def followable(avatar: Avatar, side: str, points: np.ndarray, times: np.ndarray)
     sampled = [_samples(points[first : last + 1]) for first, last in spans]
     every = np.concatenate([samples for samples, _ in sampled])
     placed_all = np.split(placed(avatar, side, every).points, np.cumsum([samples.shape[0] for samples, _ in sampled])[:-1])
+    changed = [not np.array_equal(cleared, samples) for (samples, _), cleared in zip(sampled, placed_all)]
+    placed_all = [_rounded(avatar, side, cleared) if change else cleared for cleared, change in zip(placed_all, changed)]
     kept_points, kept_times = [points[:1]], [times[:1]]
-    replaced = 0
     previous = 0
-    for (first, last), (samples, fractions), cleared in zip(spans, sampled, placed_all):
+    for index, ((first, last), (samples, fractions), cleared) in enumerate(zip(spans, sampled, placed_all)):
         kept_points.append(points[previous + 1 : first + 1])
         kept_times.append(times[previous + 1 : first + 1])
-        if np.array_equal(cleared, samples):
+        start = float(times[first])
+        if index and spans[index - 1][1] == first and (changed[index - 1] or changed[index]):
+            # a reversal between two phases: new samples may no longer turn sharply enough
+            # there to be cut, so the stop becomes a hold of STOP seconds
+            start += STOP
+            kept_points.append(points[first : first + 1])
+            kept_times.append(np.array([start]))
+        if changed[index]:
+            kept_points.append(cleared[1:])
+            kept_times.append(start + fractions[1:] * (times[last] - start))
+        else:
             kept_points.append(points[first + 1 : last + 1])
             kept_times.append(times[first + 1 : last + 1])
-        else:
-            replaced += 1
-            kept_points.append(cleared[1:])
-            kept_times.append(times[first] + fractions[1:] * (times[last] - times[first]))
         previous = last
     kept_points.append(points[previous + 1 :])
     kept_times.append(times[previous + 1 :])
-    return np.concatenate(kept_points), np.concatenate(kept_times), replaced
+    return np.concatenate(kept_points), np.concatenate(kept_times), int(sum(changed))
