@@ -1,8 +1,9 @@
 """The wrist position LMP: a preparation from wherever the wrist is, then the stroke's strokes.
 
-The stroke (the breakpoints from ``stroke_start`` on) is formed once, when the LMP is
-made, by :func:`motor.trajectory.spline.plan_wrist_trajectory`: it starts and ends at rest,
-follows the power law and never exceeds :data:`motor.trajectory.spline.MAX_WRIST_SPEED`.
+The stroke (the breakpoints from ``stroke_start`` on) is formed once, by the gesture
+planner or when the LMP is made (:func:`motor.trajectory.spline.plan_wrist_trajectory`,
+which never exceeds :data:`motor.trajectory.spline.MAX_WRIST_SPEED`): it starts and ends at
+rest and follows the power law.
 At activation the LMP takes the channel's value and velocity and prepends the
 *preparation*: the minimum-jerk movement from that state to rest at the first breakpoint
 (:func:`motor.trajectory.spline.approach`).
@@ -17,9 +18,10 @@ for both arms): the preparation takes its natural duration, the longer of Fitts'
 (:mod:`motor.trajectory.speed_budget`); the pre-stroke hold takes what the window from
 ``start`` to ``stroke_start`` leaves beyond that, up to :data:`PRE_STROKE_HOLD`; from rest
 the wrist waits before it starts moving with what is left. A window shorter than the
-natural duration is used whole (the planner keeps it within the budget beforehand, see
-:mod:`motor.program.gesture`); one that would need more than the absolute peak speed
-makes the stroke start late, with a warning.
+natural duration is used whole (the scheduler keeps it within the manner's budget
+beforehand); one that would go beyond the absolute ceiling
+(:data:`motor.trajectory.speed_budget.CEILING`) makes the stroke start late, with a
+warning.
 
 Positions are metres in the avatar frame, times seconds on the utterance clock.
 """
@@ -31,9 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor.program.lmp import Channel, ChannelState, TimePegs, check_activation
-from motor.trajectory.speed_budget import budget
+from motor.trajectory.speed_budget import CEILING, budget
 from motor.trajectory.spline import (
-    MAX_WRIST_SPEED,
     WristTrajectory,
     approach,
     fitts_duration,
@@ -51,9 +52,6 @@ PRE_STROKE_HOLD = 0.15
 _AT_REST = 1e-6
 #: Shortest time (s) an LMP holds a single target, when its pegs give none.
 _DIFFERENCE_STEP = 1e-4
-#: Shortest approach from a moving state tried, and how many times it is stretched.
-_SHORTEST_APPROACH = 0.05
-_APPROACH_ROUNDS = 6
 
 
 def preparation_timing(amplitude: float, window: float, manner: str | None = None) -> tuple[float, float]:
@@ -65,27 +63,6 @@ def preparation_timing(amplitude: float, window: float, manner: str | None = Non
     if window <= natural + _AT_REST:
         return min(window, natural), 0.0
     return natural, min(PRE_STROKE_HOLD, window - natural)
-
-
-def shortest_preparation(state: ChannelState, target: np.ndarray, manner: str | None = None) -> float:
-    """Shortest time (s) in which a preparation from ``state`` (value and velocity) brings
-    the wrist to rest at ``target`` within ``manner``'s speed budget: from rest, the
-    budget's minimum-jerk duration; while moving, the approach stretched until it fits
-    (the longest it tries is a few rounds; a wrist already faster than the budget never
-    fits and gets the last one)."""
-    limits = budget(manner)
-    here = np.asarray(state.value, dtype=float)
-    amplitude = float(np.linalg.norm(np.asarray(target, dtype=float) - here))
-    if float(np.linalg.norm(state.velocity)) <= _AT_REST:
-        return limits.shortest_duration(amplitude)
-    duration = max(limits.shortest_duration(amplitude), _SHORTEST_APPROACH)
-    for _ in range(_APPROACH_ROUNDS):
-        trial = approach(here, np.asarray(state.velocity, dtype=float), 0.0, np.asarray(target, dtype=float), duration)
-        factor = stretch_factor(trial, limits.peak_speed, limits.peak_acceleration)
-        if factor <= 1.0:
-            break
-        duration *= factor
-    return duration
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,12 +152,12 @@ class WristPositionLMP:
             if begin > state.time:
                 pieces.append(held(here, state.time, begin))
             preparation = approach(here, velocity, begin, first, arrival)
-            factor = stretch_factor(preparation, MAX_WRIST_SPEED)
+            factor = stretch_factor(preparation, CEILING.peak_speed, CEILING.peak_acceleration)
             if factor > 1.0:
                 arrival = begin + factor * (arrival - begin)
                 notes.append(
                     f"{self.channel}: preparation of {amplitude:.3f} m in {onset - begin:.3f} s would exceed "
-                    f"{MAX_WRIST_SPEED} m/s; the stroke starts {arrival - onset:.3f} s late"
+                    f"{CEILING.peak_speed} m/s or {CEILING.peak_acceleration} m/s²; the stroke starts {arrival - onset:.3f} s late"
                 )
                 preparation = approach(here, velocity, begin, first, arrival)
             pieces.append(preparation)

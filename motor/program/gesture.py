@@ -20,13 +20,13 @@ names them.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.wrist_path import followable, placed
-from motor.arm.wrist_position import WristPositionLMP, preparation_timing, shortest_preparation
+from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.hand.lmp import HandShapeLMP
@@ -43,7 +43,7 @@ from motor.program.fragment import (
 )
 from motor.program.lmp import LMP, ChannelState, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
-from motor.trajectory.speed_budget import SpeedBudget, budget
+from motor.trajectory.speed_budget import CEILING, SpeedBudget, budget
 from motor.trajectory.spline import WristTrajectory, fitts_duration, plan_wrist_trajectory, stretch_factor
 from mura.model import BehaviorSpec
 from mura.values import FingerBend, HandShape, PalmOrientation
@@ -66,6 +66,8 @@ GESTURE_MANNER = "targetted"
 #: Rounds of lengthening a stroke until it is within its budget (the second rarely acts).
 _STRETCH_ROUNDS = 3
 _PEG_NAMES = tuple(f.name for f in fields(TimePegs))
+#: Excess over a limit below this fraction is rounding.
+_ROUNDING = 1e-6
 
 
 
@@ -82,6 +84,15 @@ class GestureDemands:
         repeatable: the stroke can be performed again to fill a longer affiliate.
         preparation_distance: metres from the rest position to the stroke's start (the
             farthest of the arms used).
+        first_wrists, last_wrists: per arm, where the wrist is when the stroke starts and
+            ends (avatar frame, metres); arms whose location is unconstrained are absent.
+            The scheduler times a preparation from one stroke's end to the next with them.
+        stroke_distance: metres the wrist travels in one performance of the stroke (the
+            farthest-travelling arm); with ``manner`` it bounds how fast the stroke may be.
+        manner: the movement manner whose speed budget
+            (``motor.trajectory.speed_budget.budget``) bounds the preparation and stroke.
+        repetition_return: natural seconds from the stroke's end back to its start, what
+            each repetition beyond the first adds besides the stroke itself.
     """
 
     arms: frozenset[str]
@@ -89,6 +100,11 @@ class GestureDemands:
     dynamic: bool
     repeatable: bool
     preparation_distance: float
+    first_wrists: Mapping[str, tuple[float, float, float]] = field(default_factory=dict)
+    last_wrists: Mapping[str, tuple[float, float, float]] = field(default_factory=dict)
+    stroke_distance: float = 0.0
+    manner: str | None = None
+    repetition_return: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,7 +120,7 @@ class WristPath:
         """The path timed ``factor`` times slower about ``origin`` (the trajectory planned
         anew on those times)."""
         times = origin + (self.times - origin) * factor
-        return WristPath(self.points, times, None if self.trajectory is None else plan_wrist_trajectory(self.points, times))
+        return WristPath(self.points, times, None if self.trajectory is None else unlimited(self.points, times))
 
     def shifted(self, delay: float) -> WristPath:
         """The path ``delay`` seconds later."""
@@ -136,6 +152,12 @@ class MotorProgram:
 
 
 
+
+
+def unlimited(points: np.ndarray, times: np.ndarray) -> WristTrajectory:
+    """The wrist trajectory through ``points`` at ``times`` as they are: the planner keeps
+    it within its limits itself (:meth:`Planner.within_budget`)."""
+    return plan_wrist_trajectory(points, times, max_speed=np.inf)
 
 
 def retraction_duration(distance: float) -> float:
@@ -203,7 +225,15 @@ class Planner:
             default=0.0,
         )  # fmt: skip
         dynamic = fragment.duration > 0.0
-        return GestureDemands(arms, fragment.duration, dynamic, dynamic, distance)
+        paths = {arm: np.asarray([key.value for key in keys], dtype=float)
+                 for (arm, feature), keys in fragment.tracks.items() if feature == "location" and keys}
+        return GestureDemands(
+            arms, fragment.duration, dynamic, dynamic, distance,
+            first_wrists={arm: tuple(path[0]) for arm, path in paths.items()},
+            last_wrists={arm: tuple(path[-1]) for arm, path in paths.items()},
+            stroke_distance=max((float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) for path in paths.values()), default=0.0),
+            repetition_return=Compiler(self.avatar, behavior.id).transition(fragment, fragment) if dynamic else 0.0,
+        )
 
     def plan(
         self,
@@ -216,8 +246,8 @@ class Planner:
         """The motor program of ``behavior`` on ``pegs`` (see the module docstring).
 
         ``start_states`` are the arms' wrist states (position and velocity) at
-        ``pegs.start`` (default: still in the rest posture), from which the preparation is
-        checked against the speed budget.
+        ``pegs.start`` (default: still in the rest posture), from which the pre-stroke hold
+        is reckoned.
         """
         compiler = Compiler(self.avatar, behavior.id)
         fragment = self.fragment(behavior)
@@ -262,7 +292,7 @@ class Planner:
                 f"{behavior}: the {arm} hand's path left the reach or entered the torso between its "
                 f"locations in {replaced} movement(s); kept where the arm can follow it"
             )
-        return WristPath(points, times, plan_wrist_trajectory(points, times))
+        return WristPath(points, times, unlimited(points, times))
 
     def within_budget(
         self,
@@ -272,16 +302,27 @@ class Planner:
         start_states: Mapping[str, ChannelState],
         notes: list[str],
     ) -> tuple[TimePegs, dict[str, WristPath | None]]:
-        """The pegs with the stroke lengthened and then delayed as far as the speed budget of
-        :data:`GESTURE_MANNER` needs, the preparation's arrival (``ready``) before the
-        pre-stroke hold, and one warning naming what changed and by how much; and the
-        paths retimed to match. Both arms share the hold (the shorter of theirs); a stroke
-        whose wrists do not move has none: the hand's arrival is its onset."""
+        """The pegs kept, or the stroke lengthened as little as the speed ceiling needs; the
+        preparation's arrival (``ready``) before the pre-stroke hold; and the paths retimed
+        to match.
+
+        The scheduler has already relaxed the timing to :data:`GESTURE_MANNER`'s budget
+        (``GestureDemands.manner``; preparations from where the arm will be, which it knows
+        better than the motor control before the chunk's earlier gestures are activated),
+        so its pegs are kept as long as the stroke stays below the absolute ceiling
+        (:data:`motor.trajectory.speed_budget.CEILING`); a stroke that would exceed it is
+        lengthened. A stroke that keeps the pegs but exceeds the manner's budget (the timing
+        could not be relaxed enough, or the budget's minimum-jerk estimate falls short of
+        what the path's stops and curves need) is reported. Either is one warning per
+        behaviour, with the amounts. A preparation is kept below the ceiling when it is
+        activated (:class:`motor.arm.wrist_position.WristPositionLMP`). Both arms share the
+        pre-stroke hold (the shorter of theirs); a stroke whose wrists do not move has none:
+        the hand's arrival is its onset."""
         limits = budget(GESTURE_MANNER)
         changes: list[str] = []
         moving = {arm: path for arm, path in paths.items() if path is not None}
         origin = pegs.stroke_start
-        factor = max((self.stroke_stretch(path, limits) for path in moving.values()), default=1.0)
+        factor = max((self.stroke_stretch(path, CEILING) for path in moving.values()), default=1.0)
         if factor > 1.0:
             length = pegs.stroke_end - pegs.stroke_start
             stroke_end = pegs.stroke_start + factor * length
@@ -292,20 +333,17 @@ class Planner:
                 relax=relax, end=max(pegs.end, relax + pegs.end - pegs.relax),
             )  # fmt: skip
             moving = {arm: path.stretched(origin, factor) for arm, path in moving.items()}
+        over = [path.trajectory for path in moving.values() if path.trajectory is not None]
+        if over and max(stretch_factor(t, limits.peak_speed, limits.peak_acceleration) for t in over) > 1.0 + _ROUNDING:
+            speed, acceleration = max(t.peak_speed() for t in over), max(t.peak_acceleration() for t in over)
+            changes.append(f"the stroke peaks at {speed:.2f} m/s and {acceleration:.1f} m/s² in its {pegs.stroke_end - pegs.stroke_start:.3f} s")
         window = pegs.stroke_start - pegs.start
         states = {arm: start_states.get(arm) or ChannelState.at_rest(self.rest_wrist(arm), pegs.start) for arm in moving}
-        shortest = max((shortest_preparation(states[arm], path.points[0], GESTURE_MANNER) for arm, path in moving.items()), default=0.0)
-        if shortest > window:
-            delay = shortest - window
-            changes.append(f"the preparation needs {shortest:.3f} s, the plan gives {window:.3f} s; the stroke starts {delay:.3f} s later")
-            pegs = TimePegs(*(getattr(pegs, name) + (0.0 if name == "start" else delay) for name in _PEG_NAMES))
-            moving = {arm: path.shifted(delay) for arm, path in moving.items()}
         if changes:
             notes.append(
-                f"{behavior}: kept within the {GESTURE_MANNER} speed budget ({limits.peak_speed} m/s, "
-                f"{limits.peak_acceleration} m/s²): " + "; ".join(changes)
+                f"{behavior}: over the {GESTURE_MANNER} speed budget ({limits.peak_speed} m/s, {limits.peak_acceleration} m/s²) "
+                f"in the time given, kept below {CEILING.peak_speed} m/s and {CEILING.peak_acceleration} m/s²: " + "; ".join(changes)
             )
-        window = pegs.stroke_start - pegs.start
         holds = [preparation_timing(float(np.linalg.norm(path.points[0] - states[arm].value)), window)[1] for arm, path in moving.items()]
         if any(path.trajectory is not None for path in moving.values()) and holds and min(holds) > 0.0:
             pegs = replace(pegs, ready=pegs.stroke_start - min(holds))

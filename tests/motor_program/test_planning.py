@@ -215,7 +215,7 @@ def test_impossible_constraints_raise_errors_naming_the_behaviour(control, const
     ("constraints", "timing", "warning"),
     [
         (line(0.6), pegs(0.0, 0.5, 1.0, 1.05), "the stroke needs"),
-        (line(0.1), pegs(0.0, 0.05, 0.1, 0.6), "the preparation needs"),
+        (line(0.6), pegs(0.0, 0.5, 1.0, 1.4), "the stroke peaks at"),
         (Static("HandLocation", GridLocation("LocAboveHead", "LocRight", "LocStreched"), scope=Arm.RIGHT), pegs(0.0, 0.5, 1.0, 1.5), "out of reach"),
         (line(0.1), pegs(1.0, 1.0, 1.0, 1.5), "no time for the preparation"),
         (line(0.1), pegs(0.0, 0.5, 1.0, 1.0), "stroke interval"),
