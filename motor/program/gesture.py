@@ -44,7 +44,7 @@ from motor.program.fragment import (
 from motor.program.lmp import LMP, ChannelState, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
 from motor.trajectory.speed_budget import CEILING, SpeedBudget, budget
-from motor.trajectory.spline import WristTrajectory, fitts_duration, plan_wrist_trajectory, stretch_factor
+from motor.trajectory.spline import HOLD_LENGTH, WristTrajectory, fitts_duration, plan_wrist_trajectory, stretch_factor
 from mura.model import BehaviorSpec
 from mura.values import FingerBend, HandShape, PalmOrientation
 
@@ -345,7 +345,7 @@ class Planner:
                 f"in the time given, kept below {CEILING.peak_speed} m/s and {CEILING.peak_acceleration} m/s²: " + "; ".join(changes)
             )
         holds = [preparation_timing(float(np.linalg.norm(path.points[0] - states[arm].value)), window)[1] for arm, path in moving.items()]
-        if any(path.trajectory is not None for path in moving.values()) and holds and min(holds) > 0.0:
+        if any(float(np.ptp(path.points, axis=0).max()) > HOLD_LENGTH for path in moving.values()) and holds and min(holds) > 0.0:
             pegs = replace(pegs, ready=pegs.stroke_start - min(holds))
         return pegs, {arm: moving.get(arm) for arm in paths}
 
