@@ -144,7 +144,8 @@ class MotorControl:
         a sign behaviour: :mod:`motor.signing.behavior`)."""
         if behavior.sign is not None:
             return self.signs.plan(behavior, pegs, next_gesture_follows)
-        return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+        states = {arm: self.timeline((arm, "wrist_position")).state(pegs.start) for arm in ARMS}
+        return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows, start_states=states)
 
     # -- execution ----------------------------------------------------------------------
 
