@@ -30,7 +30,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Audit rendered motion (BVH, with timeline and WAV when present) with kinematics independent of mura.",
     )
     parser.add_argument("folder", nargs="?", type=Path, metavar="DIR", help="folder of renders (searched recursively for *.bvh)")
-    parser.add_argument("--avatar", help="avatar name in specs/avatars or path to an avatar file (default: the known avatar each file matches)")
+    parser.add_argument("--avatar", help="avatar name (specs/avatars, build/avatars) or file: the one the renders are audited against (default: the known avatar each file matches); with --corpus, the avatar rendered (default: mura's)")
     parser.add_argument("--json", type=Path, metavar="FILE", help="write every figure, and each file's, as JSON")
     parser.add_argument("--corpus", action="store_true", help="render the visible inputs (examples, published MURML, 200 signs) and audit them")
     parser.add_argument("--quick", action="store_true", help="with --corpus: a small subset")
@@ -95,7 +95,7 @@ def _audit_corpus(args: argparse.Namespace) -> int:
         return 2
     if args.keep is not None:
         args.keep.parent.mkdir(parents=True, exist_ok=True)
-    result = audit_corpus(args.quick, args.keep, progress=lambda text: print(text, file=sys.stderr) if not text.startswith("auditing") else None)
+    result = audit_corpus(args.quick, args.keep, avatar=args.avatar, progress=lambda text: print(text, file=sys.stderr) if not text.startswith("auditing") else None)
     print(f"corpus: {result['rendered']} of {result['items']} items rendered ({result['render_seconds']:.0f} s), audited in {result['audit_seconds']:.0f} s")
     for failure in result["render_failures"]:
         print(f"  not rendered: {failure['file']}: {failure['reason']}")

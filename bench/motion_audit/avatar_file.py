@@ -17,7 +17,9 @@ import numpy as np
 
 from bench.motion_audit.bvh_reader import BvhMotion
 
-AVATARS = Path(__file__).resolve().parents[2] / "specs" / "avatars"
+_REPO = Path(__file__).resolve().parents[2]
+#: Where avatar files are looked up by name: the light avatars kept in git, then the ones built at set-up.
+AVATAR_DIRS = (_REPO / "specs" / "avatars", _REPO / "build" / "avatars")
 #: A BVH bone may differ from the avatar's (after scaling) by this much, metres.
 BONE_TOLERANCE = 0.002
 #: Length units a BVH file may be written in, as metres per unit (m, cm, mm, inch).
@@ -54,11 +56,13 @@ class AvatarFile:
 
 
 def avatar_path(name_or_path: str) -> Path:
-    """``specs/avatars/NAME.json`` for a bare name, else the path as given."""
+    """``NAME.json`` in the first of :data:`AVATAR_DIRS` that has it for a bare name, else
+    the path as given."""
     candidate = Path(name_or_path)
     if candidate.suffix == ".json" or candidate.parent != Path("."):
         return candidate
-    return AVATARS / f"{name_or_path}.json"
+    found = [folder / f"{name_or_path}.json" for folder in AVATAR_DIRS if (folder / f"{name_or_path}.json").is_file()]
+    return found[0] if found else AVATAR_DIRS[0] / f"{name_or_path}.json"
 
 
 def read_avatar(name_or_path: str) -> AvatarFile:
@@ -69,7 +73,7 @@ def read_avatar(name_or_path: str) -> AvatarFile:
             raise AvatarError(f"{path}: larger than {MAX_AVATAR_BYTES} bytes")
         data = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
-        known = ", ".join(sorted(p.stem for p in AVATARS.glob("*.json")))
+        known = ", ".join(sorted(p.stem for p in _avatar_files()))
         raise AvatarError(f"{path}: no such avatar file (known avatars: {known})") from None
     except (OSError, UnicodeDecodeError) as error:
         raise AvatarError(f"{path}: cannot read: {error}") from None
@@ -104,8 +108,12 @@ def read_avatar(name_or_path: str) -> AvatarFile:
 
 
 def known_avatars() -> list[AvatarFile]:
-    """Every avatar in ``specs/avatars``, by name."""
-    return [read_avatar(str(path)) for path in sorted(AVATARS.glob("*.json"))]
+    """Every avatar of :data:`AVATAR_DIRS`, by name."""
+    return [read_avatar(str(path)) for path in _avatar_files()]
+
+
+def _avatar_files() -> list[Path]:
+    return sorted((path for folder in AVATAR_DIRS for path in folder.glob("*.json")), key=lambda path: path.stem)
 
 
 def unit_scale(motion: BvhMotion, avatar: AvatarFile) -> float:

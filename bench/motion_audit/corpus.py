@@ -62,7 +62,7 @@ class RenderJob:
     expected: dict[str, str]
 
 
-def _utterance_jobs(quick: bool) -> list[RenderJob]:
+def _utterance_jobs(quick: bool, avatar: tuple[str, ...]) -> list[RenderJob]:
     examples = sorted(EXAMPLES.glob("*.xml"))
     if quick:
         examples = [path for path in examples if path.stem in QUICK["examples"]]
@@ -71,7 +71,7 @@ def _utterance_jobs(quick: bool) -> list[RenderJob]:
     for kind, files in (("examples", examples), ("murml", murml)):
         for tts in ("espeak", "fake"):
             if files:
-                jobs.append(RenderJob(f"{kind}_{tts}", ("render", *map(str, files), "--tts", tts, "--fps", str(FPS)), {p.stem: str(p) for p in files}))
+                jobs.append(RenderJob(f"{kind}_{tts}", ("render", *map(str, files), "--tts", tts, "--fps", str(FPS), *avatar), {p.stem: str(p) for p in files}))
     return jobs
 
 
@@ -101,11 +101,11 @@ def sample_signs(folder: Path, count: int, seed: int = SIGN_SEED) -> list[Path]:
     return written
 
 
-def _sign_job(inputs: Path, quick: bool) -> RenderJob | None:
+def _sign_job(inputs: Path, quick: bool, avatar: tuple[str, ...]) -> RenderJob | None:
     if not SIGML.is_dir():
         return None
     files = sample_signs(inputs, QUICK["signs"] if quick else SIGN_SAMPLE)
-    return RenderJob("signs", ("sign", *map(str, files), "--fps", str(FPS), "--report", str(inputs / "signs_report.json")), {})
+    return RenderJob("signs", ("sign", *map(str, files), "--fps", str(FPS), "--report", str(inputs / "signs_report.json"), *avatar), {})
 
 
 def _run(job: RenderJob, output: Path) -> tuple[list[str], str]:
@@ -135,12 +135,16 @@ def _sign_failures(report_path: Path, died: str) -> list[Failure]:
     return [Failure(f"signs/{Path(r['source']).stem}:{r['gloss']}", str(r.get("reason"))) for r in report["signs"] if not r["rendered"]]
 
 
-def render_corpus(folder: Path, quick: bool, progress: Callable[[str], None] | None = None) -> tuple[int, list[Failure]]:
-    """Render every item into ``folder/<group>/``; the number of items and those that failed."""
+def render_corpus(
+    folder: Path, quick: bool, progress: Callable[[str], None] | None = None, avatar: str | None = None
+) -> tuple[int, list[Failure]]:
+    """Render every item into ``folder/<group>/`` on ``avatar`` (None: mura's default); the
+    number of items and those that failed."""
     inputs = folder / "inputs"
     inputs.mkdir(parents=True, exist_ok=True)
-    jobs = _utterance_jobs(quick)
-    sign_job = _sign_job(inputs, quick)
+    chosen = () if avatar is None else ("--avatar", avatar)
+    jobs = _utterance_jobs(quick, chosen)
+    sign_job = _sign_job(inputs, quick, chosen)
     items, failures = sum(len(job.expected) for job in jobs), []
     for job in jobs + ([sign_job] if sign_job else []):
         if progress is not None:
@@ -161,8 +165,11 @@ def _group_of(audit: FileAudit) -> str:
     return audit.file.split("/", 1)[0]
 
 
-def audit_corpus(quick: bool, keep: Path | None = None, progress: Callable[[str], None] | None = None) -> dict:
-    """Render the corpus, audit every render; figures overall, per group and for speech.
+def audit_corpus(
+    quick: bool, keep: Path | None = None, progress: Callable[[str], None] | None = None, avatar: str | None = None
+) -> dict:
+    """Render the corpus on ``avatar`` (None: mura's default), audit every render; figures
+    overall, per group and for speech.
 
     With ``keep``, the renders are left in that folder (which must not exist yet; it
     appears only when complete) so that the worst offenders can be looked at.
@@ -170,7 +177,7 @@ def audit_corpus(quick: bool, keep: Path | None = None, progress: Callable[[str]
     started = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="motion_audit_", dir=None if keep is None else keep.parent) as temporary:
         folder = Path(temporary) / "renders"
-        items, render_failures = render_corpus(folder, quick, progress)
+        items, render_failures = render_corpus(folder, quick, progress, avatar)
         rendered_at = time.perf_counter()
         audits, audit_failures = audit_folder(folder, known_avatars(), None if progress is None else (lambda name: progress(f"auditing {name}")))
         if keep is not None:
