@@ -1,0 +1,70 @@
+"""The arc of spatial reference points and the geometry of the signer frame (seed 001).
+
+Entities are placed on a semicircular arc at chest height around the signer: arc position
+``a`` in [−1, 1] is the angle ``a · 90°`` from straight ahead, negative to the signer's
+left, positive to the right (``−1`` far left, ``+1`` far right). The signer frame is that of
+:mod:`mura.recordings`: origin midway between the shoulder joints, y up, +z forward, +x the
+signer's left, lengths in shoulder widths.
+
+Hand sites: a named point of a hand (:attr:`mura.verb_lexicon.VerbLexicon.sites`) is given
+along the hand's finger axis, palm normal and thumb side in its canonical rest frame
+(fingers down, palm to the thigh, thumb forward); :func:`site_points` places it for a wrist
+location and a hand orientation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+#: Height of the arc below the shoulder joints, shoulder widths (0.36 m for the
+#: reference signer, so 18 cm: chest height).
+ARC_HEIGHT = -0.5
+#: The centre of the arc: the body's vertical axis at chest height (signer frame).
+CHEST = np.array([0.0, ARC_HEIGHT, 0.0])
+#: Radius of the arc drawn in plots, shoulder widths (the front of the chest is at 0.36).
+ARC_RADIUS = 1.5
+
+_FINGER = np.array([0.0, -1.0, 0.0])
+_THUMB = np.array([0.0, 0.0, 1.0])
+
+
+def arc_direction(position: np.ndarray | float) -> np.ndarray:
+    """Unit horizontal directions ``(…, 3)`` from the chest toward arc positions."""
+    angle = np.asarray(position, dtype=float) * (np.pi / 2.0)
+    return np.stack([-np.sin(angle), np.zeros_like(angle), np.cos(angle)], axis=-1)
+
+
+def arc_point(position: np.ndarray | float, radius: float = ARC_RADIUS) -> np.ndarray:
+    """Points ``(…, 3)`` of the arc at ``radius`` from the chest centre (signer frame)."""
+    return CHEST + radius * arc_direction(position)
+
+
+def palm_normal(hand: str) -> np.ndarray:
+    """The canonical palm normal of a hand at rest: toward the body's midline."""
+    return np.array([1.0 if hand == "right" else -1.0, 0.0, 0.0])
+
+
+def site_offset(hand: str, site: tuple[float, float, float]) -> np.ndarray:
+    """A site's offset from the wrist ``(3,)`` with the hand at rest (canonical frame)."""
+    along, normal, thumb = site
+    return along * _FINGER + normal * palm_normal(hand) + thumb * _THUMB
+
+
+def site_points(hand: str, site: tuple[float, float, float], wrists: np.ndarray, orientations: np.ndarray) -> np.ndarray:
+    """Where a site of the hand is ``(n, 3)`` for wrist locations ``(n, 3)`` and hand
+    orientations ``(n, 4)`` (quaternions ``x, y, z, w``)."""
+    return np.asarray(wrists, dtype=float) + Rotation.from_quat(orientations).apply(site_offset(hand, site))
+
+
+def hand_orientation(fingers: np.ndarray, palms: np.ndarray, hand: str) -> np.ndarray:
+    """Quaternions ``(n, 4)`` taking the canonical rest hand to one whose fingers point along
+    ``fingers`` and whose palm faces ``palms`` (made perpendicular to the fingers)."""
+    fingers = np.atleast_2d(np.asarray(fingers, dtype=float))
+    fingers = fingers / np.linalg.norm(fingers, axis=1, keepdims=True)
+    palms = np.atleast_2d(np.asarray(palms, dtype=float))
+    palms = palms - np.sum(palms * fingers, axis=1, keepdims=True) * fingers
+    palms = palms / np.linalg.norm(palms, axis=1, keepdims=True)
+    target = np.stack([fingers, palms, np.cross(fingers, palms)], axis=-1)
+    rest = np.stack([_FINGER, palm_normal(hand), np.cross(_FINGER, palm_normal(hand))], axis=-1)
+    return Rotation.from_matrix(target @ rest.T).as_quat()
