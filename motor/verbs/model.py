@@ -83,7 +83,7 @@ class VerbModel:
         else:
             locations = self.point(subject, obj)[0].reshape(hands, count, 3) if kind == "point" else self._vector_locations(subject, obj)
             angles = self.orientation(subject, obj)[0].reshape(hands, count, 3)
-            orientations = np.stack([from_sora(angles[h], self.mean_orientations[h, k])[0] for h in range(hands) for k in range(count)])
+            orientations = np.stack([from_sora(angles[h, k], self.mean_orientations[h, k])[0] for h in range(hands) for k in range(count)])
             orientations = orientations.reshape(hands, count, 4)
         return VerbForm(
             self.verb,

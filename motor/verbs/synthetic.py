@@ -19,7 +19,9 @@ places a named *site* of the hand, from which the wrist follows through the orie
 - GIVE: both flat-O hands side by side (0.2 either way of the pair's centre, across the
   path), fingertips from ``C + 0.8 u(s)`` to ``C + 1.3 u(o)``, palms up.
 - MEET: both index fingers up, from ``C + 1.1 u(s)`` (right) and ``C + 1.1 u(o)`` (left)
-  to 0.08 either side of ``C + 1.1 u((s + o)/2)``, palms facing.
+  to 0.08 either side of ``C + 1.1 u((s + o)/2)``, palms turned toward each other and
+  toward the signer (the nearer the hands, the more toward the signer, so that the
+  orientation changes smoothly with the arrangement).
 - SCOLD: the index fingertip raised at ``H + 0.55 u(o)`` (``H`` in front of the heart),
   then wagging toward the object and back, twice (four keyframes).
 - TELL: the index fingertip from the chin to ``C + 1.35 u(o)`` at shoulder height.
@@ -27,7 +29,8 @@ places a named *site* of the hand, from which the wrist follows through the orie
   hand then moves to ``C + 0.8 u(s)``; the left hand stays.
 - EMAIL: the left C hand's opening held at ``O = C + 1.05 u((s + o)/2)``; the right
   bent-flat hand's fingertips pass through it, from ``O − 0.3 d`` to ``O + 0.3 d``, ``d``
-  the horizontal direction from ``u(s)`` to ``u(o)``.
+  the horizontal direction from ``u(s)`` to ``u(o)``; the fingers lead forward and along
+  the path, the palm down; the C's palm faces the signer.
 - SEND: the right fingertips on the back of the left flat hand at ``C + 0.8 u(s)``, then
   flicking out to ``C + 1.35 u(o)``; the left hand stays.
 
@@ -133,10 +136,18 @@ def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
     lift = 0.3 * _UP
     right, left = CHEST + 1.1 * arc_direction(s) + lift, CHEST + 1.1 * arc_direction(o) + lift
     middle = CHEST + 1.1 * arc_direction(0.5 * (s + o)) + lift
-    toward_subject = _horizontal(right - left)
+    apart = np.array([1.0, 0.0, 1.0]) * (right - left)  # horizontal, shrinking as the hands near each other
+    toward_subject = _horizontal(apart)
+    facing = -0.5 * arc_direction(0.5 * (s + o))  # the palms turn toward the signer as much as toward each other
     return {
-        "right": [_Key("index fingertip", right, _UP, left - right), _Key("index fingertip", middle + 0.08 * toward_subject, _UP, -toward_subject)],
-        "left": [_Key("index fingertip", left, _UP, right - left), _Key("index fingertip", middle - 0.08 * toward_subject, _UP, toward_subject)],
+        "right": [
+            _Key("index fingertip", right, _UP, facing - 0.8 * apart),
+            _Key("index fingertip", middle + 0.08 * toward_subject, _UP, facing - 0.2 * apart),
+        ],
+        "left": [
+            _Key("index fingertip", left, _UP, facing + 0.8 * apart),
+            _Key("index fingertip", middle - 0.08 * toward_subject, _UP, facing + 0.2 * apart),
+        ],
     }
 
 
@@ -169,11 +180,13 @@ def _copy(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
-    opening = CHEST + 1.05 * arc_direction(0.5 * (s + o)) + 0.2 * _UP
+    middle = arc_direction(0.5 * (s + o))
+    opening = CHEST + 1.05 * middle + 0.2 * _UP
     path = _horizontal(arc_direction(o) - arc_direction(s))
-    left_key = _Key("C opening", opening, _UP, _horizontal(np.cross(path, _UP)))
+    fingers = middle + 0.6 * (arc_direction(o) - arc_direction(s))  # leading along the path, turning with it
+    left_key = _Key("C opening", opening, _UP, -middle)
     return {
-        "right": [_Key("fingertips", opening - 0.3 * path, path, _DOWN), _Key("fingertips", opening + 0.3 * path, path, _DOWN)],
+        "right": [_Key("fingertips", opening - 0.3 * path, fingers, _DOWN), _Key("fingertips", opening + 0.3 * path, fingers, _DOWN)],
         "left": [left_key, left_key],
     }
 
@@ -209,8 +222,8 @@ def synthetic_session(seed: int = SEED, verbs: tuple[str, ...] | None = None, le
     """The synthetic performances of ``verbs`` (all eight by default), 42 each, seeded."""
     lexicon = lexicon or load_verb_lexicon()
     performances = []
-    for index, verb in enumerate(verbs or tuple(VERB_SHAPES)):
-        rng = np.random.default_rng([seed, index])
+    for verb in verbs or tuple(VERB_SHAPES):
+        rng = np.random.default_rng([seed, list(VERB_SHAPES).index(verb)])
         offsets = rng.normal(0.0, SIGNER_OFFSET, (len(SIGNERS), 3))
         pairs = arrangements()
         signers = rng.permutation(np.arange(len(pairs)) % len(SIGNERS))
