@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from mura.constraints import Constraint
 from mura.errors import SourceLocation
 from mura.signs import Sign
+from mura.space import SpatialReference, SpatialSign
 
 
 @dataclass(frozen=True)
@@ -62,7 +63,8 @@ class BehaviorSpec:
 
     ``kind`` is the element that carried it (``gesture``, ``sign``, or another behaviour
     such as ``facial`` kept for the timeline). A ``sign`` behaviour carries a HamNoSys/SiGML
-    sign performed by the arms, timed like a gesture. ``chunk`` is the index of the chunk
+    sign performed by the arms, timed like a gesture, or a ``spatial`` sign: pointing at an
+    arc position or an indicating verb (:mod:`mura.space`). ``chunk`` is the index of the chunk
     whose time tags the affiliate names, None for absolute timing.
     """
 
@@ -73,11 +75,12 @@ class BehaviorSpec:
     chunk: int | None = None
     where: SourceLocation | None = field(default=None, compare=False)
     sign: Sign | None = None
+    spatial: SpatialSign | None = None
 
     @property
     def moves_arms(self) -> bool:
         """True for the behaviours the motor core performs: gestures and signs."""
-        return self.gesture is not None or self.sign is not None
+        return self.gesture is not None or self.sign is not None or self.spatial is not None
 
 
 @dataclass(frozen=True)
@@ -110,6 +113,7 @@ class Utterance:
     chunks: tuple[ChunkSpec, ...]
     behaviors: tuple[BehaviorSpec, ...]
     source: str = "<input>"
+    space: tuple[SpatialReference, ...] = ()
 
     @property
     def time_tags(self) -> Mapping[str, TimeTag]:

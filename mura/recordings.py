@@ -273,7 +273,7 @@ def parse_recordings_json(text: str, file: str = "<input>") -> RecordingSession:
         raise SpecError('"performances" must be a list', top)
     if len(entries) > MAX_PERFORMANCES:
         raise SpecError(f"{len(entries)} performances, more than the limit of {MAX_PERFORMANCES}", top)
-    lines = _performance_lines(text, len(entries))
+    lines = performance_lines(text, len(entries))
     performances, refused = [], []
     for index, (entry, line) in enumerate(zip(entries, lines)):
         where = SourceLocation(file, line, 1)
@@ -287,7 +287,7 @@ def parse_recordings_json(text: str, file: str = "<input>") -> RecordingSession:
     return RecordingSession(kept, tuple(refused) + inconsistent, synthetic, description)
 
 
-def _performance_lines(text: str, count: int) -> list[int]:
+def performance_lines(text: str, count: int) -> list[int]:
     """The line where each element of the top-level ``performances`` list starts."""
     decoder = json.JSONDecoder()
     position = _skip(text, 0)

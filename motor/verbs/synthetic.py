@@ -11,28 +11,29 @@ among the seven arc positions −1, −⅔, −⅓, 0, ⅓, ⅔, 1 (subject, obj
 are performed for the same 42 pairs; their subject changes nothing.
 
 **The verbs** (signer frame of :mod:`mura.recordings`, shoulder widths; ``u(a)`` the unit
-direction toward arc position ``a``, ``C`` the body's axis at chest height; each keyframe
+direction toward arc position ``a``, ``C`` the signing centre in front of the chest (:data:`motor.verbs.arc.SIGNING_CENTRE`); each keyframe
 places a named *site* of the hand, from which the wrist follows through the orientation):
 
-- ASK: the hooked index fingertip from ``C + 0.8 u(s)`` (raised) to ``C + 1.35 u(o)``,
+- ASK: the hooked index fingertip from ``C + 0.45 u(s)`` (raised) to ``C + 0.9 u(o)``,
   pointing at the object at the end.
 - GIVE: both flat-O hands side by side (0.2 either way of the pair's centre, across the
-  path), fingertips from ``C + 0.8 u(s)`` to ``C + 1.3 u(o)``, palms up.
-- MEET: both index fingers up, from ``C + 1.1 u(s)`` (right) and ``C + 1.1 u(o)`` (left)
-  to 0.08 either side of ``C + 1.1 u((s + o)/2)``, palms turned toward each other and
+  path), fingertips from ``C + 0.45 u(s)`` to ``C + 0.9 u(o)``, palms up.
+- MEET: both index fingers up, from ``C + 0.7 u(s)`` (right) and ``C + 0.7 u(o)`` (left)
+  to 0.08 either side of ``C + 0.7 u((s + o)/2)``, palms turned toward each other and
   toward the signer (the nearer the hands, the more toward the signer, so that the
   orientation changes smoothly with the arrangement).
-- SCOLD: the index fingertip raised at ``H + 0.55 u(o)`` (``H`` in front of the heart),
+- SCOLD: the index fingertip raised at ``H + 0.4 u(o)`` (``H`` in front of the heart),
   then wagging toward the object and back, twice (four keyframes).
-- TELL: the index fingertip from the chin to ``C + 1.35 u(o)`` at shoulder height.
-- COPY: the right palm against the left palm (1 cm apart) at ``C + 1.2 u(o)``; the right
-  hand then moves to ``C + 0.8 u(s)``; the left hand stays.
-- EMAIL: the left C hand's opening held at ``O = C + 1.05 u((s + o)/2)``; the right
+- TELL: the index fingertip from the chin (the finger up and back toward it) to
+  ``C + 0.9 u(o)`` near shoulder height.
+- COPY: the right palm against the left palm (1 cm apart) at ``C + 0.8 u(o)``; the right
+  hand then moves to ``C + 0.45 u(s)``; the left hand stays.
+- EMAIL: the left C hand's opening held at ``O = C + 0.7 u((s + o)/2)``; the right
   bent-flat hand's fingertips pass through it, from ``O − 0.3 d`` to ``O + 0.3 d``, ``d``
   the horizontal direction from ``u(s)`` to ``u(o)``; the fingers lead forward and along
   the path, the palm down; the C's palm faces the signer.
-- SEND: the right fingertips on the back of the left flat hand at ``C + 0.8 u(s)``, then
-  flicking out to ``C + 1.35 u(o)``; the left hand stays.
+- SEND: the right fingertips on the back of the left flat hand at ``C + 0.45 u(s)``, then
+  flicking out to ``C + 0.9 u(o)``; the left hand stays.
 
 **Human variation.** Four synthetic signers, each with a constant offset of the whole
 performance (normal, σ = 0.09 shoulder widths ≈ 3 cm per axis) — signers differ in where
@@ -51,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from motor.verbs.arc import CHEST, arc_direction, hand_orientation, site_offset
+from motor.verbs.arc import SIGNING_CENTRE as CHEST, arc_direction, hand_orientation, site_offset
 from mura.errors import SourceLocation
 from mura.recordings import HandKeyframes, Performance, recordings_json
 from mura.verb_lexicon import VerbLexicon, load_verb_lexicon
@@ -77,7 +78,7 @@ DESCRIPTION = (
 _UP = np.array([0.0, 1.0, 0.0])
 _DOWN = -_UP
 _CHIN = np.array([0.0, 0.3, 0.36])
-_HEART = np.array([0.2, -0.35, 0.2])
+_HEART = np.array([0.2, -0.35, 0.5])
 
 
 @dataclass(frozen=True)
@@ -113,8 +114,8 @@ def _left_of(direction: np.ndarray) -> np.ndarray:
 
 
 def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
-    start = CHEST + 0.8 * arc_direction(s) + 0.3 * _UP
-    end = CHEST + 1.35 * arc_direction(o) + 0.25 * _UP
+    start = CHEST + 0.45 * arc_direction(s) + 0.3 * _UP
+    end = CHEST + 0.9 * arc_direction(o) + 0.25 * _UP
     return {"right": [
         _Key("index fingertip", start, arc_direction(o) + 0.8 * _UP, _DOWN),
         _Key("index fingertip", end, arc_direction(o) - 0.2 * _UP, _DOWN),
@@ -122,8 +123,8 @@ def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
-    start = CHEST + 0.8 * arc_direction(s) + 0.15 * _UP
-    end = CHEST + 1.3 * arc_direction(o) + 0.15 * _UP
+    start = CHEST + 0.45 * arc_direction(s) + 0.15 * _UP
+    end = CHEST + 0.9 * arc_direction(o) + 0.15 * _UP
     across = _left_of(end - start)
     fingers = arc_direction(o) + 0.3 * _UP
     return {
@@ -134,8 +135,8 @@ def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
     lift = 0.3 * _UP
-    right, left = CHEST + 1.1 * arc_direction(s) + lift, CHEST + 1.1 * arc_direction(o) + lift
-    middle = CHEST + 1.1 * arc_direction(0.5 * (s + o)) + lift
+    right, left = CHEST + 0.7 * arc_direction(s) + lift, CHEST + 0.7 * arc_direction(o) + lift
+    middle = CHEST + 0.7 * arc_direction(0.5 * (s + o)) + lift
     apart = np.array([1.0, 0.0, 1.0]) * (right - left)  # horizontal, shrinking as the hands near each other
     toward_subject = _horizontal(apart)
     facing = -0.5 * arc_direction(0.5 * (s + o))  # the palms turn toward the signer as much as toward each other
@@ -152,26 +153,26 @@ def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _scold(s: float, o: float) -> Mapping[str, list[_Key]]:
-    base = _HEART + 0.55 * arc_direction(o)
+    base = _HEART + 0.4 * arc_direction(o)
     raised = _Key("index fingertip", base + 0.2 * _UP, _UP + 0.3 * arc_direction(o), arc_direction(o))
     wag = _Key("index fingertip", base + 0.12 * arc_direction(o) - 0.05 * _UP, arc_direction(o) + 0.3 * _UP, _DOWN)
     return {"right": [raised, wag, raised, wag]}
 
 
 def _tell(s: float, o: float) -> Mapping[str, list[_Key]]:
-    end = CHEST + 1.35 * arc_direction(o) + 0.45 * _UP
+    end = CHEST + 0.9 * arc_direction(o) + 0.45 * _UP
     return {"right": [
-        _Key("index fingertip", _CHIN, _UP + 0.2 * np.array([0.0, 0.0, 1.0]), np.array([0.0, 0.0, -1.0])),
+        _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([0.0, 0.0, -1.0])),
         _Key("index fingertip", end, arc_direction(o) + 0.1 * _UP, _DOWN),
     ]}  # fmt: skip
 
 
 def _copy(s: float, o: float) -> Mapping[str, list[_Key]]:
-    left_palm = CHEST + 1.2 * arc_direction(o) + 0.2 * _UP
+    left_palm = CHEST + 0.8 * arc_direction(o) + 0.2 * _UP
     facing = -_left_of(arc_direction(o))  # the left palm faces the signer's right of the object's direction
     fingers = arc_direction(o) + 0.4 * _UP
     start = left_palm + 0.03 * facing
-    end = CHEST + 0.8 * arc_direction(s) + 0.2 * _UP
+    end = CHEST + 0.45 * arc_direction(s) + 0.2 * _UP
     left_key = _Key("palm centre", left_palm, fingers, facing)
     return {
         "right": [_Key("palm centre", start, fingers, -facing), _Key("palm centre", end, arc_direction(s) + 0.4 * _UP, -facing)],
@@ -181,7 +182,7 @@ def _copy(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
     middle = arc_direction(0.5 * (s + o))
-    opening = CHEST + 1.05 * middle + 0.2 * _UP
+    opening = CHEST + 0.7 * middle + 0.2 * _UP
     path = _horizontal(arc_direction(o) - arc_direction(s))
     fingers = middle + 0.6 * (arc_direction(o) - arc_direction(s))  # leading along the path, turning with it
     left_key = _Key("C opening", opening, _UP, -middle)
@@ -192,9 +193,9 @@ def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _send(s: float, o: float) -> Mapping[str, list[_Key]]:
-    back = CHEST + 0.8 * arc_direction(s) + 0.1 * _UP
+    back = CHEST + 0.45 * arc_direction(s) + 0.1 * _UP
     left_key = _Key("back of hand", back, np.array([-0.5, 0.0, 1.0]), _DOWN)
-    end = CHEST + 1.35 * arc_direction(o) + 0.25 * _UP
+    end = CHEST + 0.9 * arc_direction(o) + 0.25 * _UP
     return {
         "right": [_Key("fingertips", back + 0.03 * _UP, arc_direction(o) - 0.5 * _UP, _DOWN), _Key("fingertips", end, arc_direction(o) + 0.2 * _UP, _DOWN)],
         "left": [left_key, left_key],
