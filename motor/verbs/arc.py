@@ -23,8 +23,8 @@ ARC_HEIGHT = -0.5
 #: The centre of the arc: the body's vertical axis at chest height (signer frame).
 CHEST = np.array([0.0, ARC_HEIGHT, 0.0])
 #: Where the hands sign, in front of the chest: the centre the verbs' paths are laid
-#: out around (about 10 cm in front of the chest of the reference signer).
-SIGNING_CENTRE = np.array([0.0, ARC_HEIGHT, 0.6])
+#: out around (about 12 cm in front of the chest of the reference signer).
+SIGNING_CENTRE = np.array([0.0, ARC_HEIGHT, 0.7])
 #: Radius of the arc drawn in plots, shoulder widths (the front of the chest is at 0.36).
 ARC_RADIUS = 1.5
 

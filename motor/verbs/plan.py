@@ -8,9 +8,11 @@ avatar's own rest hand frame. The result is a :class:`motor.signing.plan.SignPla
 hand's first posture, then one straight, targetted move per keyframe segment (positions
 linear by distance, orientations by slerp), the hand shape held — so that the same motor
 core realizes it as any sign: in a row of signs (:mod:`motor.signing.sequence`) or timed
-against speech in an utterance (:mod:`motor.verbs.behavior`). Wrist positions beyond
-the arm's reach or inside the body are moved as for every sign
-(:func:`motor.signing.reach.within_reach_all`), with a warning.
+against speech in an utterance (:mod:`motor.verbs.behavior`). Keyframe wrists inside the
+torso are pushed out of it and wrists beyond the arm's reach pulled in
+(:func:`motor.signing.reach.within_reach`, judged by position: the recorded hand
+orientation is left to the IK's swivel, which keeps the upper arm out of the torso as well
+as it can), with a warning when one moves more than :data:`REACH_NOTE`.
 
 **Pointing** to an arc position (placing or referring to an entity) is the index hand's
 fingertip thrust from :data:`POINT_NEAR` to :data:`POINT_FAR` shoulder widths from the
@@ -29,7 +31,8 @@ from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.hand.shape import handshape_params
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import within_reach_all
+from motor.body.collision import outside_torso
+from motor.signing.reach import within_reach
 from motor.verbs.arc import SIGNING_CENTRE, arc_direction, hand_orientation, palm_normal, site_offset
 from motor.verbs.model import VerbForm
 from mura.values import HandShape
@@ -43,6 +46,8 @@ POINT_LIFT = 0.3
 POINT_DURATION = 0.3
 #: The pointing hand shape (HamNoSys ``hamfinger2``: the index extended).
 POINTING_SHAPE = HandShape("finger2", name="hamfinger2")
+#: A keyframe moved further than this (m) to be reachable is reported.
+REACH_NOTE = 0.005
 _MANNER = "targetted"
 
 
@@ -74,21 +79,21 @@ def form_plan(avatar: Avatar, gloss: str, form: VerbForm, shapes: Mapping[str, H
     times = np.asarray(form.times, dtype=float) - float(form.times[0])
     if times.shape[0] < 2 or np.any(np.diff(times) <= 0):
         raise SignPlanningError(f"{gloss}: keyframe times {times.tolist()} do not increase")
-    first, moves = {}, {}
+    first, moves, notes = {}, {}, []
     for hand, locations in form.locations.items():
-        wrists = on_avatar(avatar, locations)
+        wanted = on_avatar(avatar, locations)
         rotations = avatar_rotations(avatar, hand, form.orientations[hand])
-        if not (np.all(np.isfinite(wrists)) and np.all(np.isfinite(rotations))):
+        if not (np.all(np.isfinite(wanted)) and np.all(np.isfinite(rotations))):
             raise SignPlanningError(f"{gloss}: the {hand} hand's predicted posture is not finite")
+        wrists, _, _ = within_reach(avatar, hand, outside_torso(avatar, wanted))
+        shift = float(np.max(np.linalg.norm(wrists - wanted, axis=1)))
+        if shift > REACH_NOTE:
+            notes.append(f"{gloss}: the {hand} hand moved up to {100 * shift:.1f} cm to be within reach and out of the body")
         first[hand] = HandPose(wrists[0], rotations[0], handshape_params(shapes[hand]))
         segments = range(times.shape[0] - 1)
         moves[(hand, "wrist_position")] = tuple(Move(times[k], times[k + 1], _MANNER, wrists[k : k + 2]) for k in segments)
         moves[(hand, "hand_rotation")] = tuple(Move(times[k], times[k + 1], _MANNER, rotations[k : k + 2]) for k in segments)
-    plan = SignPlan(gloss, float(times[-1]), first, moves, static=False)
-    reached = within_reach_all(avatar, [plan])[0]
-    if isinstance(reached, SignPlanningError):
-        raise reached
-    return reached
+    return SignPlan(gloss, float(times[-1]), first, moves, static=False, warnings=tuple(notes))
 
 
 def verb_plan(avatar: Avatar, entry: VerbEntry, form: VerbForm) -> SignPlan:

@@ -27,6 +27,7 @@ import numpy as np
 from scipy.optimize import minimize
 from scipy.special import logsumexp
 from sklearn.mixture import GaussianMixture
+from threadpoolctl import threadpool_limits
 
 #: Most mixture components tried; the BIC picks among 1 … this.
 MAX_COMPONENTS = 4
@@ -55,7 +56,8 @@ class HandDensity:
         best_bic = np.inf
         for components in range(1, min(MAX_COMPONENTS, max(1, points.shape[0] // 8)) + 1):
             mixture = GaussianMixture(components, covariance_type="full", reg_covar=REG_COVAR, random_state=seed, n_init=1)
-            mixture.fit(points)
+            with threadpool_limits(1):  # a few hundred points: threads only contend
+                mixture.fit(points)
             bic = mixture.bic(points)
             if bic < best_bic:
                 best, best_bic = mixture, bic

@@ -16,8 +16,8 @@ places a named *site* of the hand, from which the wrist follows through the orie
 
 - ASK: the hooked index fingertip from ``C + 0.45 u(s)`` (raised) to ``C + 0.9 u(o)``,
   pointing at the object at the end.
-- GIVE: both flat-O hands side by side (0.2 either way of the pair's centre, across the
-  path), fingertips from ``C + 0.45 u(s)`` to ``C + 0.9 u(o)``, palms up.
+- GIVE: both flat-O hands side by side (0.25 to either side of the pair's centre),
+  fingertips from ``C + 0.45 u(s)`` to ``C + 0.9 u(o)``, palms up.
 - MEET: both index fingers up, from ``C + 0.7 u(s)`` (right) and ``C + 0.7 u(o)`` (left)
   to 0.08 either side of ``C + 0.7 u((s + o)/2)``, palms turned toward each other and
   toward the signer (the nearer the hands, the more toward the signer, so that the
@@ -125,11 +125,11 @@ def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
 def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
     start = CHEST + 0.45 * arc_direction(s) + 0.15 * _UP
     end = CHEST + 0.9 * arc_direction(o) + 0.15 * _UP
-    across = _left_of(end - start)
+    across = np.array([0.25, 0.0, 0.0])  # side by side, the left hand to the signer's left
     fingers = arc_direction(o) + 0.3 * _UP
     return {
-        "right": [_Key("fingertips", start - 0.2 * across, fingers, _UP), _Key("fingertips", end - 0.2 * across, fingers, _UP)],
-        "left": [_Key("fingertips", start + 0.2 * across, fingers, _UP), _Key("fingertips", end + 0.2 * across, fingers, _UP)],
+        "right": [_Key("fingertips", start - across, fingers, _UP), _Key("fingertips", end - across, fingers, _UP)],
+        "left": [_Key("fingertips", start + across, fingers, _UP), _Key("fingertips", end + across, fingers, _UP)],
     }
 
 
