@@ -24,7 +24,8 @@ places a named *site* of the hand, from which the wrist follows through the orie
   orientation changes smoothly with the arrangement).
 - SCOLD: the index fingertip raised at ``H + 0.4 u(o)`` (``H`` in front of the heart),
   then wagging toward the object and back, twice (four keyframes).
-- TELL: the index fingertip from the chin (the finger up and back toward it) to
+- TELL: the index fingertip from the chin (the finger up and back toward it, the palm
+  toward the body and the signer's right) to
   ``C + 0.9 u(o)`` near shoulder height.
 - COPY: the right palm against the left palm (1 cm apart) at ``C + 0.8 u(o)``; the right
   hand then moves to ``C + 0.45 u(s)``; the left hand stays.
@@ -162,7 +163,7 @@ def _scold(s: float, o: float) -> Mapping[str, list[_Key]]:
 def _tell(s: float, o: float) -> Mapping[str, list[_Key]]:
     end = CHEST + 0.9 * arc_direction(o) + 0.45 * _UP
     return {"right": [
-        _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([0.0, 0.0, -1.0])),
+        _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, -1.0])),
         _Key("index fingertip", end, arc_direction(o) + 0.1 * _UP, _DOWN),
     ]}  # fmt: skip
 
