@@ -28,6 +28,12 @@ SIGNING_CENTRE = np.array([0.0, ARC_HEIGHT, 0.7])
 #: Radius of the arc drawn in plots, shoulder widths (the front of the chest is at 0.36).
 ARC_RADIUS = 1.5
 
+#: The right shoulder joint in the signer frame (the left one mirrors it).
+RIGHT_SHOULDER = np.array([-0.5, 0.0, 0.0])
+#: How far a hand's finger direction turns toward the line from its shoulder through the
+#: hand (0 keeps the direction asked for, 1 puts the hand in line with the arm).
+ARM_LEAN = 0.75
+
 _FINGER = np.array([0.0, -1.0, 0.0])
 _THUMB = np.array([0.0, 0.0, 1.0])
 
@@ -41,6 +47,17 @@ def arc_direction(position: np.ndarray | float) -> np.ndarray:
 def arc_point(position: np.ndarray | float, radius: float = ARC_RADIUS) -> np.ndarray:
     """Points ``(…, 3)`` of the arc at ``radius`` from the chest centre (signer frame)."""
     return CHEST + radius * arc_direction(position)
+
+
+def leaning_fingers(hand: str, point: np.ndarray, fingers: np.ndarray, lean: float = ARM_LEAN) -> np.ndarray:
+    """A finger direction turned by ``lean`` toward the line from the hand's shoulder to
+    ``point``: the hand nearly in line with the forearm, as a comfortable wrist keeps it (a
+    hand pointing far to its own side is reached with the arm extended, not by bending the
+    wrist)."""
+    shoulder = RIGHT_SHOULDER if hand == "right" else -RIGHT_SHOULDER
+    along_arm = np.asarray(point, dtype=float) - shoulder
+    wanted = np.asarray(fingers, dtype=float)
+    return (1.0 - lean) * wanted / np.linalg.norm(wanted) + lean * along_arm / np.linalg.norm(along_arm)
 
 
 def palm_normal(hand: str) -> np.ndarray:

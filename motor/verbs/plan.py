@@ -16,7 +16,9 @@ as it can), with a warning when one moves more than :data:`REACH_NOTE`.
 
 **Pointing** to an arc position (placing or referring to an entity) is the index hand's
 fingertip thrust from :data:`POINT_NEAR` to :data:`POINT_FAR` shoulder widths from the
-signing centre (:data:`motor.verbs.arc.SIGNING_CENTRE`) toward the arc position, the finger along the direction, palm down, in
+signing centre (:data:`motor.verbs.arc.SIGNING_CENTRE`) — moved toward the right shoulder
+for positions on the right (:data:`POINT_SHIFT`) — toward the arc position, the finger along the direction (turned toward the line of the arm,
+:func:`motor.verbs.arc.leaning_fingers`), palm down, in
 :data:`POINT_DURATION` seconds.
 """
 
@@ -33,7 +35,7 @@ from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.body.collision import outside_torso
 from motor.signing.reach import within_reach
-from motor.verbs.arc import SIGNING_CENTRE, arc_direction, hand_orientation, palm_normal, site_offset
+from motor.verbs.arc import RIGHT_SHOULDER, SIGNING_CENTRE, arc_direction, hand_orientation, leaning_fingers, palm_normal, site_offset
 from motor.verbs.model import VerbForm
 from mura.values import HandShape
 from mura.verb_lexicon import VerbEntry, VerbLexicon
@@ -44,6 +46,9 @@ POINT_NEAR = 0.75
 POINT_FAR = 0.95
 POINT_LIFT = 0.3
 POINT_DURATION = 0.3
+#: Toward the pointing hand's own side the thrust starts nearer its shoulder (this share of
+#: the way from the signing centre at arc position +1): the arm extends to point there.
+POINT_SHIFT = 0.7
 #: The pointing hand shape (HamNoSys ``hamfinger2``: the index extended).
 POINTING_SHAPE = HandShape("finger2", name="hamfinger2")
 #: A keyframe moved further than this (m) to be reachable is reported.
@@ -104,9 +109,10 @@ def verb_plan(avatar: Avatar, entry: VerbEntry, form: VerbForm) -> SignPlan:
 def pointing_form(position: float, lexicon: VerbLexicon) -> VerbForm:
     """The pointing thrust toward arc ``position`` as keyframes (module docstring)."""
     direction = arc_direction(position)
-    fingers = direction - np.array([0.0, 0.15, 0.0])
-    orientation = hand_orientation(np.stack([fingers, fingers]), np.array([[0.0, -1.0, 0.0]] * 2), "right")
-    tips = np.stack([SIGNING_CENTRE + radius * direction + np.array([0.0, POINT_LIFT, 0.0]) for radius in (POINT_NEAR, POINT_FAR)])
+    origin = SIGNING_CENTRE + POINT_SHIFT * max(float(position), 0.0) * (RIGHT_SHOULDER - SIGNING_CENTRE)
+    tips = np.stack([origin + radius * direction + np.array([0.0, POINT_LIFT, 0.0]) for radius in (POINT_NEAR, POINT_FAR)])
+    fingers = np.stack([leaning_fingers("right", tip, direction - np.array([0.0, 0.15, 0.0])) for tip in tips])
+    orientation = hand_orientation(fingers, np.array([[0.0, -1.0, 0.0]] * 2), "right")
     offsets = Rotation.from_quat(orientation).apply(site_offset("right", lexicon.sites["index fingertip"]))
     return VerbForm("POINT", {"right": tips - offsets}, {"right": orientation}, np.array([0.0, POINT_DURATION]))
 

@@ -16,14 +16,15 @@ places a named *site* of the hand, from which the wrist follows through the orie
 
 - ASK: the hooked index fingertip from ``C + 0.45 u(s)`` (raised) to ``C + 0.9 u(o)``,
   pointing at the object at the end.
-- GIVE: both flat-O hands side by side (0.25 to either side of the pair's centre),
-  fingertips from ``C + 0.45 u(s)`` to ``C + 0.9 u(o)``, palms up.
+- GIVE: both flat-O hands side by side (0.2 to either side of the pair's centre),
+  fingertips from ``C + 0.6 u(s)`` (pointing outward) to ``C + 0.9 u(o)`` (pointing at the
+  object), palms up.
 - MEET: both index fingers up, from ``C + 0.7 u(s)`` (right) and ``C + 0.7 u(o)`` (left)
-  to 0.08 either side of ``C + 0.7 u((s + o)/2)``, palms turned toward each other and
-  toward the signer (the nearer the hands, the more toward the signer, so that the
-  orientation changes smoothly with the arrangement).
-- SCOLD: the index fingertip raised at ``H + 0.4 u(o)`` (``H`` in front of the heart),
-  then wagging toward the object and back, twice (four keyframes).
+  to 0.08 either side of ``C + 0.7 u((s + o)/2)``, each palm toward the body's midline
+  and forward (so facing the other hand's when they meet).
+- SCOLD: the index fingertip raised at ``H + 0.6 u(o)`` (``H`` in front of the heart),
+  the palm to the left, then wagging toward the object (palm down) and back, twice (four
+  keyframes).
 - TELL: the index fingertip from the chin (the finger up and back toward it, the palm
   toward the body and the signer's right) to
   ``C + 0.9 u(o)`` near shoulder height.
@@ -35,6 +36,12 @@ places a named *site* of the hand, from which the wrist follows through the orie
   the path, the palm down; the C's palm faces the signer.
 - SEND: the right fingertips on the back of the left flat hand at ``C + 0.45 u(s)``, then
   flicking out to ``C + 0.9 u(o)``; the left hand stays.
+
+**Comfortable hands.** Unless a key says otherwise (TELL's finger at the chin, the C
+hand; MEET's upright index fingers lean 40 %),
+finger directions are turned 75 % of the way toward the line from the hand's shoulder
+through it (:func:`motor.verbs.arc.leaning_fingers`), as signers extend the arm rather than
+bend the wrist; the hand then stays within the wrist's range on an avatar.
 
 **Human variation.** Four synthetic signers, each with a constant offset of the whole
 performance (normal, σ = 0.09 shoulder widths ≈ 3 cm per axis) — signers differ in where
@@ -53,7 +60,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from motor.verbs.arc import SIGNING_CENTRE as CHEST, arc_direction, hand_orientation, site_offset
+from motor.verbs.arc import ARM_LEAN, SIGNING_CENTRE as CHEST, arc_direction, hand_orientation, leaning_fingers, site_offset
 from mura.errors import SourceLocation
 from mura.recordings import HandKeyframes, Performance, recordings_json
 from mura.verb_lexicon import VerbLexicon, load_verb_lexicon
@@ -80,6 +87,8 @@ _UP = np.array([0.0, 1.0, 0.0])
 _DOWN = -_UP
 _CHIN = np.array([0.0, 0.3, 0.36])
 _HEART = np.array([0.2, -0.35, 0.5])
+#: MEET's index fingers are held up, leaning less toward the arm's line than other hands.
+MEET_LEAN = 0.4
 
 
 @dataclass(frozen=True)
@@ -90,6 +99,7 @@ class _Key:
     point: np.ndarray
     fingers: np.ndarray
     palm: np.ndarray
+    lean: float = ARM_LEAN
 
 
 _Shape = Callable[[float, float], Mapping[str, list[_Key]]]
@@ -124,13 +134,13 @@ def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
-    start = CHEST + 0.45 * arc_direction(s) + 0.15 * _UP
+    start = CHEST + 0.6 * arc_direction(s) + 0.15 * _UP
     end = CHEST + 0.9 * arc_direction(o) + 0.15 * _UP
-    across = np.array([0.25, 0.0, 0.0])  # side by side, the left hand to the signer's left
-    fingers = arc_direction(o) + 0.3 * _UP
+    across = np.array([0.2, 0.0, 0.0])  # side by side, the left hand to the signer's left
+    first, last = arc_direction(0.5 * s) + 0.3 * _UP, arc_direction(o) + 0.3 * _UP  # outward, then at the object
     return {
-        "right": [_Key("fingertips", start - across, fingers, _UP), _Key("fingertips", end - across, fingers, _UP)],
-        "left": [_Key("fingertips", start + across, fingers, _UP), _Key("fingertips", end + across, fingers, _UP)],
+        "right": [_Key("fingertips", start - across, first, _UP), _Key("fingertips", end - across, last, _UP)],
+        "left": [_Key("fingertips", start + across, first, _UP), _Key("fingertips", end + across, last, _UP)],
     }
 
 
@@ -138,24 +148,24 @@ def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
     lift = 0.3 * _UP
     right, left = CHEST + 0.7 * arc_direction(s) + lift, CHEST + 0.7 * arc_direction(o) + lift
     middle = CHEST + 0.7 * arc_direction(0.5 * (s + o)) + lift
-    apart = np.array([1.0, 0.0, 1.0]) * (right - left)  # horizontal, shrinking as the hands near each other
-    toward_subject = _horizontal(apart)
-    facing = -0.5 * arc_direction(0.5 * (s + o))  # the palms turn toward the signer as much as toward each other
+    toward_subject = _horizontal(right - left)
+    palm = np.array([1.0, 0.0, 1.0])  # the right palm toward the midline and forward; the left mirrors it
+    mirror = np.array([-1.0, 1.0, 1.0])
     return {
         "right": [
-            _Key("index fingertip", right, _UP, facing - 0.8 * apart),
-            _Key("index fingertip", middle + 0.08 * toward_subject, _UP, facing - 0.2 * apart),
+            _Key("index fingertip", right, _UP, palm, MEET_LEAN),
+            _Key("index fingertip", middle + 0.08 * toward_subject, _UP, palm, MEET_LEAN),
         ],
         "left": [
-            _Key("index fingertip", left, _UP, facing + 0.8 * apart),
-            _Key("index fingertip", middle - 0.08 * toward_subject, _UP, facing + 0.2 * apart),
+            _Key("index fingertip", left, _UP, mirror * palm, MEET_LEAN),
+            _Key("index fingertip", middle - 0.08 * toward_subject, _UP, mirror * palm, MEET_LEAN),
         ],
     }
 
 
 def _scold(s: float, o: float) -> Mapping[str, list[_Key]]:
-    base = _HEART + 0.4 * arc_direction(o)
-    raised = _Key("index fingertip", base + 0.2 * _UP, _UP + 0.3 * arc_direction(o), arc_direction(o))
+    base = _HEART + 0.6 * arc_direction(o)
+    raised = _Key("index fingertip", base + 0.2 * _UP, _UP + 0.3 * arc_direction(o), np.array([1.0, 0.0, 0.5]))
     wag = _Key("index fingertip", base + 0.12 * arc_direction(o) - 0.05 * _UP, arc_direction(o) + 0.3 * _UP, _DOWN)
     return {"right": [raised, wag, raised, wag]}
 
@@ -163,7 +173,7 @@ def _scold(s: float, o: float) -> Mapping[str, list[_Key]]:
 def _tell(s: float, o: float) -> Mapping[str, list[_Key]]:
     end = CHEST + 0.9 * arc_direction(o) + 0.45 * _UP
     return {"right": [
-        _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, -1.0])),
+        _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, -1.0]), 0.0),
         _Key("index fingertip", end, arc_direction(o) + 0.1 * _UP, _DOWN),
     ]}  # fmt: skip
 
@@ -186,7 +196,7 @@ def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
     opening = CHEST + 0.7 * middle + 0.2 * _UP
     path = _horizontal(arc_direction(o) - arc_direction(s))
     fingers = middle + 0.6 * (arc_direction(o) - arc_direction(s))  # leading along the path, turning with it
-    left_key = _Key("C opening", opening, _UP, -middle)
+    left_key = _Key("C opening", opening, _UP, -middle, 0.0)
     return {
         "right": [_Key("fingertips", opening - 0.3 * path, fingers, _DOWN), _Key("fingertips", opening + 0.3 * path, fingers, _DOWN)],
         "left": [left_key, left_key],
@@ -214,7 +224,8 @@ def ideal_keyframes(verb: str, subject: float, obj: float, lexicon: VerbLexicon 
     lexicon = lexicon or load_verb_lexicon()
     hands = {}
     for hand, keys in VERB_SHAPES[verb](subject, obj).items():
-        orientations = hand_orientation(np.stack([k.fingers for k in keys]), np.stack([k.palm for k in keys]), hand)
+        fingers = np.stack([leaning_fingers(hand, k.point, k.fingers, k.lean) for k in keys])
+        orientations = hand_orientation(fingers, np.stack([k.palm for k in keys]), hand)
         offsets = Rotation.from_quat(orientations).apply(np.stack([site_offset(hand, lexicon.sites[k.site]) for k in keys]))
         hands[hand] = HandKeyframes(np.stack([k.point for k in keys]) - offsets, orientations)
     return hands
