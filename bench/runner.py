@@ -32,6 +32,7 @@ MODULES: tuple[str, ...] = (
     "bench.signing_speed",
     "bench.motion_quality",
     "bench.memory",
+    "bench.verbs",
 )
 
 README_START = "<!-- bench:start -->"

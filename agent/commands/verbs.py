@@ -9,6 +9,9 @@
   cross-validation of the point, vector and uninflected models; prints the table, and the
   top view of the predicted paths over the arc with ``--plot``. Without recordings, the
   shipped synthetic session.
+- ``sequence FILE.sigml -o DIR``: a SiGML sequence whose signs may place entities, point
+  and use indicating verbs (:mod:`mura.sigml_space`), performed in order as one
+  performance; each item that cannot be read or planned fails alone.
 - ``synthesize -o FILE``: write the synthetic recording session (labelled synthetic).
 """
 
@@ -23,8 +26,10 @@ from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
 from agent.export.staging import staged_text
 from motor.body.avatar import load_avatar
-from motor.signing.plan import SignPlanningError
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.planning import plan_sign
 from motor.signing.sequence import realize_signs
+from motor.verbs.behavior import spatial_plan
 from motor.verbs.capture import read_capture
 from motor.verbs.evaluation import cross_validate, scores_table
 from motor.verbs.fitting import fit_session
@@ -34,6 +39,8 @@ from motor.verbs.shipped import MODELS_PATH, RECORDINGS_PATH, shipped_models
 from motor.verbs.synthetic import SEED, synthetic_session_json
 from mura.errors import SpecError
 from mura.recordings import RecordingSession, read_recordings
+from mura.sigml_space import parse_signed_sequence
+from mura.signs import Sign
 from mura.verb_lexicon import load_verb_lexicon
 
 #: File kinds a recordings folder is searched for.
@@ -66,6 +73,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate.add_argument("--plot", type=Path, metavar="FILE.png", help="write the top view of predicted paths")
     evaluate.add_argument("--folds", type=int, default=None, help="hold out only the first N arrangements of each verb")
     evaluate.set_defaults(func=run_evaluate)
+    sequence = commands.add_parser("sequence", help="perform a SiGML sequence with placed entities, pointing and indicating verbs")
+    sequence.add_argument("file", type=Path, metavar="FILE.sigml")
+    sequence.add_argument("-o", "--output", required=True, type=Path, metavar="DIR", help="output folder (created if missing)")
+    sequence.add_argument("--avatar", default="max", help="avatar name or file (default: max)")
+    sequence.add_argument("--fps", type=float, default=25.0, help="frames per second (default: 25)")
+    sequence.set_defaults(func=run_sequence)
     synthesize = commands.add_parser("synthesize", help="write the SYNTHETIC recording session")
     synthesize.add_argument("-o", "--output", required=True, type=Path, metavar="FILE.json")
     synthesize.add_argument("--seed", type=int, default=SEED, help=f"generator seed (default {SEED}, the shipped session)")
@@ -188,6 +201,42 @@ def run_evaluate(args: argparse.Namespace) -> int:
             return 1
         print(f"\ntop view of predicted paths -> {args.plot}")
     return 0 if not failures and not session.refused else 1
+
+
+def run_sequence(args: argparse.Namespace) -> int:
+    if not args.fps > 0:
+        print(f"mura verbs sequence: --fps must be positive, got {args.fps}", file=sys.stderr)
+        return 2
+    try:
+        avatar = load_avatar(args.avatar)
+        sequence = parse_signed_sequence(args.file.read_bytes(), str(args.file))
+    except (OSError, ValueError) as error:
+        print(f"mura verbs sequence: {error}", file=sys.stderr)
+        return 2
+    failures = [f"{failure.gloss}: {failure.error}" for failure in sequence.failures]
+    plans: list[SignPlan] = []
+    for item in sequence.items:
+        try:
+            plans.append(plan_sign(avatar, item) if isinstance(item, Sign) else spatial_plan(avatar, item))
+        except (SignPlanningError, SpecError, ValueError) as error:
+            failures.append(f"{item.gloss}: {error}")
+    for failure in failures:
+        print(f"failed: {failure}", file=sys.stderr)
+    if not plans:
+        print("mura verbs sequence: nothing to perform", file=sys.stderr)
+        return 1
+    try:
+        signed = realize_signs(avatar, plans, args.fps)
+    except (SignPlanningError, ValueError, FloatingPointError) as error:
+        print(f"mura verbs sequence: {error}", file=sys.stderr)
+        return 1
+    args.output.mkdir(parents=True, exist_ok=True)
+    stem = safe_stem(args.file.stem, set())
+    write_bvh(signed.motion, args.output / f"{stem}.bvh")
+    write_html(args.output / f"{stem}.html", name=stem, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, stem), wav_filename=None)
+    placed = ", ".join(f"{r.entity} at {r.arc:+.2f}" for r in sequence.space) or "none"
+    print(f"{len(plans)} of {len(plans) + len(failures)} signs performed (entities placed: {placed}) -> {args.output / (stem + '.html')}")
+    return 0 if not failures else 1
 
 
 def run_synthesize(args: argparse.Namespace) -> int:

@@ -42,7 +42,7 @@ class VerbBehaviorPlanner(SignBehaviorPlanner):
         if cached is not None and cached[0] is spatial:
             return cached[1]
         try:
-            plan = self._plan(spatial)
+            plan = spatial_plan(self.avatar, spatial, self.models_path)
         except (SignPlanningError, SpecError, ValueError) as error:
             raise PlanningError(f"behaviour {behavior.id!r}: {error}") from None
         if len(self._spatial_plans) >= PLAN_CACHE:
@@ -50,13 +50,16 @@ class VerbBehaviorPlanner(SignBehaviorPlanner):
         self._spatial_plans[id(spatial)] = (spatial, plan)
         return plan
 
-    def _plan(self, spatial: SpatialSign) -> SignPlan:
-        lexicon = load_verb_lexicon()
-        if not isinstance(spatial, IndicatingVerbSign):
-            return pointing_plan(self.avatar, spatial.target.arc, lexicon, spatial.gloss)
-        models = shipped_models(self.models_path)
-        if spatial.verb not in models:
-            raise ValueError(f"{self.models_path} has no model of {spatial.verb}")
-        subject = spatial.subject.arc if spatial.subject is not None else 0.0
-        form = models[spatial.verb].predict(spatial.model, subject, spatial.object.arc)
-        return verb_plan(self.avatar, lexicon.entry(spatial.verb), form)
+
+def spatial_plan(avatar: Avatar, spatial: SpatialSign, models: Path = MODELS_PATH) -> SignPlan:
+    """A pointing sign or an indicating verb as a sign plan on its own clock; the verb
+    inflected by the model it names, from the model file ``models``."""
+    lexicon = load_verb_lexicon()
+    if not isinstance(spatial, IndicatingVerbSign):
+        return pointing_plan(avatar, spatial.target.arc, lexicon, spatial.gloss)
+    fitted = shipped_models(models)
+    if spatial.verb not in fitted:
+        raise ValueError(f"{models} has no model of {spatial.verb}")
+    subject = spatial.subject.arc if spatial.subject is not None else 0.0
+    form = fitted[spatial.verb].predict(spatial.model, subject, spatial.object.arc)
+    return verb_plan(avatar, lexicon.entry(spatial.verb), form)

@@ -73,3 +73,22 @@ def test_render_bad_input_is_one_line(tmp_path, capsys, args, message):
     assert main([*args, "-o", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0]
+
+
+def test_sequence_performs_a_sigml_sequence_with_placed_entities(tmp_path, capsys):
+    assert main(["verbs", "sequence", "specs/verbs/ask_sequence.sigml", "-o", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "4 of 4 signs performed" in out and "john at +0.90" in out and "mary at -0.60" in out
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ask_sequence.bvh", "ask_sequence.html"]
+
+
+def test_sequence_item_that_fails_fails_alone(tmp_path, capsys):
+    document = tmp_path / "bad.sigml"
+    document.write_text(
+        '<sigml><space><place entity="ann" arc="0.2"/></space>'
+        '<sign point="ann"/><sign verb="ASK" subject="ann" object="bob"/><sign verb="TELL" object="-0.5"/></sigml>'
+    )
+    assert main(["verbs", "sequence", str(document), "-o", str(tmp_path / "out")]) == 1
+    captured = capsys.readouterr()
+    assert "2 of 3 signs performed" in captured.out
+    assert "failed: ASK:" in captured.err and "'bob'" in captured.err
