@@ -12,7 +12,8 @@ against speech in an utterance (:mod:`motor.verbs.behavior`). Keyframe wrists in
 torso are pushed out of it and wrists beyond the arm's reach pulled in
 (:func:`motor.signing.reach.within_reach`, judged by position: the recorded hand
 orientation is left to the IK's swivel, which keeps the upper arm out of the torso as well
-as it can), with a warning when one moves more than :data:`REACH_NOTE`.
+as it can), the two hands of a verb by the same amount so that their relation holds, with
+a warning when one moves more than :data:`REACH_NOTE`.
 
 **Pointing** to an arc position (placing or referring to an entity) is the index hand's
 fingertip thrust from :data:`POINT_NEAR` to :data:`POINT_FAR` shoulder widths from the
@@ -84,21 +85,34 @@ def form_plan(avatar: Avatar, gloss: str, form: VerbForm, shapes: Mapping[str, H
     times = np.asarray(form.times, dtype=float) - float(form.times[0])
     if times.shape[0] < 2 or np.any(np.diff(times) <= 0):
         raise SignPlanningError(f"{gloss}: keyframe times {times.tolist()} do not increase")
-    first, moves, notes = {}, {}, []
-    for hand, locations in form.locations.items():
-        wanted = on_avatar(avatar, locations)
-        rotations = avatar_rotations(avatar, hand, form.orientations[hand])
-        if not (np.all(np.isfinite(wanted)) and np.all(np.isfinite(rotations))):
+    wanted = {hand: on_avatar(avatar, locations) for hand, locations in form.locations.items()}
+    rotations = {hand: avatar_rotations(avatar, hand, form.orientations[hand]) for hand in form.locations}
+    for hand in wanted:
+        if not (np.all(np.isfinite(wanted[hand])) and np.all(np.isfinite(rotations[hand]))):
             raise SignPlanningError(f"{gloss}: the {hand} hand's predicted posture is not finite")
-        wrists, _, _ = within_reach(avatar, hand, outside_torso(avatar, wanted))
-        shift = float(np.max(np.linalg.norm(wrists - wanted, axis=1)))
+    wrists = _reachable(avatar, wanted)
+    first, moves, notes = {}, {}, []
+    for hand in wanted:
+        shift = float(np.max(np.linalg.norm(wrists[hand] - wanted[hand], axis=1)))
         if shift > REACH_NOTE:
             notes.append(f"{gloss}: the {hand} hand moved up to {100 * shift:.1f} cm to be within reach and out of the body")
-        first[hand] = HandPose(wrists[0], rotations[0], handshape_params(shapes[hand]))
+        first[hand] = HandPose(wrists[hand][0], rotations[hand][0], handshape_params(shapes[hand]))
         segments = range(times.shape[0] - 1)
-        moves[(hand, "wrist_position")] = tuple(Move(times[k], times[k + 1], _MANNER, wrists[k : k + 2]) for k in segments)
-        moves[(hand, "hand_rotation")] = tuple(Move(times[k], times[k + 1], _MANNER, rotations[k : k + 2]) for k in segments)
+        moves[(hand, "wrist_position")] = tuple(Move(times[k], times[k + 1], _MANNER, wrists[hand][k : k + 2]) for k in segments)
+        moves[(hand, "hand_rotation")] = tuple(Move(times[k], times[k + 1], _MANNER, rotations[hand][k : k + 2]) for k in segments)
     return SignPlan(gloss, float(times[-1]), first, moves, static=False, warnings=tuple(notes))
+
+
+def _reachable(avatar: Avatar, wanted: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Keyframe wrists within reach and out of the torso. Two hands move together: at each
+    keyframe both take the larger of their own shifts (so that EMAIL's hand still passes
+    through the C, COPY's palms still meet), then each is checked once more on its own."""
+    own = {hand: within_reach(avatar, hand, outside_torso(avatar, points))[0] - points for hand, points in wanted.items()}
+    if len(wanted) == 1:
+        return {hand: wanted[hand] + own[hand] for hand in wanted}
+    right, left = own["right"], own["left"]
+    larger = np.where((np.linalg.norm(right, axis=1) >= np.linalg.norm(left, axis=1))[:, None], right, left)
+    return {hand: within_reach(avatar, hand, outside_torso(avatar, points + larger))[0] for hand, points in wanted.items()}
 
 
 def verb_plan(avatar: Avatar, entry: VerbEntry, form: VerbForm) -> SignPlan:

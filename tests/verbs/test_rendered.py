@@ -142,3 +142,26 @@ def test_pointing_form_reaches_further_toward_the_target(lexicon):
     form = pointing_form(0.4, lexicon)
     step = form.locations["right"][1] - form.locations["right"][0]
     assert step @ np.array([-np.sin(0.2 * np.pi), 0.0, np.cos(0.2 * np.pi)]) > 0.9 * np.linalg.norm(step)
+
+
+def _site_track(clip, frames, joint, hand, site, width):
+    """A lexicon hand site through the rendered frames (metres), from the BVH's own kinematics."""
+    from motor.verbs.arc import site_offset
+
+    rotations, positions = global_transforms(clip, frames)
+    index = clip.names.index(joint)
+    return positions[:, index] / 100.0 + rotations[index].apply(width * site_offset(hand, site))
+
+
+@pytest.mark.parametrize("arrangement", [(-0.6, 0.9), (0.9, -0.6), (-1.0, 0.0), (0.3, -0.3)])
+def test_rendered_email_passes_through_the_c_and_copy_starts_together(max_avatar, models, lexicon, arrangement):
+    _, width = avatar_scale(max_avatar)
+    for verb in ("EMAIL", "COPY"):
+        entry = lexicon.entry(verb)
+        signed, clip = _render(max_avatar, verb_plan(max_avatar, entry, models[verb].predict("point", *arrangement)))
+        timing = signed.timings[0]
+        times = np.arange(timing.ready, timing.end + 1e-9, 1.0 / FPS) if entry.relation.kind == "passes_through" else np.array([timing.ready])
+        frames = np.round((times - signed.motion.start_time) * FPS).astype(int)
+        right = _site_track(clip, frames, "r_wrist", "right", lexicon.sites[entry.relation.right_site], width)
+        left = _site_track(clip, frames, "l_wrist", "left", lexicon.sites[entry.relation.left_site], width)
+        assert np.min(np.linalg.norm(right - left, axis=1)) <= entry.relation.within, verb
