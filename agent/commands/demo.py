@@ -9,6 +9,7 @@ from pathlib import Path
 
 from agent.agent import Agent
 from agent.commands.render import render_one
+from motor.body.avatar import DEFAULT_AVATAR
 from mura.resources import SPECS_DIR
 
 DEMO_UTTERANCE = SPECS_DIR / "utterances" / "fig2_take_this_bar.xml"
@@ -22,7 +23,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "speech if espeak-ng cannot load) into the output folder, and print the address of the avatar page.",
     )
     parser.add_argument("-o", "--output", default="out/demo", metavar="DIR", help="output folder (default: out/demo)")
-    parser.add_argument("--avatar", default="max", help="avatar name (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file (default: {DEFAULT_AVATAR})")
     parser.set_defaults(func=run)
 
 

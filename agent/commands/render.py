@@ -9,7 +9,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.agent import Agent, PerformanceError
-from motor.body.avatar import AvatarError
+from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.errors import SpecError
 from tts import SpeechError
 
@@ -18,7 +18,9 @@ def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake"
     """The options every command that builds an :class:`Agent` shares."""
     parser.add_argument("--tts", default=default_tts, choices=("fake", "espeak", "pyttsx3", "default"),
                         help=f"speech backend (default: {default_tts}; 'default' is espeak when available, else fake)")
-    parser.add_argument("--avatar", default="max", help="avatar name in specs/avatars or a path to an avatar file (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR,
+                        help=f"avatar name (max, kim, {DEFAULT_AVATAR}), an avatar file, or your own .vrm/.glb/.gltf humanoid "
+                        f"(default: {DEFAULT_AVATAR}, the skinned avatar built at set-up)")  # fmt: skip
     parser.add_argument("--fps", type=float, default=60.0, help="frames per second of the motion (default: 60)")
     parser.add_argument("--voice", default=None, help="voice of the speech backend")
     parser.add_argument("--rate", type=float, default=1.0, help="relative speaking rate (default: 1.0)")
@@ -32,11 +34,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "render",
         help="perform utterances offline and save WAV, BVH, timeline JSON and the avatar page",
-        description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json and "
-        "NAME.html into the output folder. Files appear only when complete.",
+        description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json, "
+        "NAME.html and NAME.glb (the avatar with its animation) into the output folder. Files appear only when complete.",
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
+    parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write NAME.glb")
     add_agent_options(parser)
     parser.set_defaults(func=run)
 
@@ -49,15 +52,16 @@ def run(args: argparse.Namespace) -> int:
         return 2
     status = 0
     for path in tqdm(args.files, desc="rendering", unit="utterance", disable=len(args.files) < 2, file=sys.stderr):
-        status |= render_one(agent, Path(path), Path(args.output))
+        status |= render_one(agent, Path(path), Path(args.output), glb=args.glb)
     return status
 
 
-def render_one(agent: Agent, path: Path, output: Path) -> int:
-    """Render one file straight to disk (memory bounded for any length); prints what was
-    written or the one-line reason, returns the exit status."""
+def render_one(agent: Agent, path: Path, output: Path, glb: bool = True) -> int:
+    """Render one file straight to disk (memory bounded for any length), with NAME.glb
+    unless ``glb`` is false; prints what was written or the one-line reason, returns the
+    exit status."""
     try:
-        files = agent.render_files(path, output)
+        files = agent.render_files(path, output, glb=glb)
     except SpecError as error:
         print(str(error), file=sys.stderr)
         return 1

@@ -19,9 +19,11 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
+from agent.export.page_model import page_model
 from agent.export.staging import staged_text
-from motor.body.avatar import load_avatar
+from motor.body.avatar import DEFAULT_AVATAR, load_avatar
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
@@ -62,7 +64,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("files", nargs="*", metavar="FILE.sigml", help="SiGML documents")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
-    parser.add_argument("--avatar", default="max", help="avatar name or file (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file, or your own .vrm/.glb/.gltf (default: {DEFAULT_AVATAR})")
+    parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write <gloss>.glb")
     parser.add_argument("--fps", type=float, default=25.0, help="frames per second (default: 25)")
     parser.add_argument("--sequence", action="store_true", help="render all signs in order as one performance")
     parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign")
@@ -96,11 +99,11 @@ def run(args: argparse.Namespace) -> int:
         except SignPlanningError as error:
             record.reason = str(error)
     if args.sequence:
-        _render_sequence(avatar, plans, output, args.fps)
+        _render_sequence(avatar, plans, output, args.fps, args.glb)
     else:
         names: set[str] = set()
         for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
-            _render_one(avatar, record, plan, output, args.fps, names)
+            _render_one(avatar, record, plan, output, args.fps, names, args.glb)
     if args.report:
         _write_json(Path(args.report), _report(records))
     rendered = sum(record.rendered for record in records)
@@ -142,11 +145,11 @@ def safe_stem(gloss: str, taken: set[str]) -> str:
     return candidate
 
 
-def _render_one(avatar, record: SignRecord, plan: SignPlan, output: Path, fps: float, names: set[str]) -> None:
+def _render_one(avatar, record: SignRecord, plan: SignPlan, output: Path, fps: float, names: set[str], glb: bool = True) -> None:
     try:
         signed = realize_signs(avatar, [plan], fps)
         stem = safe_stem(plan.gloss, names)
-        record.files = _write_performance(signed, output, stem, plan.gloss)
+        record.files = _write_performance(signed, output, stem, plan.gloss, avatar if glb else None, avatar)
     except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
         record.reason = f"{type(error).__name__}: {error}"
         return
@@ -155,12 +158,12 @@ def _render_one(avatar, record: SignRecord, plan: SignPlan, output: Path, fps: f
     record.warnings = signed.warnings
 
 
-def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: Path, fps: float) -> None:
+def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: Path, fps: float, glb: bool = True) -> None:
     if not plans:
         return
     try:
         signed = realize_signs(avatar, [plan for _, plan in plans], fps)
-        files = _write_performance(signed, output, "sequence", "sequence")
+        files = _write_performance(signed, output, "sequence", "sequence", avatar if glb else None, avatar)
     except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
         for record, _ in plans:
             record.reason = f"the sequence failed: {type(error).__name__}: {error}"
@@ -191,13 +194,19 @@ def timeline_of(signed: SignedMotion, name: str) -> dict:
     }  # fmt: skip
 
 
-def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str) -> tuple[str, ...]:
+def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str, glb_avatar=None, page_avatar=None) -> tuple[str, ...]:
+    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB."""
     bvh_path = output / f"{stem}.bvh"
     write_bvh(signed.motion, bvh_path)
     files = [str(bvh_path)]
+    if glb_avatar is not None:
+        glb_path = output / f"{stem}.glb"
+        write_motion_glb(signed.motion, glb_path, motion_model(glb_avatar), glb_avatar.root_height)
+        files.append(str(glb_path))
     try:
         html_path = output / f"{stem}.html"
-        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None)
+        model = page_model(page_avatar) if page_avatar is not None else None
+        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None, model=model)
         files.append(str(html_path))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)

@@ -14,7 +14,7 @@ import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TextIO
+from typing import BinaryIO, TextIO
 
 
 def _current_umask() -> int:
@@ -41,6 +41,21 @@ def staged_text(target: str | os.PathLike[str], encoding: str = "utf-8") -> Iter
     temporary = Path(name)
     try:
         with os.fdopen(handle, "w", encoding=encoding, newline="\n") as stream:
+            yield stream
+        publish(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+
+
+@contextmanager
+def staged_binary(target: str | os.PathLike[str]) -> Iterator[BinaryIO]:
+    """A binary stream whose content becomes ``target`` only if the block ends without error."""
+    path = Path(target)
+    handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".part")
+    temporary = Path(name)
+    try:
+        with os.fdopen(handle, "wb") as stream:
             yield stream
         publish(temporary, path)
     except BaseException:
