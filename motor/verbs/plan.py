@@ -50,6 +50,8 @@ POINT_DURATION = 0.3
 #: Toward the pointing hand's own side the thrust starts nearer its shoulder (this share of
 #: the way from the signing centre at arc position +1): the arm extends to point there.
 POINT_SHIFT = 0.7
+#: … and reaches further (shoulder widths per unit of that share), the arm extended.
+POINT_EXTEND = 0.8
 #: The pointing hand shape (HamNoSys ``hamfinger2``: the index extended).
 POINTING_SHAPE = HandShape("finger2", name="hamfinger2")
 #: A keyframe moved further than this (m) to be reachable is reported.
@@ -123,8 +125,10 @@ def verb_plan(avatar: Avatar, entry: VerbEntry, form: VerbForm) -> SignPlan:
 def pointing_form(position: float, lexicon: VerbLexicon) -> VerbForm:
     """The pointing thrust toward arc ``position`` as keyframes (module docstring)."""
     direction = arc_direction(position)
-    origin = SIGNING_CENTRE + POINT_SHIFT * max(float(position), 0.0) * (RIGHT_SHOULDER - SIGNING_CENTRE)
-    tips = np.stack([origin + radius * direction + np.array([0.0, POINT_LIFT, 0.0]) for radius in (POINT_NEAR, POINT_FAR)])
+    own_side = POINT_SHIFT * max(float(position), 0.0)
+    origin = SIGNING_CENTRE + own_side * (RIGHT_SHOULDER - SIGNING_CENTRE)
+    reach = own_side * POINT_EXTEND
+    tips = np.stack([origin + (radius + reach) * direction + np.array([0.0, POINT_LIFT, 0.0]) for radius in (POINT_NEAR, POINT_FAR)])
     fingers = np.stack([leaning_fingers("right", tip, direction - np.array([0.0, 0.15, 0.0])) for tip in tips])
     orientation = hand_orientation(fingers, np.array([[0.0, -1.0, 0.0]] * 2), "right")
     offsets = Rotation.from_quat(orientation).apply(site_offset("right", lexicon.sites["index fingertip"]))

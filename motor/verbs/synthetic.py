@@ -12,7 +12,9 @@ are performed for the same 42 pairs; their subject changes nothing.
 
 **The verbs** (signer frame of :mod:`mura.recordings`, shoulder widths; ``u(a)`` the unit
 direction toward arc position ``a``, ``C`` the signing centre in front of the chest (:data:`motor.verbs.arc.SIGNING_CENTRE`); each keyframe
-places a named *site* of the hand, from which the wrist follows through the orientation):
+places a named *site* of the hand, from which the wrist follows through the orientation;
+in the one-handed verbs a point ``C + r u(a)`` lies ``0.56 · max(a, 0)`` further out, as
+the right hand reaches its own side with the arm extended):
 
 - ASK: the hooked index fingertip from ``C + 0.45 u(s)`` (raised) to ``C + 0.9 u(o)``,
   pointing at the object at the end.
@@ -87,6 +89,8 @@ _UP = np.array([0.0, 1.0, 0.0])
 _DOWN = -_UP
 _CHIN = np.array([0.0, 0.3, 0.36])
 _HEART = np.array([0.2, -0.35, 0.5])
+#: How much further (shoulder widths) the hands reach at arc position +1, the right side.
+RIGHT_SIDE_REACH = 0.56
 #: MEET's index fingers are held up, leaning less toward the arm's line than other hands.
 MEET_LEAN = 0.4
 
@@ -124,9 +128,18 @@ def _left_of(direction: np.ndarray) -> np.ndarray:
     return _horizontal(np.cross(_UP, direction))
 
 
+def _space(position: float, radius: float, reach: float = 0.0) -> np.ndarray:
+    """A point of the signing space toward arc ``position``: ``radius`` from the signing
+    centre, ``reach · max(position, 0)`` further toward the right side (one-handed verbs:
+    :data:`RIGHT_SIDE_REACH`, the right hand reaching its own side with the arm extended
+    rather than next to its shoulder; two-handed verbs stay nearer the middle, where the
+    left hand can follow)."""
+    return CHEST + (radius + reach * max(position, 0.0)) * arc_direction(position)
+
+
 def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
-    start = CHEST + 0.45 * arc_direction(s) + 0.3 * _UP
-    end = CHEST + 0.9 * arc_direction(o) + 0.25 * _UP
+    start = _space(s, 0.45, RIGHT_SIDE_REACH) + 0.3 * _UP
+    end = _space(o, 0.9, RIGHT_SIDE_REACH) + 0.25 * _UP
     return {"right": [
         _Key("index fingertip", start, arc_direction(o) + 0.8 * _UP, _DOWN),
         _Key("index fingertip", end, arc_direction(o) - 0.2 * _UP, _DOWN),
@@ -134,8 +147,8 @@ def _ask(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
-    start = CHEST + 0.6 * arc_direction(s) + 0.15 * _UP
-    end = CHEST + 0.9 * arc_direction(o) + 0.15 * _UP
+    start = _space(s, 0.6) + 0.15 * _UP
+    end = _space(o, 0.9) + 0.15 * _UP
     across = np.array([0.2, 0.0, 0.0])  # side by side, the left hand to the signer's left
     first, last = arc_direction(0.5 * s) + 0.3 * _UP, arc_direction(o) + 0.3 * _UP  # outward, then at the object
     return {
@@ -146,8 +159,8 @@ def _give(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
     lift = 0.3 * _UP
-    right, left = CHEST + 0.7 * arc_direction(s) + lift, CHEST + 0.7 * arc_direction(o) + lift
-    middle = CHEST + 0.7 * arc_direction(0.5 * (s + o)) + lift
+    right, left = _space(s, 0.7) + lift, _space(o, 0.7) + lift
+    middle = _space(0.5 * (s + o), 0.7) + lift
     toward_subject = _horizontal(right - left)
     palm = np.array([1.0, 0.0, 1.0])  # the right palm toward the midline and forward; the left mirrors it
     mirror = np.array([-1.0, 1.0, 1.0])
@@ -164,14 +177,14 @@ def _meet(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _scold(s: float, o: float) -> Mapping[str, list[_Key]]:
-    base = _HEART + 0.6 * arc_direction(o)
+    base = _HEART - CHEST + _space(o, 0.6, RIGHT_SIDE_REACH)
     raised = _Key("index fingertip", base + 0.2 * _UP, _UP + 0.3 * arc_direction(o), np.array([1.0, 0.0, 0.5]))
     wag = _Key("index fingertip", base + 0.12 * arc_direction(o) - 0.05 * _UP, arc_direction(o) + 0.3 * _UP, _DOWN)
     return {"right": [raised, wag, raised, wag]}
 
 
 def _tell(s: float, o: float) -> Mapping[str, list[_Key]]:
-    end = CHEST + 0.9 * arc_direction(o) + 0.45 * _UP
+    end = _space(o, 0.9, RIGHT_SIDE_REACH) + 0.45 * _UP
     return {"right": [
         _Key("index fingertip", _CHIN, _UP - 0.6 * np.array([0.0, 0.0, 1.0]), np.array([-1.0, 0.0, -1.0]), 0.0),
         _Key("index fingertip", end, arc_direction(o) + 0.1 * _UP, _DOWN),
@@ -179,11 +192,11 @@ def _tell(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _copy(s: float, o: float) -> Mapping[str, list[_Key]]:
-    left_palm = CHEST + 0.8 * arc_direction(o) + 0.2 * _UP
+    left_palm = _space(o, 0.8) + 0.2 * _UP
     facing = -_left_of(arc_direction(o))  # the left palm faces the signer's right of the object's direction
     fingers = arc_direction(o) + 0.4 * _UP
     start = left_palm + 0.03 * facing
-    end = CHEST + 0.45 * arc_direction(s) + 0.2 * _UP
+    end = _space(s, 0.45) + 0.2 * _UP
     left_key = _Key("palm centre", left_palm, fingers, facing)
     return {
         "right": [_Key("palm centre", start, fingers, -facing), _Key("palm centre", end, arc_direction(s) + 0.4 * _UP, -facing)],
@@ -193,7 +206,7 @@ def _copy(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
     middle = arc_direction(0.5 * (s + o))
-    opening = CHEST + 0.7 * middle + 0.2 * _UP
+    opening = _space(0.5 * (s + o), 0.7) + 0.2 * _UP
     path = _horizontal(arc_direction(o) - arc_direction(s))
     fingers = middle + 0.6 * (arc_direction(o) - arc_direction(s))  # leading along the path, turning with it
     left_key = _Key("C opening", opening, _UP, -middle, 0.0)
@@ -204,9 +217,9 @@ def _email(s: float, o: float) -> Mapping[str, list[_Key]]:
 
 
 def _send(s: float, o: float) -> Mapping[str, list[_Key]]:
-    back = CHEST + 0.45 * arc_direction(s) + 0.1 * _UP
+    back = _space(s, 0.45) + 0.1 * _UP
     left_key = _Key("back of hand", back, np.array([-0.5, 0.0, 1.0]), _DOWN)
-    end = CHEST + 0.9 * arc_direction(o) + 0.25 * _UP
+    end = _space(o, 0.9) + 0.25 * _UP
     return {
         "right": [_Key("fingertips", back + 0.03 * _UP, arc_direction(o) - 0.5 * _UP, _DOWN), _Key("fingertips", end, arc_direction(o) + 0.2 * _UP, _DOWN)],
         "left": [left_key, left_key],

@@ -37,7 +37,7 @@ def test_gmm_start_lies_in_the_high_likelihood_region(models, session, verb, arr
     point_start = model.predict("point", *arrangement).locations["right"][0]
     assert path_score(density, point_start, offsets)[0] <= best + 1e-9
     recorded = density.log_density(np.concatenate([p.hands["right"].location for p in session.of(verb)]))
-    assert best >= np.percentile(recorded, 10)  # the path runs where the recorded hands mostly were
+    assert best >= np.percentile(recorded, 5)  # the path runs where 95 % of the recorded hands were as likely
     assert density.log_density(start[None])[0] >= recorded.min()  # and starts among them
 
 
