@@ -5,7 +5,8 @@ of all *other* arrangements and asked for the held-out one; their prediction is 
 with each held-out performance:
 
 - **location** (cm): distance between predicted and recorded wrist locations, mean over
-  hands and keyframes;
+  hands and keyframes; **start** (cm): the same for the right hand's first keyframe alone
+  (where TELL touches the chin, SCOLD starts at the heart);
 - **direction** (°): angle between predicted and recorded movement vectors between
   consecutive keyframes, mean over the hands' segments that move at least
   :data:`MIN_STEP` in the recording (a hand that holds still has no direction);
@@ -51,6 +52,7 @@ class Scores:
     model: str
     folds: int
     location_cm: float
+    start_cm: float
     direction_deg: float
     orientation_deg: float
     relation_cm: float | None = None
@@ -85,6 +87,7 @@ def measure(entry: VerbEntry, lexicon: VerbLexicon, form: VerbForm, recording: P
     out: dict[str, float] = {}
     location = [np.linalg.norm(form.locations[h] - recording.hands[h].location, axis=1) for h in entry.hands]
     out["location_cm"] = cm * float(np.mean(location))
+    out["start_cm"] = cm * float(location[0][0])
     angles = []
     for hand in entry.hands:
         recorded, predicted = np.diff(recording.hands[hand].location, axis=0), np.diff(form.locations[hand], axis=0)
@@ -140,7 +143,8 @@ def _summary(entry: VerbEntry, kind: str, folds: int, measured: list[dict[str, f
         limit = 100.0 * entry.relation.within
         within = float(np.mean([m["contact_cm"] <= limit for m in measured]))
     return Scores(
-        entry.gloss, kind, folds, mean("location_cm") or 0.0, mean("direction_deg") or 0.0, mean("orientation_deg") or 0.0,
+        entry.gloss, kind, folds, mean("location_cm") or 0.0, mean("start_cm") or 0.0, mean("direction_deg") or 0.0,
+        mean("orientation_deg") or 0.0,
         mean("relation_cm"), mean("contact_cm"), within,
     )  # fmt: skip
 
@@ -152,19 +156,20 @@ def scores_table(scores: Sequence[Scores]) -> str:
         return "–" if value is None else f"{value:.{digits}f}"
 
     lines = [
-        "| verb | model | location (cm) | direction (°) | orientation (°) | left–right (cm) | contact (cm) | contact within tolerance |",
-        "|---|---|---:|---:|---:|---:|---:|---:|",
+        "| verb | model | location (cm) | start (cm) | direction (°) | orientation (°) | left–right (cm) | contact (cm) | contact within tolerance |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for s in scores:
         within = "–" if s.contact_within is None else f"{100.0 * s.contact_within:.0f} %"
         lines.append(
-            f"| {s.verb} | {s.model} | {cell(s.location_cm)} | {cell(s.direction_deg)} | {cell(s.orientation_deg)} "
+            f"| {s.verb} | {s.model} | {cell(s.location_cm)} | {cell(s.start_cm)} | {cell(s.direction_deg)} | {cell(s.orientation_deg)} "
             f"| {cell(s.relation_cm)} | {cell(s.contact_cm)} | {within} |"
         )
     for kind in dict.fromkeys(s.model for s in scores):
         rows = [s for s in scores if s.model == kind]
         lines.append(
-            f"| **all verbs** | {kind} | {np.mean([s.location_cm for s in rows]):.1f} | {np.mean([s.direction_deg for s in rows]):.1f} "
+            f"| **all verbs** | {kind} | {np.mean([s.location_cm for s in rows]):.1f} | {np.mean([s.start_cm for s in rows]):.1f} "
+            f"| {np.mean([s.direction_deg for s in rows]):.1f} "
             f"| {np.mean([s.orientation_deg for s in rows]):.1f} | | | |"
         )
     return "\n".join(lines)

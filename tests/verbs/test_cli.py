@@ -16,7 +16,7 @@ def test_evaluate_prints_the_table(capsys, tmp_path):
     assert main(["verbs", "evaluate", "--folds", "1", "--plot", str(plot)]) == 0
     out = capsys.readouterr().out
     assert "SYNTHETIC" in out
-    assert "| verb | model | location (cm) | direction (°) | orientation (°) |" in out
+    assert "| verb | model | location (cm) | start (cm) | direction (°) | orientation (°) |" in out
     for verb in ("ASK", "GIVE", "MEET", "SCOLD", "TELL", "COPY", "EMAIL", "SEND"):
         for kind in ("point", "vector", "uninflected"):
             assert f"| {verb} | {kind} |" in out
