@@ -182,7 +182,7 @@ class _UtteranceReader:
             errors.append(self.source.error("utterance has neither spoken text nor behaviours", utterance))
         if errors:
             raise errors[0] if len(errors) == 1 else SpecErrors(errors)
-        return Utterance(tuple(chunks), tuple(behaviors), self.source.file, tuple(self.placed.values()))
+        return Utterance(tuple(chunks), tuple(behaviors), self.source.file, space=tuple(self.placed.values()))
 
     # -- speech ---------------------------------------------------------------------
 
@@ -239,7 +239,7 @@ class _UtteranceReader:
         if (gesture is not None or sign is not None or spatial is not None) and timing is None:
             raise self.source.error(f"{body.tag} {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
-        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial)
+        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial=spatial)
 
     def _read_sign(self, element: etree._Element, behavior_id: str) -> Sign:
         """A sign behaviour: ``<hamnosys>`` text (HamNoSys 4 Unicode) or a SiGML
@@ -303,18 +303,41 @@ class _UtteranceReader:
     def _read_function_gesture(self, function: etree._Element, gesture: etree._Element, behavior_id: str, scope: str | None) -> Gesture:
         name = function.get("name", "")
         params = {param.get("name"): param.get("value") for param in function.iterchildren("param")}
-        call = FunctionCall(name, params, self.source.where(function))
-        entry = self.lexicon.entry(name)
-        if entry is None:
+        if self.lexicon.entry(name) is None:
             known = ", ".join(sorted(self.lexicon.entries)) or "none"
             raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function, "name")
-        try:
-            bound = bind_params(entry, params)
-        except ValueError as error:
-            raise self.source.error(str(error), function) from None
-        reader = _ConstraintReader(entry.source, self.lexicon.unit, self.scene, bound, call_site=self.source.where(function))
-        tree = reader.read_root(entry.constraints, _arm_or_none(scope))
-        return Gesture(gesture.get("id") or behavior_id, tree, call, scope, self.source.where(gesture))
+        call = FunctionCall(name, params, self.source.where(function))
+        return function_gesture(call, gesture.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(gesture))
+
+
+def function_gesture(
+    call: FunctionCall,
+    gesture_id: str,
+    scope: str | None,
+    lexicon: GestureLexicon,
+    scene: Mapping[str, SceneLocation],
+    where: SourceLocation | None,
+) -> Gesture:
+    """The gesture a lexicon function makes for ``call`` (raises :class:`SpecError` at the
+    call's place for an unknown function or a missing parameter); also read by BML."""
+    entry = lexicon.entry(call.name)
+    if entry is None:
+        known = ", ".join(sorted(lexicon.entries)) or "none"
+        raise SpecError(f"unknown gesture function {call.name!r} (the lexicon has: {known})", call.where)
+    try:
+        bound = bind_params(entry, call.params)
+    except ValueError as error:
+        raise SpecError(str(error), call.where) from None
+    reader = _ConstraintReader(entry.source, lexicon.unit, scene, bound, call_site=call.where)
+    tree = reader.read_root(entry.constraints, _arm_or_none(scope))
+    return Gesture(gesture_id, tree, call, scope, where)
+
+
+def read_gesture_element(source: XmlSource, element: etree._Element, behavior_id: str, lexicon: GestureLexicon, unit: str = "m") -> Gesture:
+    """A MURML ``<gesture>``-like element (``<function>`` or ``<constraints>`` inside, plain
+    names without a namespace) read as the MURML reader reads it; lengths without a unit are
+    in ``unit``. BML reads the MURML gestures it embeds with it."""
+    return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon)._read_gesture(element, behavior_id)
 
 
 def _timing_element(behaviorspec: etree._Element, body: etree._Element) -> etree._Element | None:
