@@ -33,6 +33,7 @@ MODULES: tuple[str, ...] = (
     "bench.motion_quality",
     "bench.motion_audit",
     "bench.memory",
+    "bench.verbs",
 )
 
 #: Keys of a module's figures too detailed for the terminal table (they stay in --json).

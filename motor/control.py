@@ -53,6 +53,7 @@ from motor.program.lmp import (
 )
 from motor.signing.behavior import SignBehaviorPlanner
 from motor.trajectory.spline import fitts_duration
+from motor.verbs.behavior import VerbBehaviorPlanner
 from mura.model import BehaviorSpec
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
@@ -86,6 +87,7 @@ class MotorControl:
         self.fps = float(fps)
         self.planner = Planner(avatar)
         self.signs = SignBehaviorPlanner(avatar)
+        self.verbs = VerbBehaviorPlanner(avatar)
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
@@ -115,6 +117,8 @@ class MotorControl:
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
         """Arms, natural stroke duration and preparation distance of ``behavior``."""
+        if behavior.spatial is not None:
+            return self.verbs.demands(behavior)
         if behavior.sign is not None:
             return self.signs.demands(behavior)
         return self.planner.demands(behavior)
@@ -122,7 +126,9 @@ class MotorControl:
     def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
         """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
         activated so far) to the start of the stroke; arms the stroke leaves free are absent."""
-        if behavior.sign is not None:
+        if behavior.spatial is not None:
+            targets = self.verbs.first_wrists(behavior)
+        elif behavior.sign is not None:
             targets = self.signs.first_wrists(behavior)
         else:
             fragment = self.planner.fragment(behavior)
@@ -141,7 +147,10 @@ class MotorControl:
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
     ) -> MotorProgram:
         """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program.gesture`;
-        a sign behaviour: :mod:`motor.signing.behavior`)."""
+        a sign behaviour: :mod:`motor.signing.behavior`; pointing and indicating verbs:
+        :mod:`motor.verbs.behavior`)."""
+        if behavior.spatial is not None:
+            return self.verbs.plan(behavior, pegs, next_gesture_follows)
         if behavior.sign is not None:
             return self.signs.plan(behavior, pegs, next_gesture_follows)
         states = {arm: self.timeline((arm, "wrist_position")).state(pegs.start) for arm in ARMS}

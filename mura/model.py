@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from mura.constraints import Constraint
 from mura.errors import SourceLocation
 from mura.signs import Sign
+from mura.space import SpatialReference, SpatialSign
 
 
 @dataclass(frozen=True)
@@ -130,7 +131,8 @@ class BehaviorSpec:
 
     ``kind`` is the element that carried it (``gesture``, ``sign``, or another behaviour
     such as ``facial`` kept for the timeline). A ``sign`` behaviour carries a HamNoSys/SiGML
-    sign performed by the arms, timed like a gesture. ``chunk`` is the index of the chunk
+    sign performed by the arms, timed like a gesture, or a ``spatial`` sign: pointing at an
+    arc position or an indicating verb (:mod:`mura.space`). ``chunk`` is the index of the chunk
     whose time tags the affiliate names, None for absolute timing; for a BML behaviour
     (:class:`SyncTiming`) the chunk it is timed with. ``params`` are the attributes of a
     behaviour no motor module reads yet (BML ``<head lexeme="NOD" repetition="2">``), kept
@@ -145,11 +147,12 @@ class BehaviorSpec:
     where: SourceLocation | None = field(default=None, compare=False)
     sign: Sign | None = None
     params: tuple[tuple[str, str], ...] = ()
+    spatial: SpatialSign | None = None
 
     @property
     def moves_arms(self) -> bool:
         """True for the behaviours the motor core performs: gestures and signs."""
-        return self.gesture is not None or self.sign is not None
+        return self.gesture is not None or self.sign is not None or self.spatial is not None
 
 
 @dataclass(frozen=True)
@@ -191,6 +194,7 @@ class Utterance:
     source: str = "<input>"
     constraints: tuple[SyncConstraint, ...] = ()
     warnings: tuple[str, ...] = ()
+    space: tuple[SpatialReference, ...] = ()
 
     @property
     def time_tags(self) -> Mapping[str, TimeTag]:

@@ -65,6 +65,7 @@ from mura.model import (
 from mura.schema import validate_murml
 from mura.sigml import read_sign_element
 from mura.signs import Sign
+from mura.space import SpatialReference, is_spatial_sign, read_space, read_spatial_sign
 from mura.values import (
     Direction,
     Location,
@@ -121,8 +122,11 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None) ->
     scene = dict(lexicon.scene)
     for child in root.iterchildren("scene"):
         scene.update(read_scene(source, child, unit))
+    placed: dict[str, SpatialReference] = {}
+    for child in root.iterchildren("space"):
+        read_space(source, child, placed)
     return tuple(
-        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon).read(child)
+        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, placed=dict(placed)).read(child)
         for child in root.iterchildren("utterance")
     )
 
@@ -148,10 +152,13 @@ class _UtteranceReader:
     scene: dict[str, SceneLocation]
     lexicon: GestureLexicon
     tags: dict[str, TimeTag] = field(default_factory=dict)
+    placed: dict[str, SpatialReference] = field(default_factory=dict)
 
     def read(self, utterance: etree._Element) -> Utterance:
         for child in utterance.iterchildren("scene"):
             self.scene.update(read_scene(self.source, child, self.unit))
+        for child in utterance.iterchildren("space"):
+            read_space(self.source, child, self.placed)
         specification = utterance.find("specification")
         chunks = self._read_specification(specification) if specification is not None else ()
         behaviors: list[BehaviorSpec] = []
@@ -175,7 +182,7 @@ class _UtteranceReader:
             errors.append(self.source.error("utterance has neither spoken text nor behaviours", utterance))
         if errors:
             raise errors[0] if len(errors) == 1 else SpecErrors(errors)
-        return Utterance(tuple(chunks), tuple(behaviors), self.source.file)
+        return Utterance(tuple(chunks), tuple(behaviors), self.source.file, space=tuple(self.placed.values()))
 
     # -- speech ---------------------------------------------------------------------
 
@@ -227,11 +234,12 @@ class _UtteranceReader:
         timing_element = _timing_element(element, body)
         timing = self._read_timing(timing_element, behavior_id) if timing_element is not None else None
         gesture = self._read_gesture(body, behavior_id) if body.tag == "gesture" else None
-        sign = self._read_sign(body, behavior_id) if body.tag == "sign" else None
-        if (gesture is not None or sign is not None) and timing is None:
+        spatial = read_spatial_sign(self.source, body, behavior_id, self.placed) if body.tag == "sign" and is_spatial_sign(body) else None
+        sign = self._read_sign(body, behavior_id) if body.tag == "sign" and spatial is None else None
+        if (gesture is not None or sign is not None or spatial is not None) and timing is None:
             raise self.source.error(f"{body.tag} {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
-        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign)
+        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial=spatial)
 
     def _read_sign(self, element: etree._Element, behavior_id: str) -> Sign:
         """A sign behaviour: ``<hamnosys>`` text (HamNoSys 4 Unicode) or a SiGML

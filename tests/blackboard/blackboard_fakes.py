@@ -75,6 +75,11 @@ class FakeMotor:
         self.sampled_until = 0.0
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
+        if behavior.spatial is not None:  # pointing or an indicating verb: one right-arm stroke here
+            distance = self.distances.get(behavior.id, DEFAULT_DISTANCE)
+            where = {"right": (distance, 0.0, 0.0)}
+            return GestureDemands(frozenset({"right"}), STROKE_PER_SEGMENT, True, False, distance,
+                                  first_wrists=where, last_wrists=where, stroke_distance=0.1)
         gesture = behavior.gesture
         node = gesture.constraints if gesture is not None else behavior.sign.to_constraint()
         scope = (gesture.scope if gesture is not None else None) or ""
