@@ -58,6 +58,7 @@ from blackboard.timeline import BehaviorEntry, ChunkEntry, PlanningSlack, Timeli
 from blackboard.timing import ChunkTiming, GestureRequest, TimingConfig, time_chunk
 from motor.motion import Motion
 from motor.trajectory.spline import fitts_duration
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
 from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
 
@@ -75,7 +76,8 @@ class SchedulerConfig:
     time planning may take). ``voice``/``rate``/``with_audio`` go to the speech requests.
     ``keep_output``: collect the frames and audio into the result; when False they reach
     observers only (``FramesReady``, ``SpeechStarted``), each chunk's audio is dropped once
-    published, and memory stays flat however long the utterance.
+    published, and memory stays flat however long the utterance. ``limits``: a chunk that
+    would make the utterance last past ``max_duration`` (or ``max_frames``) fails.
     """
 
     timing: TimingConfig = TimingConfig()
@@ -86,6 +88,7 @@ class SchedulerConfig:
     with_audio: bool = True
     keep_output: bool = True
     offline_frame_window: float = 1.0
+    limits: Limits = DEFAULT_LIMITS
 
     def __post_init__(self) -> None:
         for name in ("frame_window", "offline_frame_window"):
@@ -517,7 +520,7 @@ class Scheduler:
             self._board_jobs[board] = job
         try:
             self._fill(board, job, previous, now)
-        except (SpeechError, ScheduleError, ValueError) as error:
+        except Exception as error:  # noqa: BLE001 - any failure fails this chunk only; the part performed is kept
             board.error = error
             job.failed = board
             job.timeline.chunk(index).error = f"{type(error).__name__}: {error}"
@@ -559,6 +562,8 @@ class Scheduler:
         board.timing = timing
         board.speech_end = timing.speech_onset + last_word
         board.gestures = self._program(board, job, timing, follows)
+        end = max([board.speech_end] + [g.program.pegs.end for g in board.gestures])
+        self.config.limits.check_performance(end - job.origin, self.motor.fps, f"the utterance, up to chunk {board.index + 1},")
         self._record(board, job, timing)
 
     def _contribute(self, function: Callable, *args) -> Future | object:

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
-from blackboard.errors import TimingConflict
+from blackboard.errors import ScheduleError, TimingConflict
 from blackboard.planning import GestureDemands
 
 _NS = 1_000_000_000
@@ -113,7 +113,13 @@ class ChunkTiming:
     absolute_stretch: PauseStretch | None = None
 
 
-def _ns(seconds: float) -> int:
+#: Largest time the network holds, seconds (about 31 years): beyond it a spec asks for nonsense.
+MAX_SECONDS = 1e9
+
+
+def _ns(seconds: float, name: str = "a time") -> int:
+    if not math.isfinite(seconds) or abs(seconds) > MAX_SECONDS:
+        raise ScheduleError(f"{name}: {seconds} s is not a time the schedule can hold (at most {MAX_SECONDS:g} s)")
     return int(round(seconds * _NS))
 
 
@@ -126,11 +132,11 @@ class TemporalNetwork:
 
     def at_least(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None) -> None:
         """``t[later] − t[earlier] ≥ gap`` seconds."""
-        self._edge(earlier, later, -_ns(gap), name, behavior)
+        self._edge(earlier, later, -_ns(gap, name), name, behavior)
 
     def at_most(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None) -> None:
         """``t[later] − t[earlier] ≤ gap`` seconds."""
-        self._edge(later, earlier, _ns(gap), name, behavior)
+        self._edge(later, earlier, _ns(gap, name), name, behavior)
 
     def exactly(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None) -> None:
         """``t[later] − t[earlier] = gap`` seconds."""

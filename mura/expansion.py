@@ -16,7 +16,8 @@ from __future__ import annotations
 
 from mura.constraints import Constraint, Dynamic, Parallel, Repetition, Sequence, Static, Symmetrical
 from mura.errors import SourceLocation, SpecError
-from mura.limits import Limits, hint
+from mura.limits import LimitError, Limits, hint
+from mura.model import AbsoluteTiming, Utterance
 from mura.signs import Sign
 
 
@@ -59,3 +60,26 @@ def _amount(count: int) -> str:
     """A count for a message: exact when short, else as a power of ten (2**1000 has 302 digits)."""
     text = str(count)
     return text if len(text) <= 12 else f"about 10^{len(text) - 1}"
+
+
+def check_utterance(utterance: Utterance, limits: Limits) -> Utterance:
+    """``utterance`` itself when a model built in Python (not read from a file, where the
+    readers check as they go) keeps within ``limits``: chunk text, absolute times, movements."""
+    for chunk in utterance.chunks:
+        try:
+            limits.check_chunk_text(chunk.text, f"chunk {chunk.index + 1}")
+        except LimitError as error:
+            raise SpecError(str(error), SourceLocation(utterance.source)) from None
+    for behavior in utterance.behaviors:
+        where = behavior.where or SourceLocation(utterance.source)
+        if isinstance(behavior.timing, AbsoluteTiming):
+            for which in ("onset", "end"):
+                try:
+                    limits.check_time(getattr(behavior.timing, which), f"timing {which} of {behavior.id!r}:")
+                except LimitError as error:
+                    raise SpecError(str(error), where) from None
+        if behavior.gesture is not None:
+            check_movements(behavior.gesture.constraints, limits, f"gesture {behavior.id!r}", where)
+        if behavior.sign is not None:
+            check_sign(behavior.sign, limits)
+    return utterance

@@ -125,7 +125,9 @@ class Limits:
     def check_performance(self, end: float, fps: float, what: str) -> None:
         """Refuse a performance that would last until ``end`` seconds: past ``max_duration``,
         or more than ``max_frames`` frames at ``fps``."""
-        self.check_time(end, f"{what} would last until")
+        if not math.isfinite(end) or end > self.max_duration:
+            raise LimitError(f"{what} would end at {end:.1f} s, beyond the limit of {self.max_duration:g} s "
+                             f"({hint('max_duration')})")
         frames = end * fps
         if frames > self.max_frames:
             raise LimitError(f"{what} would take {frames:.0f} frames ({end:.1f} s at {fps:g} frames/s), more than the "
