@@ -135,9 +135,9 @@ class Limits:
 
     def _in_range(self, what: str, option: str, value: float, low: float, high: float) -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            raise LimitError(f"{what} must be a finite number, got {value!r}")
+            raise LimitError(f"{what} (--{option}) must be a finite number, got {value!r}")
         if not low <= value <= high:
-            raise LimitError(f"{what} {value:g} is outside {low:g}..{high:g} "
+            raise LimitError(f"{what} (--{option}) {value:g} is outside {low:g}..{high:g} "
                              f"(change the range with --limit min_{option}=N or --limit max_{option}=N)")
         return float(value)
 

@@ -1,4 +1,10 @@
-"""``mura render FILE... -o DIR``: perform utterances offline and save WAV, BVH, timeline and page."""
+"""``mura render FILE... -o DIR``: perform utterances offline and save WAV, BVH, timeline and page.
+
+Every file is rendered on its own: one that fails is reported with its reason and the
+others go on; the exit status is 1 when any failed. Outputs are staged and moved into the
+output folder when the run ends, so an interrupted run leaves the folder as it was. Two
+inputs with the same name, or an output that would replace an input, are refused.
+"""
 
 from __future__ import annotations
 
@@ -9,23 +15,29 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.agent import Agent, PerformanceError
+from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
+from agent.export.names import OutputPlan
+from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import AvatarError
 from mura.errors import SpecError
+from mura.limits import LimitError
 from tts import SpeechError
 
 
 def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake") -> None:
-    """The options every command that builds an :class:`Agent` shares."""
+    """The options every command that builds an :class:`Agent` shares (``--limit`` included)."""
     parser.add_argument("--tts", default=default_tts, choices=("fake", "espeak", "pyttsx3", "default"),
                         help=f"speech backend (default: {default_tts}; 'default' is espeak when available, else fake)")
     parser.add_argument("--avatar", default="max", help="avatar name in specs/avatars or a path to an avatar file (default: max)")
     parser.add_argument("--fps", type=float, default=60.0, help="frames per second of the motion (default: 60)")
     parser.add_argument("--voice", default=None, help="voice of the speech backend")
     parser.add_argument("--rate", type=float, default=1.0, help="relative speaking rate (default: 1.0)")
+    add_limit_option(parser)
 
 
 def make_agent(args: argparse.Namespace) -> Agent:
-    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate)
+    """The agent the options ask for; raises AvatarError, SpeechError or LimitError."""
+    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, limits=limits_from(args))
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -33,7 +45,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "render",
         help="perform utterances offline and save WAV, BVH, timeline JSON and the avatar page",
         description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json and "
-        "NAME.html into the output folder. Files appear only when complete.",
+        "NAME.html into the output folder. Files appear only when the run ends; an interrupted run leaves "
+        "the folder as it was. A file that fails is reported and the others go on.",
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
@@ -44,27 +57,43 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     try:
         agent = make_agent(args)
-    except (AvatarError, SpeechError) as error:
-        print(f"mura render: {error}", file=sys.stderr)
-        return 2
-    status = 0
-    for path in tqdm(args.files, desc="rendering", unit="utterance", disable=len(args.files) < 2, file=sys.stderr):
-        status |= render_one(agent, Path(path), Path(args.output))
-    return status
-
-
-def render_one(agent: Agent, path: Path, output: Path) -> int:
-    """Render one file straight to disk (memory bounded for any length); prints what was
-    written or the one-line reason, returns the exit status."""
+    except (AvatarError, SpeechError, LimitError) as error:
+        return refuse("render", error)
+    output = Path(args.output)
+    plan = OutputPlan(output, args.files)
     try:
-        files = agent.render_files(path, output)
+        with StagedRun(output) as staged:
+            failed = sum(
+                render_one(agent, Path(path), staged.folder, output, plan) != 0
+                for path in tqdm(args.files, desc="rendering", unit="utterance", disable=len(args.files) < 2, file=sys.stderr)
+            )
+            staged.commit()
+    except OutputFolderError as error:
+        return refuse("render", error)
+    if len(args.files) > 1:
+        print(f"rendered {len(args.files) - failed} of {len(args.files)} utterances"
+              + (f"; {failed} failed" if failed else ""), file=sys.stderr)
+    return 1 if failed else 0
+
+
+def render_one(agent: Agent, path: Path, folder: Path, output: Path, plan: OutputPlan | None = None) -> int:
+    """Render one file straight to disk into ``folder`` (memory bounded for any length;
+    ``output`` is where its files end up); prints what was written or the one-line
+    reason, returns the exit status. Nothing but a ``KeyboardInterrupt`` escapes."""
+    try:
+        if plan is not None:
+            plan.claim(str(path), path.stem)
+        files = agent.render_files(path, folder)
     except SpecError as error:
         print(str(error), file=sys.stderr)
         return 1
     except (PerformanceError, SpeechError, ValueError, OSError) as error:
         print(f"{path}: {error}", file=sys.stderr)
         return 1
-    print(f"{path}: {files.duration:.2f} s -> {files.html}")
+    except Exception as error:  # noqa: BLE001 - one failing item never stops the batch
+        print(f"{path}: {describe_failure(error)}", file=sys.stderr)
+        return 1
+    print(f"{path}: {files.duration:.2f} s -> {output / files.html.name}")
     for warning in files.warnings:
         print(f"{path}: warning: {warning}", file=sys.stderr)
     return 0
