@@ -62,11 +62,11 @@ def run(args: argparse.Namespace) -> int:
     output = Path(args.output)
     plan = OutputPlan(output, args.files)
     try:
-        with StagedRun(output) as staged:
-            failed = sum(
-                render_one(agent, Path(path), staged.folder, output, plan) != 0
-                for path in tqdm(args.files, desc="rendering", unit="utterance", disable=len(args.files) < 2, file=sys.stderr)
-            )
+        with StagedRun(output) as staged, tqdm(args.files, desc="rendering", unit="utterance",
+                                                 disable=len(args.files) < 2, file=sys.stderr) as progress:
+            failed = 0
+            for path in progress:
+                failed += render_one(agent, Path(path), staged.folder, output, plan) != 0
             staged.commit()
     except OutputFolderError as error:
         return refuse("render", error)
