@@ -42,7 +42,7 @@ from motor.body.avatar import Avatar, load_avatar
 from motor.control import MotorControl
 from mura.limits import DEFAULT_LIMITS, Limits
 from tts import SpeechSynthesizer, make_synthesizer
-from tts.interruptible import InterruptibleSynthesizer
+from tts.interruptible import CheckedSynthesizer, InterruptibleSynthesizer
 from tts.playback import PlaybackUnavailable, make_player
 
 #: Longest wait for the speech player to finish the chunk it is playing on close, seconds.
@@ -86,7 +86,7 @@ class Agent:
         (the saved files' stem) must be a plain file name."""
         model, default_name = read_utterance(utterance, self.limits)
         name = check_stem(name) if name is not None else default_name
-        scheduler = Scheduler(self.tts, MotorControl(self.avatar, self.fps), VirtualClock(), self.config)
+        scheduler = Scheduler(CheckedSynthesizer(self.tts), MotorControl(self.avatar, self.fps), VirtualClock(), self.config)
         try:
             result = scheduler.run(model, name)
         finally:
@@ -100,7 +100,7 @@ class Agent:
         ``name`` must be a plain file name: nothing is ever written outside ``directory``."""
         model, default_name = read_utterance(utterance, self.limits)
         name = check_stem(name) if name is not None else default_name
-        return render_to_files(model, directory, self.tts, self.avatar, self.fps, self.config, name)
+        return render_to_files(model, directory, CheckedSynthesizer(self.tts), self.avatar, self.fps, self.config, name)
 
     def subscribe(self, observer: Callable[[Event], None]) -> None:
         """Receive every event of live utterances (chunk states, feedback, frames)."""

@@ -114,7 +114,8 @@ def frame_messages(motion: Motion) -> list[str]:
 class LiveServer:
     """Serves the live page and pushes skeleton, timeline and frames to every client."""
 
-    def __init__(self, motion_template: Motion, *, name: str = "mura live", host: str = "127.0.0.1", port: int = 0) -> None:
+    def __init__(self, motion_template: Motion, *, name: str = "mura live", host: str = "127.0.0.1", port: int = 0,
+                 max_clients: int = MAX_CLIENTS, request_timeout: float = REQUEST_TIMEOUT) -> None:
         rest = Motion(
             motion_template.fps,
             motion_template.joint_names,
@@ -128,7 +129,7 @@ class LiveServer:
         self._history: collections.deque[str] = collections.deque(maxlen=HISTORY_FRAMES)
         self._clients: set[queue.Queue[str | None]] = set()
         self._lock = threading.Lock()
-        self._httpd = _BoundedServer((host, port), self._handler_class(), MAX_CLIENTS)
+        self._httpd = _BoundedServer((host, port), self._handler_class(request_timeout), max_clients)
         bound_host, bound_port = self._httpd.server_address[:2]
         self._hosts = frozenset(f"{name}:{bound_port}" for name in ("127.0.0.1", "localhost", "[::1]", str(bound_host)))
         self._thread = threading.Thread(target=self._httpd.serve_forever, name="mura-live-server", daemon=True)
@@ -188,11 +189,11 @@ class LiveServer:
         with self._lock:
             self._clients.discard(client)
 
-    def _handler_class(self) -> type[BaseHTTPRequestHandler]:
+    def _handler_class(self, request_timeout: float) -> type[BaseHTTPRequestHandler]:
         server = self
 
         class Handler(BaseHTTPRequestHandler):
-            timeout = REQUEST_TIMEOUT
+            timeout = request_timeout
 
             def do_GET(self) -> None:  # noqa: N802 (the http.server name)
                 path = self.path.split("?", 1)[0]

@@ -1,4 +1,4 @@
-"""A speech backend whose calls can be abandoned, for live utterances.
+"""Speech backends whose every failure is a SpeechError, and whose calls can be abandoned.
 
 A backend may hang (a driver that never answers, a speech server that stalls) or fail
 with an exception of its own. Live, neither may stop the agent: an interrupted utterance
@@ -10,7 +10,8 @@ own and waits for it; :meth:`~InterruptibleSynthesizer.cancel` makes every waiti
 raise :class:`SpeechError` at once. Python cannot stop a thread, so a backend that truly
 hangs keeps its worker until it returns; the worker is a daemon and holds nothing but the
 abandoned call, and :meth:`~InterruptibleSynthesizer.close` waits (within a bound) for the
-workers to finish.
+workers to finish. Offline, :class:`CheckedSynthesizer` does the same conversion of
+failures in the calling thread.
 """
 
 from __future__ import annotations
@@ -23,6 +24,31 @@ from tts.speech import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTimi
 
 #: Longest wait for abandoned workers in :meth:`InterruptibleSynthesizer.close`, seconds.
 CLOSE_TIMEOUT = 5.0
+
+
+def speech_error(backend: str, error: BaseException) -> SpeechError:
+    """``error`` as a :class:`SpeechError` naming the backend (itself when it is one)."""
+    if isinstance(error, SpeechError):
+        return error
+    detail = f": {error}" if str(error) else ""
+    return SpeechError(f"the {backend} speech backend failed: {type(error).__name__}{detail}")
+
+
+class CheckedSynthesizer:
+    """``backend`` behind the same protocol, every exception of it a :class:`SpeechError`."""
+
+    def __init__(self, backend: SpeechSynthesizer) -> None:
+        self.backend = backend
+        self.name = backend.name
+
+    def available(self) -> bool:
+        return self.backend.available()
+
+    def synthesize(self, request: SpeechRequest) -> SpeechTiming:
+        try:
+            return self.backend.synthesize(request)
+        except Exception as error:  # noqa: BLE001 - said as a SpeechError naming the backend
+            raise speech_error(self.name, error) from error
 
 
 @dataclass(eq=False)
@@ -78,10 +104,8 @@ class InterruptibleSynthesizer:
             self._calls.discard(call)
         if call.cancelled:
             raise SpeechError(f"speech synthesis ({self.name}) was interrupted")
-        if isinstance(call.error, SpeechError):
-            raise call.error
         if call.error is not None:
-            raise SpeechError(f"the {self.name} speech backend failed: {type(call.error).__name__}: {call.error}") from call.error
+            raise speech_error(self.name, call.error) from call.error
         assert call.result is not None
         return call.result
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from pathlib import Path
 
 from tqdm import tqdm
@@ -36,8 +37,14 @@ def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake"
 
 
 def make_agent(args: argparse.Namespace) -> Agent:
-    """The agent the options ask for; raises AvatarError, SpeechError or LimitError."""
-    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, limits=limits_from(args))
+    """The agent the options ask for; raises AvatarError, SpeechError or LimitError. A
+    fallback (``--tts default`` without espeak-ng) is said in one line on stderr."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        agent = Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, limits=limits_from(args))
+    for warning in caught:
+        print(f"mura {args.command}: {warning.message}", file=sys.stderr)
+    return agent
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:

@@ -62,7 +62,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("text", metavar="TEXT", help="what to say; [t1] places a time tag, *word* emphasizes")
-    parser.add_argument("--tts", choices=sorted(BACKENDS), default=None, help="speech backend (default: espeak, else fake)")
+    parser.add_argument("--tts", choices=[*sorted(BACKENDS), "default"], default="default",
+                        help="speech backend (default: espeak when it can speak here, else fake)")
     parser.add_argument("-o", "--output", metavar="OUT.wav", help="write the audio to this WAV file")
     parser.add_argument("--timings", action="store_true", help="print the phoneme, word and mark table")
     parser.add_argument("--play", action="store_true", help="play the audio on the default sound device")

@@ -39,7 +39,7 @@ def run_mura(*args: str, hooks: list[dict] | None = None, address_space_mb: int 
     """``mura ARGS`` in a fresh Python with the address-space limit and the hooks of
     ``mura_runner.py``; asserts that it printed no traceback."""
     config = json.dumps({"address_space_mb": address_space_mb, "hooks": hooks or []})
-    environment = dict(os.environ, PYTHONPATH=str(REPO), **(env or {}))
+    environment = {**os.environ, "PYTHONPATH": str(REPO), **(env or {})}
     environment.pop("MURA_DEBUG", None)
     done = subprocess.run(
         [sys.executable, str(HERE / "mura_runner.py"), config, "--", *args],
