@@ -18,12 +18,10 @@ import urllib.request
 
 import numpy as np
 import pytest
-from conftest import run_mura
+from conftest import run_mura, utterance
 
 from agent.live_server import LISTEN_BACKLOG, LiveServer
 from motor.motion import Motion
-
-FIG2 = "specs/utterances/fig2_take_this_bar.xml"
 
 
 def _motion(frames: int, start: float = 0.0) -> Motion:
@@ -145,7 +143,9 @@ def test_a_late_page_gets_the_performance_from_its_start(serve):
 
 @pytest.mark.timeout(60)
 def test_play_exits_1_when_a_chunk_fails(tmp_path):
-    done = run_mura("play", FIG2, "--tts", "fake", "--no-browser", "--linger", "0",
+    spec = tmp_path / "two.xml"
+    spec.write_text(utterance('Hi. <time id="b" chunkborder="true"/> There.'))
+    done = run_mura("play", str(spec), "--tts", "fake", "--no-browser", "--linger", "0",
                     hooks=[{"target": "tts.fake:FakeSynthesizer.synthesize", "call": 2, "action": "raise:SpeechError:the voice went away"}])
     assert done.status == 1
-    assert "chunk 2 failed: speech of chunk 2 ('and make it this big.') failed: the voice went away" in done.err
+    assert "chunk 2 failed: speech of chunk 2 ('There.') failed: the voice went away" in done.err
