@@ -8,7 +8,7 @@ import sys
 from mura.limits import DEFAULT_LIMITS, LIMIT_INFO, Limits
 
 _LIMIT_HELP = "raise or lower an input limit for this run (repeatable); NAME is one of " + ", ".join(
-    f"{name} ({info.unit}, default {getattr(DEFAULT_LIMITS, name):g})" for name, info in LIMIT_INFO.items()
+    f"{name} ({info.unit}, default {getattr(DEFAULT_LIMITS, name)})" for name, info in LIMIT_INFO.items()
 )
 
 

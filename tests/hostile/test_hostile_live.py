@@ -18,7 +18,7 @@ import urllib.request
 
 import numpy as np
 import pytest
-from conftest import run_mura, utterance
+from hostile_helpers import run_mura, utterance
 
 from agent.live_server import LISTEN_BACKLOG, LiveServer
 from motor.motion import Motion

@@ -13,7 +13,7 @@ import os
 import threading
 
 import pytest
-from conftest import all_files, run_mura, utterance
+from hostile_helpers import all_files, run_mura, utterance
 
 from agent.cli import main
 from mura.errors import SpecError

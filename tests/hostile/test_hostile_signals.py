@@ -10,7 +10,7 @@ hooks): a deterministic point, no timer.
 from __future__ import annotations
 
 import pytest
-from conftest import all_files, run_mura, utterance
+from hostile_helpers import all_files, run_mura, utterance
 
 from mura.hamnosys import hamnosys_string
 

@@ -15,7 +15,7 @@ written); the memory-hungry ones run in a subprocess under an address-space limi
 from __future__ import annotations
 
 import pytest
-from conftest import absolute_gesture, all_files, run_mura, utterance
+from hostile_helpers import absolute_gesture, all_files, run_mura, utterance
 
 from agent.agent import Agent, PerformanceError
 from agent.cli import main

@@ -10,7 +10,7 @@
 from __future__ import annotations
 
 import pytest
-from conftest import all_files, utterance
+from hostile_helpers import all_files, utterance
 
 from agent.agent import Agent
 from agent.cli import main

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from conftest import absolute_gesture, all_files, run_mura, utterance
+from hostile_helpers import absolute_gesture, all_files, run_mura, utterance
 
 from agent.cli import main
 from mura.constraints import Arm, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static, Symmetrical, Symmetry

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import REPO, run_mura, utterance
+from hostile_helpers import REPO, run_mura, utterance
 
 from agent.agent import Agent, PerformanceError
 from tts import FakeSynthesizer, SpeechError
