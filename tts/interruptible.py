@@ -39,7 +39,7 @@ class CheckedSynthesizer:
 
     def __init__(self, backend: SpeechSynthesizer) -> None:
         self.backend = backend
-        self.name = backend.name
+        self.name = getattr(backend, "name", type(backend).__name__)
 
     def available(self) -> bool:
         return self.backend.available()
@@ -79,7 +79,7 @@ class InterruptibleSynthesizer:
 
     def __init__(self, backend: SpeechSynthesizer) -> None:
         self.backend = backend
-        self.name = backend.name
+        self.name = getattr(backend, "name", type(backend).__name__)
         self._lock = threading.Lock()
         self._calls: set[_Call] = set()
         self._workers: list[threading.Thread] = []
