@@ -7,9 +7,9 @@ render`` would refuse, naming FILE:LINE:COL), is documented in the README, and c
 raised for a legitimate large job: ``--limit max_duration=3600`` on any command, or
 ``Limits(max_duration=3600)`` from Python.
 
-The defaults are about ten times what real inputs need: utterances of the corpora last
-seconds, their chunks (intonational phrases) hold under 200 characters, real signs
-expand to fewer than 50 movements, and gestures span less than a metre.
+The defaults are far above what real inputs need: utterances of the corpora last seconds,
+their chunks (intonational phrases) hold under 200 characters, the largest sign of the
+SiGML corpora expands to 20 movements, and gestures span less than a metre.
 """
 
 from __future__ import annotations

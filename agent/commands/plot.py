@@ -21,6 +21,7 @@ from motor.program.gesture import MotorProgram
 from mura.errors import SpecError
 from mura.limits import LimitError
 from tts import SpeechError, make_synthesizer
+from tts.interruptible import CheckedSynthesizer
 
 
 class _RecordingMotorControl(MotorControl):
@@ -55,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
         fps = limits.check_fps(args.fps)
         config = SchedulerConfig(voice=args.voice, rate=limits.check_rate(args.rate), limits=limits)
         avatar = load_avatar(args.avatar)
-        tts = make_synthesizer(args.tts)
+        tts = CheckedSynthesizer(make_synthesizer(args.tts))
     except (AvatarError, SpeechError, LimitError) as error:
         return refuse("plot", error)
     try:
