@@ -24,7 +24,6 @@ import re
 import select
 import stat
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from lxml import etree
 

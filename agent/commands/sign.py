@@ -34,7 +34,7 @@ from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
-from mura.limits import LimitError, Limits
+from mura.limits import Limits
 from mura.sigml import read_sigml
 from mura.signs import Sign
 from mura.xml_source import XmlSource
