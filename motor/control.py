@@ -119,21 +119,23 @@ class MotorControl:
             return self.signs.demands(behavior)
         return self.planner.demands(behavior)
 
-    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
-        """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
-        programs activated so far) to the start of the stroke; the slowest arm counts."""
+    def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
+        """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
+        activated so far) to the start of the stroke; arms the stroke leaves free are absent."""
         if behavior.sign is not None:
             targets = self.signs.first_wrists(behavior)
         else:
             fragment = self.planner.fragment(behavior)
             targets = {arm: first_location(fragment, arm) for arm in ARMS}
-        longest = 0.0
-        for arm, target in targets.items():
-            if target is None:
-                continue
-            here = self.timeline((arm, "wrist_position")).state(at_time).value
-            longest = max(longest, float(fitts_duration(float(np.linalg.norm(target - here)))))
-        return longest
+        return {
+            arm: float(np.linalg.norm(target - self.timeline((arm, "wrist_position")).state(at_time).value))
+            for arm, target in targets.items() if target is not None
+        }
+
+    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+        """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
+        programs activated so far) to the start of the stroke; the slowest arm counts."""
+        return max((float(fitts_duration(d)) for d in self.preparation_distances(behavior, at_time).values()), default=0.0)
 
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False

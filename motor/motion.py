@@ -26,6 +26,9 @@ class Motion:
             pose.
         root_translation: ``(n, 3)`` position of the root joint, metres.
         start_time: utterance-clock time of frame 0, seconds.
+        face_names: names of the face's morph weights, ARKit blendshape names
+            (``jawOpen``, ``eyeBlinkLeft`` …); empty when the motion has no face.
+        face_weights: ``(n, len(face_names))`` morph weights per frame, 0–1, or None.
     """
 
     fps: float
@@ -35,6 +38,8 @@ class Motion:
     rotations: np.ndarray
     root_translation: np.ndarray
     start_time: float = 0.0
+    face_names: tuple[str, ...] = ()
+    face_weights: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         joints = len(self.joint_names)
@@ -51,6 +56,11 @@ class Motion:
             )
         if self.fps <= 0:
             raise ValueError(f"Motion: fps must be positive, got {self.fps}")
+        faces = (0, 0) if self.face_weights is None else self.face_weights.shape
+        if self.face_names and faces != (self.rotations.shape[0], len(self.face_names)):
+            raise ValueError(f"Motion: face_weights shape {faces}, expected {(self.rotations.shape[0], len(self.face_names))}")
+        if not self.face_names and self.face_weights is not None:
+            raise ValueError("Motion: face_weights given without face_names")
 
     @property
     def frame_count(self) -> int:

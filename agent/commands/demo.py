@@ -11,7 +11,7 @@ from agent.agent import Agent
 from agent.commands.options import add_limit_option, limits_from, refuse
 from agent.commands.render import render_one
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import AvatarError
+from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.limits import LimitError
 from mura.resources import SPECS_DIR
 from tts import SpeechError
@@ -27,7 +27,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "speech if espeak-ng cannot load) into the output folder, and print the address of the avatar page.",
     )
     parser.add_argument("-o", "--output", default="out/demo", metavar="DIR", help="output folder (default: out/demo)")
-    parser.add_argument("--avatar", default="max", help="avatar name (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file (default: {DEFAULT_AVATAR})")
     add_limit_option(parser)
     parser.set_defaults(func=run)
 

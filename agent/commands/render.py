@@ -19,7 +19,7 @@ from agent.agent import Agent, PerformanceError
 from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.names import OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import AvatarError
+from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.errors import SpecError
 from mura.limits import LimitError
 from tts import SpeechError
@@ -29,7 +29,9 @@ def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake"
     """The options every command that builds an :class:`Agent` shares (``--limit`` included)."""
     parser.add_argument("--tts", default=default_tts, choices=("fake", "espeak", "pyttsx3", "default"),
                         help=f"speech backend (default: {default_tts}; 'default' is espeak when available, else fake)")
-    parser.add_argument("--avatar", default="max", help="avatar name in specs/avatars or a path to an avatar file (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR,
+                        help=f"avatar name (max, kim, {DEFAULT_AVATAR}), an avatar file, or your own .vrm/.glb/.gltf humanoid "
+                        f"(default: {DEFAULT_AVATAR}, the skinned avatar built at set-up)")  # fmt: skip
     parser.add_argument("--fps", type=float, default=60.0, help="frames per second of the motion (default: 60)")
     parser.add_argument("--voice", default=None, help="voice of the speech backend")
     parser.add_argument("--rate", type=float, default=1.0, help="relative speaking rate (default: 1.0)")
@@ -51,12 +53,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "render",
         help="perform utterances offline and save WAV, BVH, timeline JSON and the avatar page",
-        description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json and "
-        "NAME.html into the output folder. Files appear only when the run ends; an interrupted run leaves "
-        "the folder as it was. A file that fails is reported and the others go on.",
+        description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json, "
+        "NAME.html and NAME.glb (the avatar with its animation) into the output folder. Files appear only when "
+        "the run ends; an interrupted run leaves the folder as it was. A file that fails is reported and the others go on.",
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
+    parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write NAME.glb")
     add_agent_options(parser)
     parser.set_defaults(func=run)
 
@@ -73,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
                                                  disable=len(args.files) < 2, file=sys.stderr) as progress:
             failed = 0
             for path in progress:
-                failed += render_one(agent, Path(path), staged.folder, output, plan) != 0
+                failed += render_one(agent, Path(path), staged.folder, output, plan, glb=args.glb) != 0
             staged.commit()
     except OutputFolderError as error:
         return refuse("render", error)
@@ -83,14 +86,15 @@ def run(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
-def render_one(agent: Agent, path: Path, folder: Path, output: Path, plan: OutputPlan | None = None) -> int:
+def render_one(agent: Agent, path: Path, folder: Path, output: Path, plan: OutputPlan | None = None, glb: bool = True) -> int:
     """Render one file straight to disk into ``folder`` (memory bounded for any length;
-    ``output`` is where its files end up); prints what was written or the one-line
-    reason, returns the exit status. Nothing but a ``KeyboardInterrupt`` escapes."""
+    ``output`` is where its files end up), with NAME.glb unless ``glb`` is false; prints
+    what was written or the one-line reason, returns the exit status. Nothing but a
+    ``KeyboardInterrupt`` escapes."""
     try:
         if plan is not None:
             plan.claim(str(path), path.stem)
-        files = agent.render_files(path, folder)
+        files = agent.render_files(path, folder, glb=glb)
     except SpecError as error:
         print(str(error), file=sys.stderr)
         return 1

@@ -25,10 +25,12 @@ from tqdm import tqdm
 
 from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
 from agent.export.names import OutputNameError, OutputPlan
+from agent.export.page_model import page_model
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import load_avatar
+from motor.body.avatar import DEFAULT_AVATAR, load_avatar
 from motor.signing.plan import SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
@@ -40,7 +42,7 @@ from mura.signs import Sign
 from mura.xml_source import XmlSource
 
 #: The files one rendered sign is written as.
-SIGN_SUFFIXES = (".bvh", ".html")
+SIGN_SUFFIXES = (".bvh", ".html", ".glb")
 
 #: Longest file name stem derived from a gloss.
 MAX_STEM = 80
@@ -74,7 +76,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("files", nargs="*", metavar="FILE.sigml", help="SiGML documents")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
-    parser.add_argument("--avatar", default="max", help="avatar name or file (default: max)")
+    parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file, or your own .vrm/.glb/.gltf (default: {DEFAULT_AVATAR})")
+    parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write <gloss>.glb")
     parser.add_argument("--fps", type=float, default=25.0, help="frames per second (default: 25)")
     parser.add_argument("--sequence", action="store_true", help="render all signs in order as one performance")
     parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign")
@@ -126,11 +129,11 @@ def _render_all(args: argparse.Namespace, avatar, limits: Limits, fps: float, fo
         except Exception as error:  # noqa: BLE001 - one sign's failure is its own
             record.reason = describe_failure(error)
     if args.sequence:
-        _render_sequence(avatar, plans, folder, fps, outputs)
+        _render_sequence(avatar, plans, folder, fps, outputs, args.glb)
         return records
     names: set[str] = set()
     for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
-        _render_one(avatar, record, plan, folder, fps, names, outputs)
+        _render_one(avatar, record, plan, folder, fps, names, outputs, args.glb)
     return records
 
 
@@ -168,12 +171,13 @@ def safe_stem(gloss: str, taken: set[str]) -> str:
     return candidate
 
 
-def _render_one(avatar, record: SignRecord, plan: SignPlan, folder: Path, fps: float, names: set[str], outputs: OutputPlan) -> None:
+def _render_one(avatar, record: SignRecord, plan: SignPlan, folder: Path, fps: float, names: set[str], outputs: OutputPlan,
+                glb: bool = True) -> None:
     try:
         stem = safe_stem(plan.gloss, names)
         outputs.claim(f"sign {plan.gloss!r}", stem, SIGN_SUFFIXES)
         signed = realize_signs(avatar, [plan], fps)
-        record.files = _write_performance(signed, folder, stem, plan.gloss, outputs.folder)
+        record.files = _write_performance(signed, folder, stem, plan.gloss, outputs.folder, avatar if glb else None, avatar)
     except OutputNameError as error:
         record.reason = str(error)
         return
@@ -185,13 +189,14 @@ def _render_one(avatar, record: SignRecord, plan: SignPlan, folder: Path, fps: f
     record.warnings = signed.warnings
 
 
-def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan) -> None:
+def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan,
+                     glb: bool = True) -> None:
     if not plans:
         return
     try:
         outputs.claim("the sequence", "sequence", SIGN_SUFFIXES)
         signed = realize_signs(avatar, [plan for _, plan in plans], fps)
-        files = _write_performance(signed, folder, "sequence", "sequence", outputs.folder)
+        files = _write_performance(signed, folder, "sequence", "sequence", outputs.folder, avatar if glb else None, avatar)
     except Exception as error:  # noqa: BLE001 - reported on every sign of the sequence
         for record, _ in plans:
             record.reason = f"the sequence failed: {describe_failure(error)}"
@@ -222,12 +227,19 @@ def timeline_of(signed: SignedMotion, name: str) -> dict:
     }  # fmt: skip
 
 
-def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str, output: Path) -> tuple[str, ...]:
-    """Write the BVH and the page into ``folder``; returns their paths in ``output``, where they end up."""
+def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str, output: Path, glb_avatar=None,
+                       page_avatar=None) -> tuple[str, ...]:
+    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB,
+    written into ``folder``; returns their paths in ``output``, where they end up."""
     write_bvh(signed.motion, folder / f"{stem}.bvh")
     files = [str(output / f"{stem}.bvh")]
+    if glb_avatar is not None:
+        write_motion_glb(signed.motion, folder / f"{stem}.glb", motion_model(glb_avatar), glb_avatar.root_height)
+        files.append(str(output / f"{stem}.glb"))
     try:
-        write_html(folder / f"{stem}.html", name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None)
+        model = page_model(page_avatar) if page_avatar is not None else None
+        write_html(folder / f"{stem}.html", name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name),
+                   wav_filename=None, model=model)
         files.append(str(output / f"{stem}.html"))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)

@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import TextIO
 from urllib.parse import quote
 
+from agent.export.page_model import PageModel, model_tags, write_sidecar
 from agent.export.staging import staged_text
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -43,6 +44,7 @@ def write_html(
     bvh_text: str,
     timeline: dict,
     wav_filename: str | None,
+    model: PageModel | None = None,
 ) -> None:
     """Write the avatar page for one performance to ``path``.
 
@@ -53,21 +55,25 @@ def write_html(
         timeline: the scheduler's timeline (chunks, behaviours, words, ...), JSON-serializable.
         wav_filename: the speech audio, relative to the page's folder, or ``None`` for a
             silent page (a wall clock then drives the animation).
+        model: the avatar's own model to draw (its sidecar script is written beside the
+            page), or None for the joint-and-capsule figure.
 
     Raises:
         ViewerNotBuiltError: the viewer bundle has not been built.
         ValueError: ``timeline`` is not a JSON object of finite numbers, or ``bvh_text``
             does not look like BVH, or ``wav_filename`` is absolute.
     """
-    page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename)
+    page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename, model=model)
+    if model is not None:
+        write_sidecar(model, Path(path).parent)
     with staged_text(path) as stream:
         stream.write(page)
 
 
-def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None) -> str:
-    """The page :func:`write_html` writes, as a string."""
+def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None, model: PageModel | None = None) -> str:
+    """The page :func:`write_html` writes, as a string (the model's sidecar not written)."""
     _check_bvh_start(bvh_text)
-    head, tail = _page_around_bvh(name, timeline, wav_filename)
+    head, tail = _page_around_bvh(name, timeline, wav_filename, model)
     return head + _script_json(json.dumps(bvh_text)) + tail
 
 
@@ -78,18 +84,20 @@ def write_html_stream(
     bvh_blocks: Iterable[str],
     timeline: dict,
     wav_filename: str | None,
+    model: PageModel | None = None,
 ) -> None:
     """Write the page :func:`render_html` makes to ``stream``, the BVH text coming in pieces.
 
     ``bvh_blocks`` concatenated is the whole BVH file; its first piece must hold the header
     up to ``MOTION`` (as ``StreamingBvh.text_blocks`` yields it). Each piece is escaped on
     its own (JSON string escaping works character by character), so the bytes equal
-    :func:`write_html`'s. Raises as :func:`write_html` does, before writing anything.
+    :func:`write_html`'s. Raises as :func:`write_html` does, before writing anything. The
+    model's sidecar is the caller's to write (:func:`~agent.export.page_model.write_sidecar`).
     """
     blocks = iter(bvh_blocks)
     first = next(blocks, "")
     _check_bvh_start(first)
-    head, tail = _page_around_bvh(name, timeline, wav_filename)
+    head, tail = _page_around_bvh(name, timeline, wav_filename, model)
     stream.write(head)
     stream.write('"')
     stream.write(_script_json(_json_string_body(first)))
@@ -109,7 +117,7 @@ def _json_string_body(text: str) -> str:
     return json.dumps(text)[1:-1]
 
 
-def _page_around_bvh(name: str, timeline: dict, wav_filename: str | None) -> tuple[str, str]:
+def _page_around_bvh(name: str, timeline: dict, wav_filename: str | None, model: PageModel | None = None) -> tuple[str, str]:
     """The page before and after the embedded BVH JSON string, checking the arguments."""
     if not isinstance(timeline, dict):
         raise ValueError(f"write_html: timeline must be a dict (a JSON object), got {type(timeline).__name__}")
@@ -134,7 +142,8 @@ def _page_around_bvh(name: str, timeline: dict, wav_filename: str | None) -> tup
     tail = (
         "</script>\n"
         f'<script type="application/json" id="mura-timeline">{_script_json(timeline_json)}</script>\n'
-        f"<script>\n{_script_code(_viewer_bundle())}\n</script>\n"
+        + (model_tags(model) if model is not None else "")
+        + f"<script>\n{_script_code(_viewer_bundle())}\n</script>\n"
         "</body>\n</html>\n"
     )
     return head, tail

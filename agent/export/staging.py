@@ -23,7 +23,7 @@ import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TextIO
+from typing import BinaryIO, TextIO
 
 from agent.signals import signals_deferred
 
@@ -74,6 +74,21 @@ def staged_file(target: str | os.PathLike[str]) -> Iterator[Path]:
             temporary.unlink(missing_ok=True)
         raise
     try:
+        publish(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+
+
+@contextmanager
+def staged_binary(target: str | os.PathLike[str]) -> Iterator[BinaryIO]:
+    """A binary stream whose content becomes ``target`` only if the block ends without error."""
+    path = Path(target)
+    handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".part")
+    temporary = Path(name)
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            yield stream
         publish(temporary, path)
     except BaseException:
         temporary.unlink(missing_ok=True)

@@ -28,6 +28,12 @@ from mura.murml_vocabulary import GRID_DISTANCES, GRID_HEIGHTS, GRID_LATERALS
 from mura.values import FINGERS
 
 AVATAR_DIR = Path(__file__).resolve().parents[2] / "specs" / "avatars"
+#: Avatars built at set-up (``make setup``: the skinned ``makehuman`` avatar), found by name too.
+BUILT_AVATAR_DIR = Path(__file__).resolve().parents[2] / "build" / "avatars"
+#: The avatar the page and the demo use by default (built at set-up).
+DEFAULT_AVATAR = "makehuman"
+#: Users' own avatar files, read as humanoids (:mod:`motor.body.humanoid`).
+MODEL_SUFFIXES = (".vrm", ".glb", ".gltf")
 
 SIDES: tuple[str, ...] = ("l", "r")
 #: The arms as the scheduler and the specs name them, and their side prefixes.
@@ -242,16 +248,25 @@ def check_side(side: str) -> str:
 
 
 def load_avatar(name_or_path: str | Path) -> Avatar:
-    """Load and validate an avatar: a name in ``specs/avatars/`` (``"max"``) or a path.
+    """Load and validate an avatar: a name in ``specs/avatars/`` (``"max"``) or
+    ``build/avatars/`` (``"makehuman"``), a path to an avatar file, or a user's VRM/glTF
+    humanoid (``.vrm``, ``.glb``, ``.gltf``; see :mod:`motor.body.humanoid`).
 
     Raises AvatarError naming the file and the offending field.
     """
     path = Path(name_or_path)
+    if path.suffix.lower() in MODEL_SUFFIXES:
+        from motor.body.humanoid import humanoid_definition  # reads glTF only when asked to
+
+        return _Reader(path.name).avatar(humanoid_definition(path).document, str(path))
     if path.suffix != ".json":
         path = AVATAR_DIR / f"{name_or_path}.json"
+        if not path.is_file() and (BUILT_AVATAR_DIR / f"{name_or_path}.json").is_file():
+            path = BUILT_AVATAR_DIR / f"{name_or_path}.json"
     if not path.is_file():
-        known = ", ".join(sorted(p.stem for p in AVATAR_DIR.glob("*.json")))
-        raise AvatarError(f"{path.name}: no such avatar file (known avatars: {known})")
+        known = ", ".join(sorted({p.stem for folder in (AVATAR_DIR, BUILT_AVATAR_DIR) for p in folder.glob("*.json")}))
+        hint = " (built avatars appear after `make setup`)" if str(name_or_path) == DEFAULT_AVATAR else ""
+        raise AvatarError(f"{path.name}: no such avatar file (known avatars: {known}){hint}")
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as error:

@@ -19,7 +19,8 @@ names them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -76,6 +77,15 @@ class GestureDemands:
         repeatable: the stroke can be performed again to fill a longer affiliate.
         preparation_distance: metres from the rest position to the stroke's start (the
             farthest of the arms used).
+        first_wrists, last_wrists: per arm, where the wrist is when the stroke starts and
+            ends (avatar frame, metres); arms whose location is unconstrained are absent.
+            The scheduler times a preparation from one stroke's end to the next with them.
+        stroke_distance: metres the wrist travels in one performance of the stroke (the
+            farthest-travelling arm); with ``manner`` it bounds how fast the stroke may be.
+        manner: the movement manner whose speed budget
+            (``motor.trajectory.speed_budget.budget``) bounds the preparation and stroke.
+        repetition_return: natural seconds from the stroke's end back to its start, what
+            each repetition beyond the first adds besides the stroke itself.
     """
 
     arms: frozenset[str]
@@ -83,6 +93,11 @@ class GestureDemands:
     dynamic: bool
     repeatable: bool
     preparation_distance: float
+    first_wrists: Mapping[str, tuple[float, float, float]] = field(default_factory=dict)
+    last_wrists: Mapping[str, tuple[float, float, float]] = field(default_factory=dict)
+    stroke_distance: float = 0.0
+    manner: str | None = None
+    repetition_return: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,7 +192,15 @@ class Planner:
             default=0.0,
         )  # fmt: skip
         dynamic = fragment.duration > 0.0
-        return GestureDemands(arms, fragment.duration, dynamic, dynamic, distance)
+        paths = {arm: np.asarray([key.value for key in keys], dtype=float)
+                 for (arm, feature), keys in fragment.tracks.items() if feature == "location" and keys}
+        return GestureDemands(
+            arms, fragment.duration, dynamic, dynamic, distance,
+            first_wrists={arm: tuple(path[0]) for arm, path in paths.items()},
+            last_wrists={arm: tuple(path[-1]) for arm, path in paths.items()},
+            stroke_distance=max((float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) for path in paths.values()), default=0.0),
+            repetition_return=Compiler(self.avatar, behavior.id).transition(fragment, fragment) if dynamic else 0.0,
+        )
 
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, repetitions: int = 1, next_gesture_follows: bool = False

@@ -88,17 +88,17 @@ class FakeMotor:
             arms = frozenset({"right"})
         dynamic = any(isinstance(leaf, Dynamic) for leaf in iter_leaves(node))
         distance = self.distances.get(behavior.id, DEFAULT_DISTANCE if arms else HEAD_DISTANCE)
-        return GestureDemands(arms, STROKE_PER_SEGMENT * _count_dynamic(node), dynamic, dynamic and self.repeatable, distance)
+        where = {arm: (distance, 0.0, 0.0) for arm in arms}  # the stroke holds at its distance from rest
+        return GestureDemands(arms, STROKE_PER_SEGMENT * _count_dynamic(node), dynamic, dynamic and self.repeatable, distance,
+                              first_wrists=where, last_wrists=where, stroke_distance=0.1 * _count_dynamic(node))
 
     def position(self, arm: str, t: float | np.ndarray) -> np.ndarray:
         times, values = zip(*self.keys[arm])
         return np.interp(t, times, values)
 
-    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+    def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
         d = self.demands(behavior)
-        if not d.arms:
-            return float(fitts_duration(d.preparation_distance))
-        return max(float(fitts_duration(abs(d.preparation_distance - float(self.position(a, at_time))))) for a in d.arms)
+        return {a: abs(d.preparation_distance - float(self.position(a, at_time))) for a in d.arms}
 
     def plan(self, behavior, pegs, *, repetitions=1, next_gesture_follows=False) -> FakeProgram:
         d = self.demands(behavior)

@@ -175,7 +175,7 @@ def test_scheduler_without_output_drops_published_audio(monkeypatch):
 
 def test_mura_render_streams_the_same_files(agent, tmp_path, capsys):
     example = EXAMPLES[0]
-    assert main(["render", str(example), "-o", str(tmp_path / "cli"), "--fps", "60"]) == 0
+    assert main(["render", str(example), "-o", str(tmp_path / "cli"), "--fps", "60", "--avatar", "max"]) == 0
     agent.render(example).save(tmp_path / "saved")
     for suffix in SUFFIXES:
         name = f"{example.stem}{suffix}"

@@ -18,6 +18,8 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { buildAvatar } from './avatar.js';
 import { Clock } from './clock.js';
+import { loadModel, modelSpec } from './model.js';
+import { PLACE_COLOUR, addPlaces } from './places.js';
 import { applyFrame, connectLive } from './live.js';
 import { UNIT, jointBones, parseBVH, skeletonFromLive } from './skeleton.js';
 import { CSS } from './style.js';
@@ -45,10 +47,16 @@ function buildUI() {
   const play = element('button', { id: 'mura-play', type: 'button', textContent: 'Play' }, controls);
   const scrub = element('input', { id: 'mura-scrub', type: 'range', min: '0', max: '1', step: '0.001', value: '0' }, controls);
   const time = element('span', { id: 'mura-time', textContent: '0.00 s' }, controls);
+  const views = element('span', { id: 'mura-views' }, controls);
+  const viewButtons = Object.fromEntries(
+    VIEWS.map(([name, label]) => [name, element('button', { type: 'button', textContent: label, title: `${label} view` }, views)]),
+  );
+  Object.entries(viewButtons).forEach(([name, button]) => (button.dataset.view = name));
   const strip = element('canvas', { id: 'mura-timeline-strip' });
+  const legend = element('div', { id: 'mura-legend' });
   const list = element('section', { id: 'mura-timeline-list' });
-  app.prepend(title, stage, controls, strip, list);
-  return { app, title, stage, status, play, scrub, time, strip, list };
+  app.prepend(title, stage, controls, strip, legend, list);
+  return { app, title, stage, status, play, scrub, time, strip, legend, list, viewButtons };
 }
 
 function buildScene(stage) {
@@ -79,37 +87,89 @@ function buildScene(stage) {
 }
 
 const LEG = /hip|knee|ankle|foot|toe|metatarsal|tarsal/;
+const HAND = /wrist|thumb|index|middle|ring|pinky/;
+const HIP_MARGIN = 0.06; // metres below the root that the front view still shows
+// The page's camera views: name, button label (key 1, 2, 3 switch between them).
+const VIEWS = [
+  ['front', 'Front'],
+  ['hands', 'Hands'],
+  ['side', 'Side'],
+];
 
 function isLeg(bone) {
   for (let node = bone; node?.isBone; node = node.parent) if (LEG.test(node.name)) return true;
   return false;
 }
 
-// Frame the upper body (where gestures happen) from the front (+z) over the given poses,
-// with a floor grid under the lowest point of the body.
-function frameBody(view, root, poses) {
+// Boxes over the given poses (scene units): the upper body with the crown of the head
+// (signing space, hips to head) and the hands; the lowest point of the body for the floor.
+function measurePoses(root, poses) {
   const upper = new Box3();
+  const hands = new Box3();
   const whole = new Box3();
   const point = new Vector3();
+  let lowest = Infinity;
   for (const pose of poses) {
     pose();
     root.updateMatrixWorld(true);
     whole.expandByObject(root);
     root.traverse((node) => {
-      if (node.isBone && !isLeg(node)) upper.expandByPoint(node.getWorldPosition(point));
+      if (!node.isBone || isLeg(node)) return;
+      node.getWorldPosition(point);
+      upper.expandByPoint(point);
+      if (HAND.test(node.name) || (node.name === 'ENDSITE' && HAND.test(node.parent?.name ?? ''))) hands.expandByPoint(point);
+      if (/skullbase/.test(node.name)) upper.expandByPoint(point.clone().add(new Vector3(0, 0.24 * UNIT, 0)));
     });
+    lowest = Math.min(lowest, root.getWorldPosition(point).y - HIP_MARGIN * UNIT);
   }
-  const centre = upper.getCenter(new Vector3());
-  const size = upper.getSize(new Vector3());
-  const extent = Math.max(size.y * 1.25, size.x * 1.1, 40);
-  const distance = (extent * 0.6) / Math.tan((view.camera.fov * Math.PI) / 360);
-  view.camera.position.set(centre.x + distance * 0.15, centre.y + extent * 0.06, centre.z + distance);
+  // signing space: from just below the hips up (hands hanging at rest may leave the frame)
+  upper.min.y = Math.max(upper.min.y, lowest);
+  return { upper, hands, whole };
+}
+
+// Put the camera so that `box` fills the view from `direction` (unit, from the target to the camera).
+function fitBox(view, box, direction, margin) {
+  const centre = box.getCenter(new Vector3());
+  const size = box.getSize(new Vector3());
+  const across = Math.abs(direction.x) > 0.5 ? size.z : size.x;
+  const depth = Math.abs(direction.x) > 0.5 ? size.x : size.z;
+  const tan = Math.tan((view.camera.fov * Math.PI) / 360);
+  const distance = Math.max((size.y * margin) / 2 / tan, (across * margin) / 2 / (tan * view.camera.aspect)) + depth / 4;
+  view.camera.position.copy(centre).addScaledVector(direction, distance);
   view.controls.target.copy(centre);
   view.controls.update();
+}
+
+// Frame a view of the measured poses: 'front' (signing space, hips to crown), 'hands'
+// (where the hands go, close up) or 'side' (from the avatar's right).
+function frameView(view, boxes, name) {
+  const front = new Vector3(0.12, 0.05, 1).normalize();
+  if (name === 'hands') {
+    const box = boxes.handsNow ? boxes.handsNow() : boxes.hands.clone();
+    const size = box.getSize(new Vector3());
+    const grow = Math.max(0, 0.22 * UNIT - Math.max(size.x, size.y)) / 2;
+    box.expandByScalar(grow);
+    fitBox(view, box, front, 1.25);
+  } else if (name === 'side') {
+    fitBox(view, boxes.upper, new Vector3(-1, 0.05, 0.08).normalize(), 1.1);
+  } else {
+    fitBox(view, boxes.upper, front, 1.06);
+  }
+  view.current = name;
+}
+
+function addFloor(view, boxes) {
   const grid = new GridHelper(400, 20, 0x55606c, 0x343b44);
-  grid.position.y = whole.min.y;
+  grid.position.y = boxes.whole.min.y;
   view.scene.add(grid);
   return grid;
+}
+
+// Frame the body from the front over the given poses, with a floor grid under it.
+function frameBody(view, root, poses) {
+  const boxes = measurePoses(root, poses);
+  frameView(view, boxes, 'front');
+  return addFloor(view, boxes);
 }
 
 const format = (t) => `${t.toFixed(2)} s`;
@@ -121,7 +181,26 @@ function startFile(ui, view, timelineView, params) {
   const { skeleton, clip } = parseBVH(bvh);
   const root = skeleton.bones[0];
   view.scene.add(root);
-  const meshes = buildAvatar(root);
+  const spec = modelSpec();
+  const model = spec ? loadModel(spec) : Promise.resolve(null);
+  model.then(
+    (loaded) => finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw, loaded, spec }),
+    (error) => {
+      window.__muraModelError = String(error.message ?? error);
+      finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw, loaded: null, spec: null });
+      ui.status.textContent = `avatar model not shown: ${window.__muraModelError}`;
+    },
+  );
+}
+
+function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw, loaded, spec }) {
+  let meshes = 0;
+  if (loaded) {
+    view.scene.add(loaded.object);
+    root.traverse((node) => (node.visible = false));
+  } else {
+    meshes = buildAvatar(root);
+  }
   const mixer = new AnimationMixer(root);
   const action = mixer.clipAction(clip);
   action.play();
@@ -129,6 +208,10 @@ function startFile(ui, view, timelineView, params) {
   const pose = (t) => {
     action.time = Math.min(clip.duration, Math.max(0, t - motionStart));
     mixer.update(0);
+    if (loaded) {
+      root.updateMatrixWorld(true);
+      loaded.drive(root);
+    }
   };
   const timeline = normalizeTimeline(raw, motionStart + clip.duration);
   const audio = document.getElementById('mura-audio');
@@ -148,14 +231,33 @@ function startFile(ui, view, timelineView, params) {
     if (audio.readyState >= 1) fitAudio();
   }
   const samples = Array.from({ length: 16 }, (_, i) => () => pose(motionStart + (i / 15) * clip.duration));
-  frameBody(view, root, samples);
+  const boxes = measurePoses(root, samples);
+  // The close-up frames the hands where they are when it is chosen.
+  boxes.handsNow = () => {
+    pose(clock.time());
+    return measurePoses(root, [() => root.updateMatrixWorld(true)]).hands;
+  };
+  frameView(view, boxes, 'front');
+  addFloor(view, boxes);
+  pose(motionStart);
+  const places = addPlaces(view.scene, raw.places, boxes.whole.min.y, root.getWorldPosition(new Vector3()));
+  const show = (name) => {
+    frameView(view, boxes, name);
+    Object.entries(ui.viewButtons).forEach(([key, button]) => button.classList.toggle('active', key === name));
+  };
+  Object.entries(ui.viewButtons).forEach(([name, button]) => button.addEventListener('click', () => show(name)));
+  show('front');
+  timelineView.renderLegend(ui.legend, places.length ? PLACE_COLOUR : null);
   pose(0);
 
   ui.play.addEventListener('click', () => (clock.playing ? clock.pause() : clock.play()));
   ui.scrub.addEventListener('input', () => clock.seek(Number(ui.scrub.value)));
   timelineView.onSeek = (t) => clock.seek(t);
   document.addEventListener('keydown', (event) => {
-    if (event.code !== 'Space' || event.target instanceof HTMLInputElement) return;
+    if (event.target instanceof HTMLInputElement) return;
+    const digit = VIEWS[Number(event.key) - 1];
+    if (digit) show(digit[0]);
+    if (event.code !== 'Space') return;
     event.preventDefault();
     ui.play.click();
   });
@@ -189,6 +291,22 @@ function startFile(ui, view, timelineView, params) {
     duration: () => clock.duration,
     joints: jointBones(skeleton).length,
     meshes,
+    model: loaded ? { format: spec.format, morphs: loaded.morphs } : null,
+    places: places.length,
+    view: (name) => {
+      show(name);
+      draw();
+      return view.current;
+    },
+    // Where a joint is drawn on the stage, CSS pixels from its top-left corner.
+    screenOf: (name) => {
+      const bone = root.getObjectByName(name);
+      if (!bone) return null;
+      const p = bone.getWorldPosition(new Vector3()).project(view.camera);
+      const rect = view.renderer.domElement.getBoundingClientRect();
+      return [((p.x + 1) / 2) * rect.width, ((1 - p.y) / 2) * rect.height];
+    },
+    camera: () => ({ position: view.camera.position.toArray(), target: view.controls.target.toArray(), aspect: view.camera.aspect }),
     // World position of a joint in the drawn pose, scene units (cm).
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
   };

@@ -10,6 +10,7 @@ const STATE_COLOURS = {
   Completed: '#555b66',
 };
 const PHASE_COLOURS = { preparation: '#f2cc8f', stroke: '#e07a5f', retraction: '#81b29a' };
+const STATE_SHORT = { InPrep: 'P', Pending: 'Pe', Lurking: 'L', InExec: 'X', Subsiding: 'S', Completed: 'C' };
 const ROW = 18; // px
 const AXIS = 16; // px
 const LABEL = 96; // px
@@ -95,6 +96,26 @@ export class TimelineView {
     });
   }
 
+  // The colour key of the strip: chunk states, gesture phases, speech, and scene places.
+  renderLegend(container, placeColour = null) {
+    container.replaceChildren();
+    const item = (colour, text, outline = false) => {
+      const entry = document.createElement('span');
+      entry.className = 'mura-legend-item';
+      const swatch = document.createElement('i');
+      swatch.style.background = outline ? 'transparent' : colour;
+      if (outline) swatch.style.border = `1px ${outline} ${colour}`;
+      entry.append(swatch, document.createTextNode(text));
+      container.append(entry);
+    };
+    for (const [state, colour] of Object.entries(STATE_COLOURS)) item(colour, state);
+    for (const [phase, colour] of Object.entries(PHASE_COLOURS)) item(colour, phase);
+    item('#ffffff', 'speech', 'solid');
+    item('#ffffff', 'affiliate', 'dashed');
+    item('#ff4d4d', 'now');
+    if (placeColour) item(placeColour, 'scene place');
+  }
+
   setTimeline(timeline) {
     this.timeline = timeline;
     this.renderList();
@@ -144,12 +165,26 @@ export class TimelineView {
   }
 
   drawChunk(g, chunk, top, x) {
+    const onset = number(chunk.speech_onset);
+    const end = number(chunk.speech_end);
     for (const span of stateSpans(chunk, this.timeline.duration)) {
       g.fillStyle = STATE_COLOURS[span.state] ?? '#777';
       g.fillRect(x(span.from), top + 2, Math.max(1, x(span.to) - x(span.from)), ROW - 4);
     }
-    const onset = number(chunk.speech_onset);
-    const end = number(chunk.speech_end);
+    // State names only where they fit and the speech text is not written: never overlapping.
+    const speech = onset !== null && end !== null ? [x(onset), x(end)] : null;
+    let free = -Infinity;
+    for (const span of stateSpans(chunk, this.timeline.duration)) {
+      const left = x(span.from) + 2;
+      const width = x(span.to) - x(span.from) - 4;
+      const text = width >= g.measureText(span.state).width ? span.state : STATE_SHORT[span.state] ?? '';
+      const textWidth = g.measureText(text).width;
+      const clash = speech && left < speech[1] && left + textWidth > speech[0];
+      if (!text || textWidth > width || left < free || clash) continue;
+      g.fillStyle = '#101317';
+      g.fillText(text, left, top + ROW / 2);
+      free = left + textWidth + 4;
+    }
     if (onset !== null && end !== null) {
       g.strokeStyle = '#ffffff';
       g.strokeRect(x(onset), top + 1.5, x(end) - x(onset), ROW - 3);
