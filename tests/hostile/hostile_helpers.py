@@ -21,6 +21,9 @@ REPO = HERE.parents[1]
 ADDRESS_SPACE_MB = 1536
 #: Timeout of one mura subprocess, seconds (a run that hangs fails the test).
 SUBPROCESS_TIMEOUT = 60.0
+#: Options for runs whose output files a test lists: the light test avatar, no GLB (the
+#: skinned default avatar adds NAME.glb and a shared model script beside the page).
+LIGHT = ("--avatar", "max", "--no-glb")
 
 
 @dataclass(frozen=True)

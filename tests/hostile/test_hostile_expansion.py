@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from hostile_helpers import absolute_gesture, all_files, run_mura, utterance
+from hostile_helpers import LIGHT, absolute_gesture, all_files, run_mura, utterance
 
 from agent.cli import main
 from mura.constraints import Arm, Dynamic, Parallel, Repetition, Segment, SegmentKind, Sequence, Static, Symmetrical, Symmetry
@@ -90,7 +90,7 @@ def test_sign_batch_renders_the_good_signs_and_reports_the_bombs(write, tmp_path
         _gestural("NESTED", 30),
     ]) + "\n</sigml>")  # fmt: skip
     out, report = tmp_path / "out", tmp_path / "report.json"
-    signed = run_mura("sign", str(document), "-o", str(out), "--report", str(report))
+    signed = run_mura("sign", str(document), "-o", str(out), "--report", str(report), *LIGHT)
     assert signed.status == 1
     assert all_files(out) == ["GOOD.bvh", "GOOD.html"]
     records = {record["gloss"]: record for record in json.loads(report.read_text())["signs"]}

@@ -15,12 +15,11 @@ written); the memory-hungry ones run in a subprocess under an address-space limi
 from __future__ import annotations
 
 import pytest
-from hostile_helpers import absolute_gesture, all_files, run_mura, utterance
+from hostile_helpers import LIGHT, absolute_gesture, all_files, run_mura, utterance
 
 from agent.agent import Agent, PerformanceError
 from agent.cli import main
 from blackboard.clock import VirtualClock
-from blackboard.errors import ScheduleError
 from blackboard.scheduler import Scheduler
 from motor.body.avatar import load_avatar
 from motor.control import MotorControl
@@ -85,15 +84,19 @@ def test_frames_past_the_limit_fail_when_rendered(tmp_path, capsys):
     assert "frames" in capsys.readouterr().err and all_files(tmp_path / "out") == []
 
 
-def test_a_model_built_in_python_is_held_to_the_same_limits():
+@pytest.mark.parametrize(
+    ("onset", "end", "below_the_agent"),
+    [(1e300, 2e300, "would end at 10000.3 s, beyond the limit of 600 s"), (float("inf"), float("inf"), "beyond the limit of 600 s"),
+     (float("nan"), 1.0, "nan s is not a time the schedule can hold"), (-1e300, 1.0, "-1e+300 s is not a time the schedule can hold")],
+)  # fmt: skip
+def test_a_model_built_in_python_is_held_to_the_same_limits(onset, end, below_the_agent):
     gesture = Gesture("g1", Static("HandShape", HandShape("fist")))
-    model = Utterance((), (BehaviorSpec("g1", "gesture", AbsoluteTiming(1e300, 2e300), gesture),), "model.xml")
-    with pytest.raises(SpecError, match="1e\\+300 s is beyond the limit of 600 s"):
-        Agent().render(model)
+    model = Utterance((), (BehaviorSpec("g1", "gesture", AbsoluteTiming(onset, end), gesture),), "model.xml")
+    with pytest.raises(SpecError, match="timing onset of 'g1'"):
+        Agent(avatar="max").render(model)
     scheduler = Scheduler(FakeSynthesizer(), MotorControl(load_avatar("max"), 30.0), VirtualClock())
-    result = scheduler.run(model)  # below the agent: the timing network refuses it instead of overflowing
-    assert isinstance(result.error, ScheduleError)
-    assert "1e+300 s is not a time the schedule can hold" in str(result.error)
+    result = scheduler.run(model)  # below the agent: the chunk fails with a reason instead of overflowing
+    assert isinstance(result.error, ValueError) and below_the_agent in str(result.error)
 
 
 # -- item 4: text, rate, fps ----------------------------------------------------------------
@@ -115,7 +118,7 @@ def test_huge_chunks_are_refused_under_a_memory_limit(write, tmp_path):
     assert checked.status == 1
     for spec, text in zip(specs, TEXTS.values()):
         assert f"{spec}:1:12: chunk 1 has {len(text.strip())} characters, more than the limit of 2000" in checked.out
-    rendered = run_mura("render", *map(str, specs), str(good), "-o", str(tmp_path / "out"))
+    rendered = run_mura("render", *map(str, specs), str(good), "-o", str(tmp_path / "out"), *LIGHT)
     assert rendered.status == 1
     assert all_files(tmp_path / "out") == ["good.bvh", "good.html", "good.timeline.json", "good.wav"]
     assert "rendered 1 of 4 utterances; 3 failed" in rendered.err

@@ -10,7 +10,7 @@
 from __future__ import annotations
 
 import pytest
-from hostile_helpers import all_files, utterance
+from hostile_helpers import LIGHT, all_files, utterance
 
 from agent.agent import Agent
 from agent.cli import main
@@ -57,7 +57,7 @@ def test_two_inputs_with_one_name_are_not_silently_merged(write, tmp_path, capsy
     first = write("a/x.xml", utterance("First of all."))
     second = write("b/x.xml", utterance("Second thoughts."))
     out = tmp_path / "out"
-    assert main(["render", str(first), str(second), "-o", str(out)]) == 1
+    assert main(["render", str(first), str(second), "-o", str(out), *LIGHT]) == 1
     err = capsys.readouterr().err
     assert f"{second}: its output name 'x' is already used by {first} in this run" in err
     assert "rendered 1 of 2 utterances; 1 failed" in err
@@ -100,5 +100,5 @@ def test_sign_glosses_become_safe_unique_names(write, tmp_path, capsys):
     signs = "".join(f'<hns_sign gloss="{gloss}"><hamnosys_manual>{manual}</hamnosys_manual></hns_sign>'
                     for gloss in ("../../evil", "../../evil", "CON"))
     document = write("s.sigml", f"<sigml>{signs}</sigml>")
-    assert main(["sign", str(document), "-o", str(tmp_path / "out")]) == 0
+    assert main(["sign", str(document), "-o", str(tmp_path / "out"), *LIGHT]) == 0
     assert all_files(tmp_path / "out") == ["CON.bvh", "CON.html", "evil.bvh", "evil.html", "evil_2.bvh", "evil_2.html"]
