@@ -19,6 +19,7 @@ from agent.commands.options import describe_failure, refuse
 from agent.commands.render import add_agent_options, make_agent
 from agent.live_server import LiveServer
 from agent.performance import PerformanceError, rest_motion
+from agent.signals import signals_deferred
 from blackboard.events import Event, FramesReady, SpeechStarted
 from motor.body.avatar import AvatarError
 from mura.errors import SpecError
@@ -58,7 +59,8 @@ def run(args: argparse.Namespace) -> int:
         if not args.no_browser and not webbrowser.open(url):
             print("mura play: no browser could be opened here; open the address above yourself", file=sys.stderr)
         agent.subscribe(_forward_frames(server))
-        live = agent.say(args.file)
+        with signals_deferred():  # a Ctrl-C while the utterance starts must find it to interrupt
+            live = agent.say(args.file)
         status = _perform(live, server, args.file)
         time.sleep(max(0.0, args.linger))
         return status

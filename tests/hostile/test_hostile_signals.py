@@ -91,13 +91,18 @@ def test_plot_interrupted_after_the_first_picture_leaves_nothing(tmp_path, signa
 
 @SIGNALS
 @pytest.mark.timeout(60)
-def test_play_stops_at_the_first_interrupt(write, signal_name):
-    """A two-minute utterance, interrupted at its first frames: the command ends (the
-    subprocess timeout is the bound) with the signal's status, the arms retracted."""
+@pytest.mark.parametrize(
+    "moment",
+    ["agent.live_server:LiveServer.publish_motion", "agent.agent:LiveUtterance.__init__"],
+    ids=["at-the-first-frames", "while-the-utterance-starts"],
+)
+def test_play_stops_at_the_first_interrupt(write, signal_name, moment):
+    """A two-minute utterance, interrupted at its first frames or while it is being
+    started: the command ends (the subprocess timeout is the bound) with the signal's
+    status, the arms retracted."""
     text = " ".join(f'Here is part {k} of a long story <time id="b{k}" chunkborder="true"/>' for k in range(40))
     spec = write("long.xml", utterance(text))
-    done = run_mura("play", str(spec), "--tts", "fake", "--no-browser", "--linger", "0",
-                    hooks=_hook("agent.live_server:LiveServer.publish_motion", 1, signal_name))
+    done = run_mura("play", str(spec), "--tts", "fake", "--no-browser", "--linger", "0", hooks=_hook(moment, 1, signal_name))
     assert done.status == STATUS[signal_name]
     assert "interrupted" in done.err
     assert "performed" not in done.out
