@@ -9,6 +9,7 @@ from pathlib import Path
 
 from agent.commands.options import describe_failure, limits_from, refuse
 from agent.commands.render import add_agent_options
+from agent.export.names import OutputNameError, OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
 from agent.plots import plot_timeline, plot_wrist_paths
 from agent.sources import read_utterance
@@ -77,6 +78,10 @@ def run(args: argparse.Namespace) -> int:
         print(f"{args.file}: {describe_failure(error)}", file=sys.stderr)
         return 1
     output = Path(args.output)
+    try:
+        OutputPlan(output, [args.file]).claim(args.file, name, (".timeline.png", ".wrist.png"))
+    except OutputNameError as error:
+        return refuse("plot", f"{args.file}: {error}", 1)
     try:
         with StagedRun(output) as staged:
             plot_timeline(result.timeline.to_json(), staged.folder / f"{name}.timeline.png")
