@@ -169,7 +169,7 @@ def render_to_files(
     :class:`PerformanceError` (``partial`` is None) when a chunk fails; on any failure no
     file is left under the final names.
     """
-    model, default_name = read_utterance(utterance)
+    model, default_name = read_utterance(utterance, config.limits)
     name = name or default_name
     folder = Path(directory)
     folder.mkdir(parents=True, exist_ok=True)
@@ -192,7 +192,7 @@ def render_to_files(
         finally:
             scheduler.close()
         if result.error is not None:
-            raise PerformanceError(f"chunk {result.failed_chunk} failed: {result.error}", None)
+            raise PerformanceError(f"chunk {result.failed_chunk + 1} failed: {result.error}", None)
         timeline = result.timeline.to_json()
         wav.finish(float(timeline["duration"]))
         motion_start = 0.0

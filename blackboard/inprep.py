@@ -92,6 +92,8 @@ class ChunkPlanner:
             board.timing = timing
             board.speech_end = timing.speech_onset + last_word
             board.gestures = self._program(board, job, timing, follows)
+        end = max([board.speech_end] + [g.program.pegs.end for g in board.gestures])
+        self.config.limits.check_performance(end - job.origin, self.motor.fps, f"the utterance, up to chunk {board.index + 1},")
         _record(board, job, timing, anchors, unperformed)
 
     def _speak(self, board: Blackboard, follows) -> SpeechTiming | None:

@@ -55,7 +55,7 @@ from blackboard.planning import PEG_NAMES, MotorControl
 from blackboard.timeline import ChunkEntry, PlanningSlack, Timeline
 from blackboard.validation import validate
 from mura.model import AbsoluteTiming, BehaviorSpec, ChunkSpec, Utterance
-from tts import SpeechError, SpeechSynthesizer
+from tts import SpeechSynthesizer
 
 __all__ = ["LiveHandle", "ScheduledUtterance", "Scheduler", "SchedulerConfig", "validate"]
 
@@ -461,7 +461,7 @@ class Scheduler:
         try:
             margin = self.config.live_margin if self.clock.live else 0.0
             self._inprep.fill(board, job, previous, now, margin, self._followed(job, board.index))
-        except (SpeechError, ScheduleError, ValueError) as error:
+        except Exception as error:  # noqa: BLE001 - any failure fails this chunk only; the part performed is kept
             board.error = error
             job.failed = board
             job.timeline.chunk(index).error = f"{type(error).__name__}: {error}"

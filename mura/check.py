@@ -13,8 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mura.bml import BmlBlock, is_bml, read_bml
+from mura.expansion import check_utterance
 from mura.errors import SpecError, SpecErrors
 from mura.lexicon import load_lexicon
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.murml import read_utterances
 from mura.sigml import ROOTS as SIGML_ROOTS
 from mura.sigml import read_sigml
@@ -35,15 +37,16 @@ class CheckResult:
         return not self.errors
 
 
-def check_file(path: str | Path) -> CheckResult:
-    """Parse and validate one spec file."""
+def check_file(path: str | Path, limits: Limits = DEFAULT_LIMITS) -> CheckResult:
+    """Parse and validate one spec file, against ``limits`` too."""
     name = str(path)
     try:
-        source = XmlSource.from_path(path)
+        source = XmlSource.from_path(path, limits=limits)
         if is_bml(source.root):
             block = read_bml(source)
+            check_utterance(block.utterance, limits)
             return CheckResult(name, _bml_summary(block), warnings=tuple(str(w) for w in block.warnings))
-        summary = _check_source(source)
+        summary = _check_source(source, limits)
     except SpecErrors as many:
         return CheckResult(name, "", many.errors)
     except SpecError as error:
@@ -58,15 +61,15 @@ def _bml_summary(block: BmlBlock) -> str:
             f"{len(utterance.behaviors)} other behaviour(s) of which {timed} timed only, {len(utterance.constraints)} constraint(s)")
 
 
-def _check_source(source: XmlSource) -> str:
+def _check_source(source: XmlSource, limits: Limits) -> str:
     root = source.root.tag
     if root in ("definition", "utterance"):
-        utterances = read_utterances(source)
+        utterances = read_utterances(source, limits=limits)
         chunks = sum(len(u.chunks) for u in utterances)
         behaviors = sum(len(u.behaviors) for u in utterances)
         return f"{len(utterances)} utterance(s), {chunks} chunk(s), {behaviors} behaviour(s)"
     if root in SIGML_ROOTS:
-        result = read_sigml(source)
+        result = read_sigml(source, limits)
         if result.failures:
             raise SpecErrors([failure.error for failure in result.failures])
         return f"{len(result.signs)} sign(s)"

@@ -20,6 +20,7 @@ A document is in the published dialect when it contains ``<timing>`` or
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -44,6 +45,7 @@ from mura.constraints import (
     Symmetry,
 )
 from mura.errors import SourceLocation, SpecError, SpecErrors
+from mura.expansion import check_movements
 from mura.hamnosys import parse_hamnosys
 from mura.lexicon import (
     GestureLexicon,
@@ -52,6 +54,7 @@ from mura.lexicon import (
     load_lexicon,
     read_scene,
 )
+from mura.limits import DEFAULT_LIMITS, LimitError, Limits, hint
 from mura.model import (
     AbsoluteTiming,
     Affiliate,
@@ -89,20 +92,21 @@ _TRUE = {"true", "1", "yes"}
 _FALSE = {"false", "0", "no"}
 
 
-def load_utterances(path: str | Path, lexicon: GestureLexicon | None = None) -> tuple[Utterance, ...]:
-    """Every utterance of a MURML file, checked; raises :class:`SpecError` on the first problems."""
-    return read_utterances(XmlSource.from_path(path), lexicon)
+def load_utterances(path: str | Path, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> tuple[Utterance, ...]:
+    """Every utterance of a MURML file, checked (also against ``limits``); raises :class:`SpecError` on the first problems."""
+    return read_utterances(XmlSource.from_path(path, limits=limits), lexicon, limits)
 
 
-def load_utterance(path: str | Path, lexicon: GestureLexicon | None = None) -> Utterance:
+def load_utterance(path: str | Path, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> Utterance:
     """The single utterance of a MURML file."""
-    return _single(load_utterances(path, lexicon), str(path))
+    return _single(load_utterances(path, lexicon, limits), str(path))
 
 
-def parse_utterance(data: str | bytes, file: str = "<input>", lexicon: GestureLexicon | None = None) -> Utterance:
+def parse_utterance(data: str | bytes, file: str = "<input>", lexicon: GestureLexicon | None = None,
+                    limits: Limits = DEFAULT_LIMITS) -> Utterance:
     """The single utterance of a MURML document given as text."""
     raw = data.encode("utf-8") if isinstance(data, str) else data
-    return _single(read_utterances(XmlSource.from_bytes(raw, file), lexicon), file)
+    return _single(read_utterances(XmlSource.from_bytes(raw, file, limits=limits), lexicon, limits), file)
 
 
 def _single(utterances: tuple[Utterance, ...], file: str) -> Utterance:
@@ -111,14 +115,14 @@ def _single(utterances: tuple[Utterance, ...], file: str) -> Utterance:
     return utterances[0]
 
 
-def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None) -> tuple[Utterance, ...]:
-    """Check ``source`` against the schema and read its utterances into the model."""
+def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> tuple[Utterance, ...]:
+    """Check ``source`` against the schema and ``limits``, and read its utterances into the model."""
     validate_murml(source)
     root = source.root
     unit = _document_unit(source, root)
     lexicon = lexicon if lexicon is not None else load_lexicon()
     if root.tag == "utterance":
-        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon).read(root),)
+        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits).read(root),)
     scene = dict(lexicon.scene)
     for child in root.iterchildren("scene"):
         scene.update(read_scene(source, child, unit))
@@ -126,7 +130,7 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None) ->
     for child in root.iterchildren("space"):
         read_space(source, child, placed)
     return tuple(
-        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, placed=dict(placed)).read(child)
+        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, limits, placed=dict(placed)).read(child)
         for child in root.iterchildren("utterance")
     )
 
@@ -151,6 +155,7 @@ class _UtteranceReader:
     unit: str
     scene: dict[str, SceneLocation]
     lexicon: GestureLexicon
+    limits: Limits = DEFAULT_LIMITS
     tags: dict[str, TimeTag] = field(default_factory=dict)
     placed: dict[str, SpatialReference] = field(default_factory=dict)
 
@@ -190,6 +195,7 @@ class _UtteranceReader:
         chunks: list[ChunkSpec] = []
         buffer = _TextBuffer()
         pending: list[tuple[etree._Element, int]] = []
+        opening = specification  # where the chunk being collected begins, for messages
         buffer.add(specification.text)
         for child in specification:
             if child.tag != "time":
@@ -203,18 +209,23 @@ class _UtteranceReader:
                 raise self.source.error(f"time tag {tag_id!r} stands inside a word; put it between words", child)
             pending.append((child, buffer.length))
             if _boolean(self.source, child, "chunkborder", False):
-                chunks.append(self._close_chunk(len(chunks), buffer, pending, specification))
-                buffer, pending = _TextBuffer(), []
+                chunks.append(self._close_chunk(len(chunks), buffer, pending, specification, opening))
+                buffer, pending, opening = _TextBuffer(), [], child
             buffer.add(child.tail)
         if buffer.text or pending:
-            chunks.append(self._close_chunk(len(chunks), buffer, pending, specification))
+            chunks.append(self._close_chunk(len(chunks), buffer, pending, specification, opening))
         return tuple(chunks)
 
-    def _close_chunk(self, index: int, buffer: _TextBuffer, pending: list[tuple[etree._Element, int]], spec: etree._Element) -> ChunkSpec:
+    def _close_chunk(self, index: int, buffer: _TextBuffer, pending: list[tuple[etree._Element, int]], spec: etree._Element,
+                     opening: etree._Element) -> ChunkSpec:
         text = buffer.text
         if not text:
             anchor = pending[-1][0] if pending else spec
             raise self.source.error(f"chunk {index + 1} has no words", anchor)
+        try:
+            self.limits.check_chunk_text(text, f"chunk {index + 1}")
+        except LimitError as error:
+            raise self.source.error(f"{error}; put chunk borders between its phrases", opening) from None
         tags = []
         for element, raw_offset in pending:
             offset = buffer.offset_in_text(raw_offset)
@@ -250,17 +261,19 @@ class _UtteranceReader:
         form = forms[0]
         gloss = element.get("gloss") or form.get("gloss") or behavior_id
         if form.tag != "hamnosys":
-            return read_sign_element(form, gloss, self.source.where)
+            return read_sign_element(form, gloss, self.source.where, self.limits)
         text = (form.text or "").strip()
         if not text:
             raise self.source.error(f"sign {behavior_id!r}: <hamnosys> is empty", form)
         try:
-            return parse_hamnosys(text, gloss=gloss, file=str(self.source.where(form)))
+            return parse_hamnosys(text, gloss=gloss, file=str(self.source.where(form)), limits=self.limits)
         except SpecError as error:
             raise SpecError(error.message, self.source.where(form)) from None
 
     def _read_timing(self, element: etree._Element, behavior_id: str) -> Affiliate | AbsoluteTiming:
         onset_text, end_text = element.get("onset", ""), element.get("end", "")
+        if element.tag == "timing":
+            self._check_times(element, behavior_id, onset_text, end_text)
         onset, end = _float_or_none(onset_text), _float_or_none(end_text)
         if element.tag == "timing" and onset is not None and end is not None:
             if onset < 0:
@@ -269,6 +282,21 @@ class _UtteranceReader:
                 raise self.source.error(f"timing of {behavior_id!r} ends at {end} s, not after its onset {onset} s", element, "end")
             return AbsoluteTiming(onset, end, self.source.where(element))
         return self._read_affiliate(element, onset_text, end_text, behavior_id)
+
+    def _check_times(self, element: etree._Element, behavior_id: str, *texts: str) -> None:
+        """Times on the utterance clock must be finite and within ``limits.max_duration``
+        (not ``nan``, ``1e300``, or a day of animation)."""
+        for attribute, text in zip(("onset", "end"), texts):
+            if text in self.tags:
+                continue
+            try:
+                seconds = float(text)
+            except ValueError:
+                continue
+            try:
+                self.limits.check_time(seconds, f"timing {attribute} of {behavior_id!r}:")
+            except LimitError as error:
+                raise self.source.error(str(error), element, attribute) from None
 
     def _read_affiliate(self, element: etree._Element, onset: str, end: str, behavior_id: str) -> Affiliate:
         for attribute, tag_id in (("onset", onset), ("end", end)):
@@ -296,8 +324,9 @@ class _UtteranceReader:
         constraints = element.find("constraints")
         if constraints is None:
             raise self.source.error(f"gesture {behavior_id!r} needs <function> or <constraints>", element)
-        reader = _ConstraintReader(self.source, self.unit, self.scene, {})
+        reader = _ConstraintReader(self.source, self.unit, self.scene, {}, limits=self.limits)
         tree = reader.read_root(constraints, _arm_or_none(scope))
+        check_movements(tree, self.limits, f"gesture {behavior_id!r}", self.source.where(element))
         return Gesture(element.get("id") or behavior_id, tree, None, scope, self.source.where(element))
 
     def _read_function_gesture(self, function: etree._Element, gesture: etree._Element, behavior_id: str, scope: str | None) -> Gesture:
@@ -307,7 +336,7 @@ class _UtteranceReader:
             known = ", ".join(sorted(self.lexicon.entries)) or "none"
             raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function, "name")
         call = FunctionCall(name, params, self.source.where(function))
-        return function_gesture(call, gesture.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(gesture))
+        return function_gesture(call, gesture.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(gesture), self.limits)
 
 
 def function_gesture(
@@ -317,6 +346,7 @@ def function_gesture(
     lexicon: GestureLexicon,
     scene: Mapping[str, SceneLocation],
     where: SourceLocation | None,
+    limits: Limits = DEFAULT_LIMITS,
 ) -> Gesture:
     """The gesture a lexicon function makes for ``call`` (raises :class:`SpecError` at the
     call's place for an unknown function or a missing parameter); also read by BML."""
@@ -328,16 +358,20 @@ def function_gesture(
         bound = bind_params(entry, call.params)
     except ValueError as error:
         raise SpecError(str(error), call.where) from None
-    reader = _ConstraintReader(entry.source, lexicon.unit, scene, bound, call_site=call.where)
+    reader = _ConstraintReader(entry.source, lexicon.unit, scene, bound, call_site=call.where, limits=limits)
     tree = reader.read_root(entry.constraints, _arm_or_none(scope))
+    check_movements(tree, limits, f"gesture {gesture_id!r}", where)
     return Gesture(gesture_id, tree, call, scope, where)
 
 
-def read_gesture_element(source: XmlSource, element: etree._Element, behavior_id: str, lexicon: GestureLexicon, unit: str = "m") -> Gesture:
+def read_gesture_element(
+    source: XmlSource, element: etree._Element, behavior_id: str, lexicon: GestureLexicon, unit: str = "m",
+    limits: Limits = DEFAULT_LIMITS,
+) -> Gesture:
     """A MURML ``<gesture>``-like element (``<function>`` or ``<constraints>`` inside, plain
     names without a namespace) read as the MURML reader reads it; lengths without a unit are
     in ``unit``. BML reads the MURML gestures it embeds with it."""
-    return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon)._read_gesture(element, behavior_id)
+    return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits)._read_gesture(element, behavior_id)
 
 
 def _timing_element(behaviorspec: etree._Element, body: etree._Element) -> etree._Element | None:
@@ -392,6 +426,7 @@ class _ConstraintReader:
     scene: Mapping[str, SceneLocation]
     params: Mapping[str, str]
     call_site: SourceLocation | None = None
+    limits: Limits = DEFAULT_LIMITS
 
     def read_root(self, constraints: etree._Element, scope: Arm | None) -> Constraint:
         children = list(constraints)
@@ -442,12 +477,17 @@ class _ConstraintReader:
     def _repetition(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Repetition:
         attribute = "count" if element.get("count") is not None else "number"
         text = element.get(attribute, "2")
-        if not text.strip().isdigit() or int(text) < 1:
+        digits = text.strip()
+        if not (digits.isascii() and digits.isdigit()) or not digits.strip("0"):
             raise self._error(f"repetition {attribute} {text!r} is not a positive whole number", element, attribute)
+        significant = digits.lstrip("0")
+        if len(significant) > 18 or int(significant) > self.limits.max_movements:
+            raise self._error(f"repetition {attribute} {significant[:20]} is more than the limit of {self.limits.max_movements} "
+                              f"movements ({hint('max_movements')})", element, attribute)
         children = list(element)
         if len(children) != 1:
             raise self._error(f"<repetition> must hold exactly one constraint, found {len(children)}", element)
-        return Repetition(self.read(children[0], scope), int(text), where)
+        return Repetition(self.read(children[0], scope), int(significant), where)
 
     def _static(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Static:
         slot = self._slot(element)
@@ -620,8 +660,11 @@ class _ConstraintReader:
             if match is None:
                 raise ValueError(f"{part!r} is not a number")
             number = float(match.group(1))
+            if not math.isfinite(number):
+                raise ValueError(f"{part!r} is too large to be a number")
             if unit is not None:
                 number *= _UNIT_METRES[match.group(2) or unit]
+                self.limits.check_length(number, f"length {part!r} =")
             elif match.group(2):
                 raise ValueError(f"{part!r} takes no unit here")
             values.append(number)

@@ -9,7 +9,8 @@ seed 000 Figure 7). Both become :class:`~mura.signs.Sign`.
 
 Each sign is read on its own: one broken sign becomes a :class:`~mura.signs.SignFailure`
 with its reason and the others still parse. Reading is safe: no network, no DTD, no
-entity expansion, and inputs over :data:`MAX_SIGML_BYTES` are refused.
+entity expansion; inputs over ``Limits.max_input_bytes`` and signs whose repetitions
+expand to more than ``Limits.max_movements`` movements are refused.
 """
 
 from __future__ import annotations
@@ -30,7 +31,9 @@ from mura.constraints import (
     Sequence,
 )
 from mura.errors import SourceLocation, SpecError
+from mura.expansion import check_sign
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.signs import (
     HandConstellation,
     HandPosture,
@@ -56,25 +59,22 @@ from mura.values import (
 )
 from mura.xml_source import XmlSource
 
-#: Largest SiGML document accepted, bytes (the corpora are about 1 MB).
-MAX_SIGML_BYTES = 32 * 1024 * 1024
-
 ROOTS: tuple[str, ...] = ("sigml", "sigml_collection")
 SIGN_TAGS: tuple[str, ...] = ("hns_sign", "hamgestural_sign")
 
 
 
-def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
+def parse_sigml(source: str | bytes, file: str = "<input>", limits: Limits = DEFAULT_LIMITS) -> SigmlParseResult:
     """Every sign of a SiGML document; broken signs are reported one by one.
 
     Raises SpecError only when the document as a whole cannot be read (not XML, too
     large, wrong root).
     """
     data = source.encode("utf-8") if isinstance(source, str) else source
-    return read_sigml(XmlSource.from_bytes(data, file, MAX_SIGML_BYTES))
+    return read_sigml(XmlSource.from_bytes(data, file, limits=limits), limits)
 
 
-def read_sigml(source: XmlSource) -> SigmlParseResult:
+def read_sigml(source: XmlSource, limits: Limits = DEFAULT_LIMITS) -> SigmlParseResult:
     """Every sign of an already parsed SiGML document."""
     root = source.root
     where_of: Callable[[etree._Element], SourceLocation] = source.where
@@ -85,19 +85,21 @@ def read_sigml(source: XmlSource) -> SigmlParseResult:
     for index, element in enumerate(e for e in root if isinstance(e.tag, str)):
         gloss = element.get("gloss", f"#{index}")
         try:
-            signs.append(read_sign_element(element, gloss, where_of))
+            signs.append(read_sign_element(element, gloss, where_of, limits))
         except SpecError as error:
             failures.append(SignFailure(gloss, index, error))
     return SigmlParseResult(tuple(signs), tuple(failures), source.file)
 
 
-def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation]) -> Sign:
+def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation],
+                      limits: Limits = DEFAULT_LIMITS) -> Sign:
     """One ``<hns_sign>`` or ``<hamgestural_sign>`` element as a :class:`Sign`; the sign
-    elements of a SiGML document and those inside MURML utterances read alike."""
+    elements of a SiGML document and those inside MURML utterances read alike. A sign
+    whose repetitions expand to more than ``limits.max_movements`` movements is refused."""
     if element.tag == "hns_sign":
-        return _hns_sign(element, gloss, where_of)
+        return check_sign(_hns_sign(element, gloss, where_of), limits)
     if element.tag == "hamgestural_sign":
-        return _GesturalReader(gloss, where_of).sign(element)
+        return check_sign(_GesturalReader(gloss, where_of).sign(element), limits)
     raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
 
 

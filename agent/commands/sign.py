@@ -5,6 +5,11 @@ Every sign is rendered on its own (``<gloss>.bvh`` and ``<gloss>.html``), or wit
 ``sequence.html``) with transitions between them. A sign that cannot be read or realized
 fails alone with its reason; the others still render. ``--report`` writes a JSON record
 of every sign: whether it rendered, its duration, and why not when it did not.
+
+A sign is refused when its repetitions expand to more than ``--limit max_movements``
+movements; any failure of one sign (whatever the exception, running out of memory
+included) is that sign's alone. The files are staged and moved into the output folder
+when the run ends, so an interrupted run leaves the folder (and the report) as they were.
 """
 
 from __future__ import annotations
@@ -18,19 +23,26 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
+from agent.export.names import OutputNameError, OutputPlan
 from agent.export.page_model import page_model
-from agent.export.staging import staged_text
+from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, load_avatar
-from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.plan import SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
-from mura.sigml import parse_sigml
+from mura.limits import Limits
+from mura.sigml import read_sigml
 from mura.signs import Sign
+from mura.xml_source import XmlSource
+
+#: The files one rendered sign is written as.
+SIGN_SUFFIXES = (".bvh", ".html", ".glb")
 
 #: Longest file name stem derived from a gloss.
 MAX_STEM = 80
@@ -71,63 +83,77 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign")
     parser.add_argument("--hamnosys", metavar="TEXT", help="a HamNoSys 4 Unicode string to render as a sign")
     parser.add_argument("--gloss", default="sign", help="the gloss of the --hamnosys sign (default: sign)")
+    add_limit_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     if not args.files and args.hamnosys is None:
-        print("mura sign: give SiGML files or --hamnosys", file=sys.stderr)
-        return 2
-    if not args.fps > 0:
-        print(f"mura sign: --fps must be positive, got {args.fps}", file=sys.stderr)
-        return 2
+        return refuse("sign", "give SiGML files or --hamnosys")
     try:
+        limits = limits_from(args)
+        fps = limits.check_fps(args.fps)
         avatar = load_avatar(args.avatar)
     except (OSError, ValueError) as error:
-        print(f"mura sign: {error}", file=sys.stderr)
-        return 2
+        return refuse("sign", error)
+    if args.report and Path(args.report).is_dir():
+        return refuse("sign", f"--report {args.report}: is a folder; give the report file's name")
     output = Path(args.output)
-    output.mkdir(parents=True, exist_ok=True)
-    records: list[SignRecord] = []
-    signs = _read_signs(args, records)
-    plans: list[tuple[SignRecord, SignPlan]] = []
-    for source, sign in tqdm(signs, desc="planning", unit="sign", file=sys.stderr, disable=len(signs) < 20):
-        record = SignRecord(source, sign.gloss)
-        records.append(record)
-        try:
-            plans.append((record, plan_sign(avatar, sign)))
-        except SignPlanningError as error:
-            record.reason = str(error)
-    if args.sequence:
-        _render_sequence(avatar, plans, output, args.fps, args.glb)
-    else:
-        names: set[str] = set()
-        for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
-            _render_one(avatar, record, plan, output, args.fps, names, args.glb)
-    if args.report:
-        _write_json(Path(args.report), _report(records))
+    try:
+        with StagedRun(output) as staged:
+            report = staged.beside(args.report) if args.report else None
+            records = _render_all(args, avatar, limits, fps, staged.folder, OutputPlan(output, args.files))
+            if report is not None:
+                report.write_text(json.dumps(_report(records), indent=1, ensure_ascii=False), encoding="utf-8")
+            staged.commit()
+    except OutputFolderError as error:
+        return refuse("sign", error)
     rendered = sum(record.rendered for record in records)
-    print(f"{rendered} of {len(records)} signs rendered to {output}")
+    print(f"{rendered} of {len(records)} signs rendered to {output}" + (f"; {len(records) - rendered} failed" if rendered < len(records) else ""))
     for record in records:
         if not record.rendered:
             print(f"{record.source}: {record.gloss}: {record.reason}")
     return 0 if rendered == len(records) else 1
 
 
-def _read_signs(args: argparse.Namespace, records: list[SignRecord]) -> list[tuple[str, Sign]]:
+def _render_all(args: argparse.Namespace, avatar, limits: Limits, fps: float, folder: Path, outputs: OutputPlan) -> list[SignRecord]:
+    """Read, plan and render every sign into ``folder``; one record per sign, failures included."""
+    records: list[SignRecord] = []
+    signs = _read_signs(args, records, limits)
+    plans: list[tuple[SignRecord, SignPlan]] = []
+    for source, sign in tqdm(signs, desc="planning", unit="sign", file=sys.stderr, disable=len(signs) < 20):
+        record = SignRecord(source, sign.gloss)
+        records.append(record)
+        try:
+            plans.append((record, plan_sign(avatar, sign)))
+        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
+            record.reason = describe_failure(error)
+    if args.sequence:
+        _render_sequence(avatar, plans, folder, fps, outputs, args.glb)
+        return records
+    names: set[str] = set()
+    for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
+        _render_one(avatar, record, plan, folder, fps, names, outputs, args.glb)
+    return records
+
+
+def _read_signs(args: argparse.Namespace, records: list[SignRecord], limits: Limits) -> list[tuple[str, Sign]]:
     """Signs of every file (failures go straight into the records) and the HamNoSys sign."""
     signs: list[tuple[str, Sign]] = []
     for path in args.files:
         try:
-            result = parse_sigml(Path(path).read_bytes(), file=path)
-        except (OSError, SpecError) as error:
+            result = read_sigml(XmlSource.from_path(path, limits=limits), limits)
+        except SpecError as error:
             records.append(SignRecord(path, "*", reason=f"cannot read the document: {error}"))
+            continue
+        except Exception as error:  # noqa: BLE001 - one document's failure is its own
+            records.append(SignRecord(path, "*", reason=f"cannot read the document: {describe_failure(error)}"))
             continue
         signs.extend((path, sign) for sign in result.signs)
         records.extend(SignRecord(path, failure.gloss, reason=str(failure.error)) for failure in result.failures)
     if args.hamnosys is not None:
         try:
-            signs.append(("--hamnosys", parse_hamnosys(args.hamnosys, gloss=args.gloss)))
+            signs.append(("--hamnosys", parse_hamnosys(args.hamnosys, gloss=args.gloss, file="--hamnosys", limits=limits)))
         except SpecError as error:
             records.append(SignRecord("--hamnosys", args.gloss, reason=str(error)))
     return signs
@@ -145,28 +171,35 @@ def safe_stem(gloss: str, taken: set[str]) -> str:
     return candidate
 
 
-def _render_one(avatar, record: SignRecord, plan: SignPlan, output: Path, fps: float, names: set[str], glb: bool = True) -> None:
+def _render_one(avatar, record: SignRecord, plan: SignPlan, folder: Path, fps: float, names: set[str], outputs: OutputPlan,
+                glb: bool = True) -> None:
     try:
-        signed = realize_signs(avatar, [plan], fps)
         stem = safe_stem(plan.gloss, names)
-        record.files = _write_performance(signed, output, stem, plan.gloss, avatar if glb else None, avatar)
-    except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
-        record.reason = f"{type(error).__name__}: {error}"
+        outputs.claim(f"sign {plan.gloss!r}", stem, SIGN_SUFFIXES)
+        signed = realize_signs(avatar, [plan], fps)
+        record.files = _write_performance(signed, folder, stem, plan.gloss, outputs.folder, avatar if glb else None, avatar)
+    except OutputNameError as error:
+        record.reason = str(error)
+        return
+    except Exception as error:  # noqa: BLE001 - one sign's failure is its own
+        record.reason = describe_failure(error)
         return
     record.rendered = True
     record.duration = round(signed.duration, 4)
     record.warnings = signed.warnings
 
 
-def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: Path, fps: float, glb: bool = True) -> None:
+def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan,
+                     glb: bool = True) -> None:
     if not plans:
         return
     try:
+        outputs.claim("the sequence", "sequence", SIGN_SUFFIXES)
         signed = realize_signs(avatar, [plan for _, plan in plans], fps)
-        files = _write_performance(signed, output, "sequence", "sequence", avatar if glb else None, avatar)
-    except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
+        files = _write_performance(signed, folder, "sequence", "sequence", outputs.folder, avatar if glb else None, avatar)
+    except Exception as error:  # noqa: BLE001 - reported on every sign of the sequence
         for record, _ in plans:
-            record.reason = f"the sequence failed: {type(error).__name__}: {error}"
+            record.reason = f"the sequence failed: {describe_failure(error)}"
         return
     for (record, plan), timing in zip(plans, signed.timings):
         record.rendered = True
@@ -194,20 +227,20 @@ def timeline_of(signed: SignedMotion, name: str) -> dict:
     }  # fmt: skip
 
 
-def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str, glb_avatar=None, page_avatar=None) -> tuple[str, ...]:
-    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB."""
-    bvh_path = output / f"{stem}.bvh"
-    write_bvh(signed.motion, bvh_path)
-    files = [str(bvh_path)]
+def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str, output: Path, glb_avatar=None,
+                       page_avatar=None) -> tuple[str, ...]:
+    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB,
+    written into ``folder``; returns their paths in ``output``, where they end up."""
+    write_bvh(signed.motion, folder / f"{stem}.bvh")
+    files = [str(output / f"{stem}.bvh")]
     if glb_avatar is not None:
-        glb_path = output / f"{stem}.glb"
-        write_motion_glb(signed.motion, glb_path, motion_model(glb_avatar), glb_avatar.root_height)
-        files.append(str(glb_path))
+        write_motion_glb(signed.motion, folder / f"{stem}.glb", motion_model(glb_avatar), glb_avatar.root_height)
+        files.append(str(output / f"{stem}.glb"))
     try:
-        html_path = output / f"{stem}.html"
         model = page_model(page_avatar) if page_avatar is not None else None
-        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None, model=model)
-        files.append(str(html_path))
+        write_html(folder / f"{stem}.html", name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name),
+                   wav_filename=None, model=model)
+        files.append(str(output / f"{stem}.html"))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)
     return tuple(files)
@@ -226,9 +259,3 @@ def _report(records: list[SignRecord]) -> dict:
         "signs": [record.as_json() for record in records],
     }
 
-
-def _write_json(path: Path, data: dict) -> None:
-    """Write JSON under a temporary name in the same folder, then rename."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with staged_text(path) as stream:
-        json.dump(data, stream, indent=1, ensure_ascii=False)
