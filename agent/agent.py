@@ -25,6 +25,7 @@ thread the agent started.
 
 from __future__ import annotations
 
+import itertools
 import os
 import queue
 import sys
@@ -130,14 +131,17 @@ class Agent:
 
     def say(self, utterance: UtteranceSource, name: str | None = None, audio: bool = True) -> LiveUtterance:
         """Perform ``utterance`` (MURML, or a BML block with its composition) live; returns
-        at once with a handle to wait on or interrupt. A BML block keeps its id as its name."""
+        at once with a handle to wait on or interrupt. A BML block keeps its id as its name
+        (used once at a time); a MURML utterance whose name is still playing or queued is
+        named ``NAME-2``, ``NAME-3`` …"""
         model, default_name, block = read_spec(utterance, self.limits)
         name = block.id if block is not None else check_stem(name) if name is not None else default_name
         scheduler, speech = self._live_scheduler(audio)
         with self._live_lock:
             self._handles = {n: h for n, h in self._handles.items() if not h.done}
-            if name in self._handles:
+            if name in self._handles and block is not None:
                 raise SpecError(f"{name!r} is still being performed: a block id is used once at a time", SourceLocation(model.source, 1, 1))
+            name = _free_name(name, self._handles)
         self._feedback.register(name, _sync_points(model, block), _kinds(model, block), block.character if block else None, model.warnings)
         if block is not None:
             self._compose(block)
@@ -197,6 +201,13 @@ class Agent:
                 self._live.subscribe(self._player)
             assert self._live_tts is not None
             return self._live, self._live_tts
+
+
+def _free_name(name: str, taken: dict[str, LiveHandle]) -> str:
+    """``name``, or the first ``name-k`` (k = 2, 3 …) not in ``taken``."""
+    if name not in taken:
+        return name
+    return next(f"{name}-{k}" for k in itertools.count(2) if f"{name}-{k}" not in taken)
 
 
 def _sync_points(model, block: BmlBlock | None) -> dict[str, tuple[str, ...]]:

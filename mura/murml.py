@@ -68,7 +68,8 @@ from mura.model import (
 from mura.schema import validate_murml
 from mura.sigml import read_sign_element
 from mura.signs import Sign
-from mura.space import SpatialReference, is_spatial_sign, read_space, read_spatial_sign
+from mura.space import SpatialReference
+from mura.space_markup import is_spatial_sign, read_space, read_spatial_sign
 from mura.values import (
     Direction,
     Location,

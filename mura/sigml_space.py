@@ -21,8 +21,10 @@ from dataclasses import dataclass
 
 from mura.errors import SpecError
 from mura.signs import Sign, SignFailure
-from mura.sigml import MAX_SIGML_BYTES, ROOTS, read_sign_element
-from mura.space import SpatialReference, SpatialSign, is_spatial_sign, read_space, read_spatial_sign
+from mura.limits import DEFAULT_LIMITS, Limits
+from mura.sigml import ROOTS, read_sign_element
+from mura.space import SpatialReference, SpatialSign
+from mura.space_markup import is_spatial_sign, read_space, read_spatial_sign
 from mura.xml_source import XmlSource
 
 
@@ -37,11 +39,11 @@ class SignedSequence:
     source: str
 
 
-def parse_signed_sequence(data: str | bytes, file: str = "<input>") -> SignedSequence:
-    """Read a SiGML sequence (module docstring); :class:`SpecError` only when the document
-    as a whole cannot be read."""
+def parse_signed_sequence(data: str | bytes, file: str = "<input>", limits: Limits = DEFAULT_LIMITS) -> SignedSequence:
+    """Read a SiGML sequence (module docstring) within ``limits``; :class:`SpecError` only
+    when the document as a whole cannot be read."""
     raw = data.encode("utf-8") if isinstance(data, str) else data
-    source = XmlSource.from_bytes(raw, file, MAX_SIGML_BYTES)
+    source = XmlSource.from_bytes(raw, file, limits=limits)
     root = source.root
     if root.tag not in ROOTS:
         raise SpecError(f"root element <{root.tag}> is not <sigml> or <sigml_collection>", source.where(root))
@@ -56,7 +58,7 @@ def parse_signed_sequence(data: str | bytes, file: str = "<input>") -> SignedSeq
             elif element.tag == "sign" and is_spatial_sign(element):
                 items.append(read_spatial_sign(source, element, gloss, placed))
             else:
-                items.append(read_sign_element(element, gloss, source.where))
+                items.append(read_sign_element(element, gloss, source.where, limits))
         except SpecError as error:
             failures.append(SignFailure(gloss, index, error))
     return SignedSequence(tuple(items), tuple(placed.values()), tuple(failures), file)
