@@ -350,6 +350,8 @@ class Scheduler:
             self._schedule_feedback(board, gesture)
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
+            for warning in self.motor.speak(board.speech, onset, _accents(board)):
+                job.timeline.warn(warning)
             self._at(onset, lambda: self._start_speech(job, board, onset))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
 
@@ -748,6 +750,7 @@ def _concatenate(frames: list[Motion], origin: float) -> Motion | None:
     if not frames:
         return None
     first = frames[0]
+    faces = [m.face_weights for m in frames if m.face_weights is not None]
     return Motion(
         fps=first.fps,
         joint_names=first.joint_names,
@@ -756,6 +759,18 @@ def _concatenate(frames: list[Motion], origin: float) -> Motion | None:
         rotations=np.concatenate([m.rotations for m in frames]),
         root_translation=np.concatenate([m.root_translation for m in frames]),
         start_time=first.start_time - origin,
+        face_names=first.face_names,
+        face_weights=np.concatenate(faces) if first.face_names and len(faces) == len(frames) else None,
+    )
+
+
+def _accents(board: Blackboard) -> tuple[tuple[float, float], ...]:
+    """The utterance-clock spans of the chunk's affiliates, which its speech emphasizes."""
+    marks, onset = board.speech.marks, board.speech_onset
+    return tuple(
+        (onset + marks[g.behavior.timing.onset], onset + marks[g.behavior.timing.end])
+        for g in board.gestures
+        if isinstance(g.behavior.timing, Affiliate) and g.behavior.timing.onset in marks and g.behavior.timing.end in marks
     )
 
 

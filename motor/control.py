@@ -5,8 +5,17 @@ arm — wrist position, hand rotation, hand shape — holding every LMP activate
 Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
 all frames of the window at once: first the externally formulated LMPs (wrist position,
 wrist rotation) are sampled, then both arms' IK is solved (analytic, natural swivel),
-then the joint-space LMPs (hand shape → finger joint rotations) are applied; every other
-joint keeps its rest rotation and the root stands still at ``(0, root_height, 0)``.
+then the joint-space LMPs (hand shape → finger joint rotations) are applied; then the
+neck module (:mod:`motor.neck`) turns torso, shoulders, neck, head and eyes, and the face
+module (:mod:`motor.face`) gives the frame's ARKit morph weights; every other joint keeps
+its rest rotation and the root stands still at ``(0, root_height, 0)``.
+
+Head and face: :meth:`MotorControl.plan` adds to each program the neck LMPs and face
+tracks of the behaviour's head and face slots (MURML ``GazeDirection``, ``Neck`` …,
+:mod:`motor.neck.planning`, :mod:`motor.face.planning`) or of its sign's non-manual tiers
+(:mod:`motor.signing.nonmanual`); a gaze shift counts in the preparation time.
+:meth:`MotorControl.speak` adds a chunk's lip-sync, the brow raise and a small head beat
+on its accented words, and its boundary blink.
 
 The elbow's swivel: the IK's natural swivel (Soechting & Flanders with its wrist and
 torso corrections, a search over candidate swivels) is the costly part of the arm, and
@@ -28,10 +37,19 @@ where it can change things (its start, less the swivel interpolation's reach).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
+from motor import quaternion as quat
 from motor.arm.ik import solve_arm
+from motor.face.arkit import FACE_NAMES
+from motor.face.control import FaceControl
+from motor.face.planning import plan_face
+from motor.neck.control import NeckControl
+from motor.neck.lexemes import head_lexeme
+from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.hand.shape import hand_rotations
@@ -52,8 +70,10 @@ from motor.program.lmp import (
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
+from motor.signing.nonmanual import plan_nonmanuals
 from motor.trajectory.spline import fitts_duration
 from mura.model import BehaviorSpec
+from tts.speech import SpeechTiming
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
@@ -70,6 +90,10 @@ SWIVEL_LOOKAHEAD = 20
 FRAME_LOOKAHEAD = 2.0
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
+#: Module of a channel that is not an arm's: its LMPs go to the neck or the face.
+_NONMANUAL = ("neck", "face")
+#: The head beat on an accented vowel starts this long before it and ends this long after, s.
+BEAT_LEAD, BEAT_TAIL = 0.15, 0.2
 
 
 class MotorControl:
@@ -79,13 +103,17 @@ class MotorControl:
     structurally. Times are seconds on the utterance clock; ``fps`` frames per second.
     """
 
-    def __init__(self, avatar: Avatar, fps: float = 60.0) -> None:
+    def __init__(self, avatar: Avatar, fps: float = 60.0, face_seed: int = 0) -> None:
         if not fps > 0:
             raise ValueError(f"fps must be positive, got {fps}")
         self.avatar = avatar
         self.fps = float(fps)
         self.planner = Planner(avatar)
         self.signs = SignBehaviorPlanner(avatar)
+        self.neck = NeckControl(avatar, self.palm_centres)
+        self.neck_planner = NeckPlanner(self.neck)
+        self.face = FaceControl(face_seed)
+        self._palm_offset = {arm: _palm_offset(avatar, AVATAR_SIDE[arm]) for arm in ARMS}
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
@@ -133,6 +161,8 @@ class MotorControl:
                 continue
             here = self.timeline((arm, "wrist_position")).state(at_time).value
             longest = max(longest, float(fitts_duration(float(np.linalg.norm(target - here)))))
+        if behavior.gesture is not None:
+            longest = max(longest, self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time))
         return longest
 
     def plan(
@@ -141,8 +171,45 @@ class MotorControl:
         """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program.gesture`;
         a sign behaviour: :mod:`motor.signing.behavior`)."""
         if behavior.sign is not None:
-            return self.signs.plan(behavior, pegs, next_gesture_follows)
-        return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+            program = self.signs.plan(behavior, pegs, next_gesture_follows)
+        else:
+            program = self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+        return self._with_head_and_face(behavior, program)
+
+    def _with_head_and_face(self, behavior: BehaviorSpec, program: MotorProgram) -> MotorProgram:
+        """``program`` with the neck LMPs and face tracks of ``behavior`` added (module docstring)."""
+        pegs = program.pegs
+        if behavior.sign is not None:
+            sign = behavior.sign
+            dominant = sign.dominant.side
+            nonmanual = plan_nonmanuals(self.avatar, sign.gloss, sign.nonmanual, pegs.start, pegs.stroke_start, pegs.stroke_end,
+                                        self.palm_centres, dominant, sign.where)  # fmt: skip
+            lmps, notes = nonmanual.lmps, nonmanual.warnings
+        else:
+            tree = behavior.gesture.constraints if behavior.gesture is not None else None
+            neck = self.neck_planner.plan(behavior.id, tree, pegs)
+            face = plan_face(behavior.id, tree, pegs)
+            lmps, notes = [*neck.lmps, *face.tracks], [*neck.warnings, *face.warnings]
+        if not lmps and not notes:
+            return program
+        return replace(program, lmps=(*program.lmps, *lmps), warnings=(*program.warnings, *notes))
+
+    def speak(self, speech: SpeechTiming, onset: float, accents: Sequence[tuple[float, float]] = ()) -> tuple[str, ...]:
+        """Lip-sync of a chunk's speech starting at ``onset`` (seconds), a brow raise and a
+        head beat on each accented span ``(start, end)``, a blink at its end
+        (:meth:`motor.face.control.FaceControl.speak`); call it before frames at ``onset``
+        are sampled. Returns what was done instead of something asked, said once."""
+        notes, peaks = self.face.speak(speech, onset, accents)
+        for peak in peaks:
+            self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL))
+        return notes
+
+    def palm_centres(self, arm: str, times: np.ndarray) -> np.ndarray:
+        """Where the palm of ``arm`` is asked to be at sorted ``times`` (metres): the wrist
+        channel moved by the hand rotation to the palm's centre."""
+        wrists = self._wrists(arm, times)
+        hands = quat.normalize(_sample(self.timeline((arm, "hand_rotation")), times))
+        return wrists + quat.rotate(hands, self._palm_offset[arm])
 
     # -- execution ----------------------------------------------------------------------
 
@@ -150,10 +217,16 @@ class MotorControl:
         """Hand the program's LMPs to their channels; each starts itself at its start peg."""
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
-            if channel not in self._lmps:
+            if channel not in self._lmps and channel[0] not in _NONMANUAL:
                 raise ValueError(f"program {program.behavior!r}: no channel {channel} on this avatar")
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
+            if channel[0] == "neck":
+                self.neck.activate(lmp)
+                continue
+            if channel[0] == "face":
+                self.face.activate(lmp)
+                continue
             self._lmps[channel].append(lmp)
             self._pending[channel].append(lmp)
             self._changed(channel, lmp.pegs.start)
@@ -224,6 +297,9 @@ class MotorControl:
         first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
         rotations = self._rotations_ahead(first, count)
         if count:
+            rotations = self.neck.pose(times, rotations)
+        face = self.face.weights(times)
+        if count:
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
@@ -236,6 +312,8 @@ class MotorControl:
             rotations=rotations,
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
             start_time=float(times[0]) if count else float(start),
+            face_names=FACE_NAMES,
+            face_weights=face,
         )
 
     def _rotations_ahead(self, first: int, count: int) -> np.ndarray:
@@ -297,6 +375,8 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
+        self.neck.forget_before(horizon)
+        self.face.forget_before(horizon)
         limit = math.floor(horizon / SWIVEL_PERIOD) - 2
         for grid in self._swivels.values():
             for index in [i for i in grid if i < limit]:
@@ -414,3 +494,9 @@ def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.nd
     p0, p1, p2, p3 = values[index - 1], values[index], values[index + 1], values[index + 2]
     return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
 
+
+
+def _palm_offset(avatar: Avatar, side: str) -> np.ndarray:
+    """From the wrist to the palm's centre at rest (halfway to the middle finger's base), metres."""
+    wrist = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    return 0.5 * (avatar.rest_positions[avatar.joint_index(f"{side}_middle1")] - wrist)
