@@ -48,6 +48,7 @@ from motor.face.arkit import FACE_NAMES
 from motor.face.control import FaceControl
 from motor.face.planning import plan_face
 from motor.neck.control import NeckControl
+from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
@@ -268,7 +269,10 @@ class MotorControl:
 
     def interrupt(self, at_time: float) -> None:
         """Stop every gesture at ``at_time``: LMPs starting later are dropped and each arm
-        that is away from rest retracts from where it is then, in Fitts' law time."""
+        that is away from rest retracts from where it is then, in Fitts' law time; the
+        gaze goes back to rest and head and face movements not yet begun are dropped."""
+        self.neck.interrupt(at_time, neck_gaze.gaze(self.avatar, neck_gaze.rest(self.avatar), at_time, returning=True))
+        self.face.interrupt(at_time)
         for arm in ARMS:
             channels = [(arm, name) for name in ARM_CHANNELS]
             if not any(lmp.pegs.end > at_time for channel in channels for lmp in self._lmps[channel]):

@@ -1,8 +1,8 @@
 """``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and avatar pages.
 
-Every sign is rendered on its own (``<gloss>.bvh`` and ``<gloss>.html``), or with
-``--sequence`` all signs of all files in order as one performance (``sequence.bvh``,
-``sequence.html``) with transitions between them. A sign that cannot be read or realized
+Every sign is rendered on its own (``<gloss>.bvh``, ``<gloss>.face.json`` — the
+non-manuals' morph weights — and ``<gloss>.html``), or with ``--sequence`` all signs of
+all files in order as one performance (``sequence.bvh`` …) with transitions between them. A sign that cannot be read or realized
 fails alone with its reason; the others still render. ``--report`` writes a JSON record
 of every sign: whether it rendered, its duration, and why not when it did not.
 """
@@ -19,6 +19,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.face import face_json, page_face_json
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
 from agent.export.page_model import page_model
@@ -198,7 +199,10 @@ def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str,
     """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB."""
     bvh_path = output / f"{stem}.bvh"
     write_bvh(signed.motion, bvh_path)
-    files = [str(bvh_path)]
+    face_path = output / f"{stem}.face.json"
+    with staged_text(face_path, "ascii") as stream:
+        stream.write(face_json(signed.motion))
+    files = [str(bvh_path), str(face_path)]
     if glb_avatar is not None:
         glb_path = output / f"{stem}.glb"
         write_motion_glb(signed.motion, glb_path, motion_model(glb_avatar), glb_avatar.root_height)
@@ -206,7 +210,8 @@ def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str,
     try:
         html_path = output / f"{stem}.html"
         model = page_model(page_avatar) if page_avatar is not None else None
-        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None, model=model)
+        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None, model=model,
+                   face_json=page_face_json(signed.motion))  # fmt: skip
         files.append(str(html_path))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)

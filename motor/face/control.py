@@ -100,6 +100,10 @@ class FaceControl:
         out[:, _BLINK_COLUMNS] += self.blinks.sample(t)[:, None]
         return np.clip(out, 0.0, 1.0)
 
+    def interrupt(self, at: float) -> None:
+        """Drop the tracks that would start after ``at`` seconds."""
+        self._tracks = [track for track in self._tracks if track.start <= at]
+
     def forget_before(self, horizon: float) -> None:
         """Drop tracks and blinks over before ``horizon`` seconds."""
         self._tracks = [track for track in self._tracks if track.end >= horizon]

@@ -112,6 +112,14 @@ class NeckControl:
         state = self.gaze_state(at)
         return lmp.natural_duration(state.value[:3], state.value[3:6], at)
 
+    def interrupt(self, at: float, back: GazeLMP) -> None:
+        """Drop what would start after ``at`` and look back to rest with ``back``."""
+        self._heads = [lmp for lmp in self._heads if lmp.first <= at]
+        self._trunks = [lmp for lmp in self._trunks if lmp.first <= at]
+        self._gazes = [lmp for lmp in self._gazes if lmp.pegs.start <= at]
+        self._timeline = None
+        self._activate_gaze(back)
+
     def forget_before(self, horizon: float) -> None:
         """Drop what lost control before ``horizon`` seconds (memory stays flat)."""
         self._heads = [lmp for lmp in self._heads if lmp.last >= horizon]
