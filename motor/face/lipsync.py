@@ -14,7 +14,8 @@ The mouth at time ``t`` is the dominance-weighted mean of the segments' viseme w
 
 ``d_i`` the decay, ``a_i`` the segment's amplitude (stress), ``V_i`` its viseme's morph
 weights, and ``α_rest`` (:data:`REST_DOMINANCE`) a constant pull toward the closed mouth,
-so that the face comes to rest away from speech. Bilabials (dominance 1) close the lips
+so that the face comes to rest away from speech; a chunk's speech is framed by full
+pauses, so the mouth is closed before it begins and after it ends. Bilabials (dominance 1) close the lips
 whatever surrounds them; tongue consonants (0.25) take the lip shape of their vowels;
 a long pause (dominance up to 1) closes the mouth, a 30 ms word gap barely does. The
 whole articulation runs :data:`ANTICIPATION` seconds ahead of the audio: visible
@@ -35,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from motor.face.phonemes import ALPHABETS, Segment, lookup, sampa_symbols, segments
+from motor.face.phonemes import ALPHABETS, SILENCE_FULL, Segment, lookup, sampa_symbols, segments
 from motor.face.visemes import DOMINANCE, MOUTH_COLUMNS, VISEME_INDEX, VISEME_TABLE
 
 #: Decay time of a segment's dominance before it starts and after it ends, seconds.
@@ -127,7 +128,23 @@ def speech_segments(
         parts.extend(shown)
         if not known and symbol not in unknown:
             unknown.append(symbol)
-    return parts, tuple(unknown)
+    return _at_rest_around(parts), tuple(unknown)
+
+
+def _at_rest_around(parts: list[Segment]) -> list[Segment]:
+    """``parts`` with a full pause before and after: the mouth is closed before the
+    speech begins and after it ends, not merely pulled toward rest."""
+    if not parts:
+        return parts
+    strength = DOMINANCE["bilabial"]
+    first = 1 if parts[0].viseme == "sil" else 0
+    last = len(parts) - 1 if parts[-1].viseme == "sil" else len(parts)
+    if first >= last:
+        return parts
+    begin, finish = parts[first].start, parts[last - 1].end
+    before = Segment("sil", min(begin - SILENCE_FULL, parts[0].start), begin, strength)
+    after = Segment("sil", finish, max(finish + SILENCE_FULL, parts[-1].end), strength)
+    return [before, *parts[first:last], after]
 
 
 def _pauses_merged(phonemes: Sequence[tuple[str, float, float]]) -> list[tuple[str, float, float]]:
@@ -159,7 +176,7 @@ def word_segments(words: Sequence[tuple[str, float, float]], onset: float = 0.0)
             parts.append(Segment("DD", float(a), float(middle), DOMINANCE["lingual"]))
             parts.append(Segment("E", float(middle), float(b), DOMINANCE["vowel"]))
         previous_end = end
-    return parts
+    return _at_rest_around(parts)
 
 
 def mouth_picture(picture: str, start: float, end: float) -> tuple[Articulation | None, list[tuple[int, str]]]:
