@@ -197,12 +197,14 @@ class MotorControl:
 
     def speak(self, speech: SpeechTiming, onset: float, accents: Sequence[tuple[float, float]] = ()) -> tuple[str, ...]:
         """Lip-sync of a chunk's speech starting at ``onset`` (seconds), a brow raise and a
-        head beat on each accented span ``(start, end)``, a blink at its end
+        head beat (unless a head lexeme already moves the head then) on each accented span
+        ``(start, end)``, a blink at its end
         (:meth:`motor.face.control.FaceControl.speak`); call it before frames at ``onset``
         are sampled. Returns what was done instead of something asked, said once."""
         notes, peaks = self.face.speak(speech, onset, accents)
         for peak in peaks:
-            self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL))
+            if not self.neck.head_moves(peak):
+                self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL))
         return notes
 
     def palm_centres(self, arm: str, times: np.ndarray) -> np.ndarray:

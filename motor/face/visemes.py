@@ -11,7 +11,9 @@ rounded lips over close teeth (tʃ, dʒ, ʃ, ʒ), ``SS`` spread lips over close 
 tables of :mod:`motor.face.phonemes` map every speech backend's alphabet onto them.
 
 The weights are mura's own: a jaw opening that grows with vowel openness (open vowels
-about 0.65, close ones 0.18, consonants 0.15 or less, bilabials 0), lip rounding
+about 0.65, close ones 0.18, consonants 0.15 or less, bilabials 0 — and ``mouthClose``,
+which in ARKit closes the lips over an open jaw, so that a bilabial between open vowels
+still seals the lips while its neighbours keep the jaw partly open), lip rounding
 (``mouthPucker``, ``mouthFunnel``) for rounded vowels and postalveolars, lip spreading
 (``mouthStretch``, ``mouthSmile``) for close front vowels and sibilants, lips pressed for
 bilabials, the lower lip rolled in for labiodentals and the tongue shown for dentals.
@@ -36,7 +38,7 @@ VISEME_INDEX: dict[str, int] = {name: index for index, name in enumerate(VISEMES
 #: Morph weights of each viseme (names not given are 0).
 VISEME_WEIGHTS: dict[str, dict[str, float]] = {
     "sil": {},
-    "PP": {"mouthPress*": 0.45, "mouthRollLower": 0.2, "mouthRollUpper": 0.12, "mouthClose": 0.05},
+    "PP": {"mouthPress*": 0.45, "mouthRollLower": 0.2, "mouthRollUpper": 0.12, "mouthClose": 0.3},
     "FF": {"jawOpen": 0.06, "mouthRollLower": 0.55, "mouthUpperUp*": 0.22, "mouthPress*": 0.1},
     "TH": {"jawOpen": 0.16, "tongueOut": 0.35, "mouthStretch*": 0.1},
     "DD": {"jawOpen": 0.14, "mouthStretch*": 0.12, "mouthLowerDown*": 0.08},

@@ -112,6 +112,10 @@ class NeckControl:
         state = self.gaze_state(at)
         return lmp.natural_duration(state.value[:3], state.value[3:6], at)
 
+    def head_moves(self, time: float) -> bool:
+        """Whether a head lexeme is in progress at ``time``."""
+        return any(lmp.first <= time <= lmp.last for lmp in self._heads)
+
     def interrupt(self, at: float, back: GazeLMP) -> None:
         """Drop what would start after ``at`` and look back to rest with ``back``."""
         self._heads = [lmp for lmp in self._heads if lmp.first <= at]

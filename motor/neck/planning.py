@@ -14,10 +14,11 @@ and ``Shoulders`` (:data:`NECK_SLOTS`):
 * **Deictic gaze**: a gesture that points (``mode="pointTo"`` on ``HandLocation`` or
   ``ExtFingerOrientation``) and says nothing about gaze looks where it points.
 * **Head** (``Neck``, ``HeadDirection``): a head lexeme name (``Nod``, ``Shake``,
-  ``TiltLeft`` … or a HamNoSys code, :mod:`motor.neck.lexemes`) is performed over the
-  stroke (at its own pace when the stroke is shorter; repetitions of the ``repetition``
-  nodes above it multiply its swings); a direction or a point turns the head to face it
-  (the eyes look there too unless a gaze target is given).
+  ``TiltLeft`` … or a HamNoSys code, :mod:`motor.neck.lexemes`) starts with the stroke: a
+  swing at its own pace (a nod is not slowed to fill a long affiliate; repetitions of the
+  ``repetition`` nodes above it multiply its swings), a held posture until ``relax``; a
+  direction or a point turns the head to face it (the eyes look there too unless a gaze
+  target is given).
 * **Torso, shoulders**: HamNoSys body and shoulder codes or names
   (:mod:`motor.neck.trunk`), held from the stroke to ``relax``.
 
@@ -207,9 +208,9 @@ class NeckPlanner:
                 plan.warnings.append(f"{behavior} ({_where(leaf.where)}): {error}; the head does not move for it")
                 continue
             repetitions = count * probe.lexeme.swings if count > 1 and not probe.lexeme.held else None
-            end = max(pegs.stroke_end, pegs.stroke_start + natural_duration(probe.lexeme, repetitions))
+            end = pegs.stroke_start + natural_duration(probe.lexeme, repetitions)
             if probe.lexeme.held:
-                end = max(pegs.relax, pegs.stroke_start + natural_duration(probe.lexeme))
+                end = max(pegs.relax, end)
             plan.lmps.append(head_lexeme(name, pegs.stroke_start, end, repetitions=repetitions))
 
     def _trunk(self, behavior: str, leaf: Static | Dynamic, pegs: TimePegs, plan: NeckPlan) -> None:

@@ -3,7 +3,7 @@
 // Live mode (?live=1): see live.js. Query ?t=SECONDS opens the page paused at that time.
 // When the first frame is drawn, window.__muraReady is true; window.__mura exposes
 // time(), seek(t), play(), pause(), jointPosition(name), face() (the morph weights shown
-// now), morph(name) (the model's morph influence) and counts for tests and scripting.
+// now), morph(name) (the model's morph influence), showFace(on) and counts for tests and scripting.
 // The face's morph weights (script#mura-face, see face.js) play on the model's ARKit
 // morph targets, VRM expressions, or the capsule figure's face.
 import {
@@ -214,6 +214,7 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   const morphs = loaded ? morphDriver(loaded.object) : null;
   const expressions = loaded?.vrm ? vrmDriver(loaded.vrm) : null;
   let shown = {};
+  let faceOn = true;
   const mixer = new AnimationMixer(root);
   const action = mixer.clipAction(clip);
   action.play();
@@ -222,7 +223,7 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
     action.time = Math.min(clip.duration, Math.max(0, t - motionStart));
     mixer.update(0);
     if (face) {
-      shown = faceAt(face, t - motionStart);
+      shown = faceOn ? faceAt(face, t - motionStart) : Object.fromEntries(face.names.map((name) => [name, 0]));
       if (morphs) morphs.apply(shown);
       if (expressions) expressions.apply(shown);
       if (!loaded) root.userData.face?.apply(shown);
@@ -343,6 +344,12 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
     // World position of a joint in the drawn pose, scene units (cm).
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
     face: () => ({ ...shown }),
+    // Play the face (true) or hold it at rest (false), to see what the face alone changes.
+    showFace: (on) => {
+      faceOn = Boolean(on);
+      draw();
+      return faceOn;
+    },
     morph: (name) => morphs?.influence(name) ?? null,
     faceNames: face ? face.names.length : 0,
   };
