@@ -95,6 +95,9 @@ _FRAME_TOLERANCE = 1e-9
 _NONMANUAL = ("neck", "face")
 #: The head beat on an accented vowel starts this long before it and ends this long after, s.
 BEAT_LEAD, BEAT_TAIL = 0.15, 0.2
+#: Nothing of a chunk's face shows earlier than this before its speech onset, s (the
+#: articulation's lead-in: a pause, the anticipation and the dominance's reach).
+SPEECH_REACH = 1.0
 
 
 class MotorControl:
@@ -120,7 +123,7 @@ class MotorControl:
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
         self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
-        self._ahead: tuple[int, np.ndarray] | None = None  # first frame index, rotations
+        self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._last_swivel = {arm: _LastRun() for arm in ARMS}
@@ -201,10 +204,11 @@ class MotorControl:
         ``(start, end)``, a blink at its end
         (:meth:`motor.face.control.FaceControl.speak`); call it before frames at ``onset``
         are sampled. Returns what was done instead of something asked, said once."""
+        self._forget_ahead_from(onset - SPEECH_REACH)
         notes, peaks = self.face.speak(speech, onset, accents)
         for peak in peaks:
             if not self.neck.head_moves(peak):
-                self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL))
+                self._forget_ahead_from(self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL)))
         return notes
 
     def palm_centres(self, arm: str, times: np.ndarray) -> np.ndarray:
@@ -224,11 +228,9 @@ class MotorControl:
                 raise ValueError(f"program {program.behavior!r}: no channel {channel} on this avatar")
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
-            if channel[0] == "neck":
-                self.neck.activate(lmp)
-                continue
-            if channel[0] == "face":
-                self.face.activate(lmp)
+            if channel[0] in _NONMANUAL:
+                module = self.neck if channel[0] == "neck" else self.face
+                self._forget_ahead_from(module.activate(lmp))
                 continue
             self._lmps[channel].append(lmp)
             self._pending[channel].append(lmp)
@@ -242,10 +244,16 @@ class MotorControl:
         first = math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE)
         for index in [i for i in grid if i >= first]:
             del grid[index]
-        if self._ahead is not None:
-            # a frame's swivel is interpolated from grid points up to two periods after it
-            kept = max(0, math.ceil((first - 3) * SWIVEL_PERIOD * self.fps - _FRAME_TOLERANCE) - self._ahead[0])
-            self._ahead = (self._ahead[0], self._ahead[1][:kept]) if kept else None
+        # a frame's swivel is interpolated from grid points up to two periods after it
+        self._forget_ahead_from((first - 3) * SWIVEL_PERIOD)
+
+    def _forget_ahead_from(self, since: float) -> None:
+        """Drop the frames computed ahead from time ``since`` on (something changes them)."""
+        if self._ahead is None:
+            return
+        held, rotations, faces = self._ahead
+        kept = max(0, math.ceil(since * self.fps - _FRAME_TOLERANCE) - held)
+        self._ahead = (held, rotations[:kept], faces[:kept]) if kept else None
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
         """The channel's timeline of everything activated so far (built on demand; LMPs
@@ -275,6 +283,7 @@ class MotorControl:
         gaze goes back to rest and head and face movements not yet begun are dropped."""
         self.neck.interrupt(at_time, neck_gaze.gaze(self.avatar, neck_gaze.rest(self.avatar), at_time, returning=True))
         self.face.interrupt(at_time)
+        self._forget_ahead_from(at_time)
         for arm in ARMS:
             channels = [(arm, name) for name in ARM_CHANNELS]
             if not any(lmp.pegs.end > at_time for channel in channels for lmp in self._lmps[channel]):
@@ -301,10 +310,7 @@ class MotorControl:
         times = self.frame_times(start, end)
         count = times.size
         first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
-        rotations = self._rotations_ahead(first, count)
-        if count:
-            rotations = self.neck.pose(times, rotations)
-        face = self.face.weights(times)
+        rotations, face = self._rotations_ahead(first, count)
         if count:
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
@@ -322,22 +328,25 @@ class MotorControl:
             face_weights=face,
         )
 
-    def _rotations_ahead(self, first: int, count: int) -> np.ndarray:
-        """Joint rotations of frames ``first … first + count − 1``: from the frames computed
-        ahead when they hold them, else computed now with :data:`FRAME_LOOKAHEAD` more."""
+    def _rotations_ahead(self, first: int, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """Joint rotations and face weights of frames ``first … first + count − 1``: from the
+        frames computed ahead when they hold them, else computed now with
+        :data:`FRAME_LOOKAHEAD` more (arms, then neck and face)."""
         if count and self._ahead is not None:
-            held, rotations = self._ahead
+            held, rotations, faces = self._ahead
             if held <= first and first + count <= held + rotations.shape[0]:
-                return rotations[first - held : first - held + count].copy()
+                return rotations[first - held : first - held + count].copy(), faces[first - held : first - held + count].copy()
         if count == 0:
-            return np.empty((0, self.avatar.joint_count, 4))
+            return np.empty((0, self.avatar.joint_count, 4)), np.empty((0, len(FACE_NAMES)))
         total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
-        rotations = self._rotations(np.arange(first, first + total) / self.fps)
+        times = np.arange(first, first + total) / self.fps
+        rotations = self.neck.pose(times, self._rotations(times))
+        faces = self.face.weights(times)
         if total == count:  # nothing ahead to keep
             self._ahead = None
-            return rotations
-        self._ahead = (first, rotations)
-        return rotations[:count].copy()
+            return rotations, faces
+        self._ahead = (first, rotations, faces)
+        return rotations[:count].copy(), faces[:count].copy()
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
         """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""

@@ -54,9 +54,10 @@ class FaceControl:
         self._tracks: list[FaceTrack] = []
         self._said: set[str] = set()
 
-    def activate(self, track: FaceTrack) -> None:
-        """Add a track; it shows from its ``start`` on."""
+    def activate(self, track: FaceTrack) -> float:
+        """Add a track; returns the time (s) from which it shows, its ``start``."""
         self._tracks.append(track)
+        return track.start
 
     def blink_at(self, time: float) -> None:
         """A blink beginning at ``time`` (seconds) besides the spontaneous ones."""

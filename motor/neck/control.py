@@ -74,16 +74,18 @@ class NeckControl:
 
     # -- activation ---------------------------------------------------------------
 
-    def activate(self, lmp: NeckLMP) -> None:
-        """Hand an LMP to its channel; it takes effect from its own start."""
+    def activate(self, lmp: NeckLMP) -> float:
+        """Hand an LMP to its channel; returns the time (s) from which it changes frames."""
         if isinstance(lmp, GazeLMP):
             self._activate_gaze(lmp)
-        elif isinstance(lmp, HeadMovementLMP):
+            return lmp.pegs.start
+        if isinstance(lmp, HeadMovementLMP):
             self._heads.append(lmp)
         elif isinstance(lmp, TrunkLMP):
             self._trunks.append(lmp)
         else:
             raise TypeError(f"the neck has no channel for {type(lmp).__name__}")
+        return lmp.first
 
     def _activate_gaze(self, lmp: GazeLMP) -> None:
         """Add a gaze LMP; returns to rest of earlier behaviours that would start after it
@@ -147,7 +149,7 @@ class NeckControl:
         if t.size == 0:
             return rotations
         self._trunk(t, rotations)
-        gaze = self.timeline().sample(t)
+        gaze = _sample(self.timeline(), t)
         looked, facing = gaze[:, :3], quat.normalize(gaze[:, 3:6])
         offsets = np.zeros((t.size, 4))
         for lmp in self._heads:
@@ -196,6 +198,18 @@ class NeckControl:
             angle = quat.angle_between(quat.IDENTITY, turn)
             fraction = np.minimum(1.0, EYE_RANGE / np.maximum(angle, 1e-12))
             rotations[:, eye] = quat.slerp(quat.IDENTITY, turn, fraction)
+
+
+def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
+    """The timeline's values at sorted ``times``, asking only the realizations in control there."""
+    out = np.empty((times.size, np.size(timeline.initial.value)))
+    out[:] = timeline.initial.value
+    owner = np.searchsorted(timeline.starts, times, side="right") - 1
+    for index in range(max(int(owner[0]), 0), int(owner[-1]) + 1):
+        lo, hi = np.searchsorted(owner, index, side="left"), np.searchsorted(owner, index, side="right")
+        if hi > lo:
+            out[lo:hi] = timeline.realizations[index].sample(times[lo:hi])
+    return out
 
 
 def _path(avatar: Avatar, joint: int) -> tuple[int, ...]:

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -90,11 +91,12 @@ def eye_centre(avatar: Avatar) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class GazeTarget:
-    """Where to look: ``points(times) → (n, 3)`` metres in the avatar frame, and a label
-    for messages."""
+    """Where to look: ``points(times) → (n, 3)`` metres in the avatar frame, a label for
+    messages, and whether it stands still (then the point of any time will do)."""
 
     label: str
     points: Callable[[np.ndarray], np.ndarray]
+    fixed: bool = False
 
 
 def point(position: np.ndarray, label: str = "") -> GazeTarget:
@@ -102,7 +104,7 @@ def point(position: np.ndarray, label: str = "") -> GazeTarget:
     p = np.asarray(position, dtype=float).reshape(3)
     if not np.all(np.isfinite(p)):
         raise ValueError(f"gaze target {label or p}: not a finite point")
-    return GazeTarget(label or f"point {np.round(p, 3).tolist()}", lambda times: np.broadcast_to(p, (np.size(times), 3)).copy())
+    return GazeTarget(label or f"point {np.round(p, 3).tolist()}", lambda times: np.broadcast_to(p, (np.size(times), 3)).copy(), fixed=True)
 
 
 def direction(avatar: Avatar, vector: np.ndarray, label: str = "", distance: float = FAR) -> GazeTarget:
@@ -214,13 +216,18 @@ class GazeShift:
             return target, quat.normalize(self.lmp.head.points(times) - self.lmp.origin)
         return target, head_direction(look, self.lmp.head_share)
 
-    @property
-    def amplitudes(self) -> tuple[float, float]:
-        """Angles (radians) the eyes and the head turn, measured at arrival."""
+    @cached_property
+    def _goal_at_start(self) -> tuple[np.ndarray, np.ndarray]:
         goal, head = self._goal(np.array([self.time]))
+        return goal[0], head[0]
+
+    @cached_property
+    def amplitudes(self) -> tuple[float, float]:
+        """Angles (radians) the eyes and the head turn, measured at the shift's start."""
+        goal, head = self._goal_at_start
         before = quat.normalize(self.from_point - self.lmp.origin)
-        after = quat.normalize(goal[0] - self.lmp.origin)
-        return float(np.arccos(np.clip(before @ after, -1.0, 1.0))), float(np.arccos(np.clip(self.from_head @ head[0], -1.0, 1.0)))
+        after = quat.normalize(goal - self.lmp.origin)
+        return float(np.arccos(np.clip(before @ after, -1.0, 1.0))), float(np.arccos(np.clip(self.from_head @ head, -1.0, 1.0)))
 
     @property
     def duration(self) -> float:
@@ -233,7 +240,10 @@ class GazeShift:
         ease = minimum_jerk()
         s_eye = ease.fraction((t - self.time) / saccade_duration(eyes))
         s_head = ease.fraction((t - self.time - HEAD_LAG) / head_duration(head))
-        goal, goal_head = self._goal(t)
+        fixed = self.lmp.target.fixed and (self.lmp.head is None or self.lmp.head.fixed)
+        if fixed and t.size and t[0] >= self.time + self.duration:
+            return np.broadcast_to(np.concatenate(self._goal_at_start), (t.size, 6)).copy()
+        goal, goal_head = (np.broadcast_to(v, (t.size, 3)) for v in self._goal_at_start) if fixed else self._goal(t)
         origin = self.lmp.origin
         start = self.from_point - origin
         distance = (1.0 - s_eye) * float(np.linalg.norm(start)) + s_eye * np.linalg.norm(goal - origin, axis=1)

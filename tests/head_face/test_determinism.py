@@ -26,7 +26,8 @@ def test_frame_windows_do_not_change_the_face(window):
     agent.config = replace(agent.config, offline_frame_window=window)
     windowed = agent.render(EXAMPLES / "look_and_nod.xml")
     assert np.array_equal(whole.motion.face_weights, windowed.motion.face_weights)
-    assert np.array_equal(whole.motion.rotations, windowed.motion.rotations)
+    # the same arithmetic in batches of other sizes: at most a last-bit difference
+    np.testing.assert_allclose(whole.motion.rotations, windowed.motion.rotations, rtol=0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 7, 12345])
