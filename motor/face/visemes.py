@@ -1,8 +1,9 @@
 """Visemes: the visible mouth shapes of speech, as ARKit morph weights, and how strongly each
 one holds its shape against its neighbours.
 
-The set is the 15 visemes of a widely used lip-sync convention (``sil`` and 14 mouth
-shapes, each named by a phoneme that shows it): ``PP`` lips closed (p, b, m), ``FF``
+The set is the 15 visemes of the Oculus/Meta OVRLipSync convention (``sil`` and 14 mouth
+shapes, each named by a phoneme that shows it; MPEG-4 face animation groups phonemes
+into 14 visemes and a neutral face alike): ``PP`` lips closed (p, b, m), ``FF``
 lower lip to the upper teeth (f, v), ``TH`` tongue between the teeth, ``DD`` tongue tip
 behind the upper teeth (t, d), ``kk`` back of the tongue (k, g), ``CH`` protruded,
 rounded lips over close teeth (tʃ, dʒ, ʃ, ʒ), ``SS`` spread lips over close teeth (s, z),
