@@ -7,6 +7,13 @@ performs it live on the wall clock: speech plays through the audio device when o
 there, frames go to whoever subscribed (the browser page of ``mura play``), utterances
 said while one plays are queued and join it fluently, and ``interrupt()`` ends the
 current gesture gracefully.
+
+A BML 1.0 block given to ``say`` follows its ``composition``: ``APPEND`` and ``MERGE``
+queue it (mura performs one block at a time, so a ``MERGE`` arriving while another block
+plays waits for it, with a warning), ``REPLACE`` interrupts every block playing or queued
+(the arms retract from where they are) and then starts. Observers receive the BML
+feedback of :mod:`blackboard.feedback` (predictions, block and sync-point progress,
+warnings) beside the scheduler's events.
 """
 
 from __future__ import annotations
@@ -20,10 +27,11 @@ from collections.abc import Callable
 import numpy as np
 
 from agent.performance import Performance, PerformanceError, SavedFiles, rest_motion
-from agent.sources import UtteranceSource, read_utterance
+from agent.sources import UtteranceSource, read_spec, read_utterance
 from agent.streaming import render_to_files
 from blackboard.clock import VirtualClock, WallClock
 from blackboard.events import Event, SpeechStarted
+from blackboard.feedback import BmlFeedback, FeedbackTranslator, WarningFeedback
 from blackboard.scheduler import (
     LiveHandle,
     ScheduledUtterance,
@@ -32,6 +40,8 @@ from blackboard.scheduler import (
 )
 from motor.body.avatar import Avatar, load_avatar
 from motor.control import MotorControl
+from mura.bml import BmlBlock
+from mura.errors import SourceLocation, SpecError
 from tts import SpeechSynthesizer, make_synthesizer
 from tts.playback import PlaybackUnavailable, make_player
 
@@ -44,6 +54,8 @@ class Agent:
         tts: ``"fake"``, ``"espeak"``, ``"pyttsx3"``, ``"default"`` or a synthesizer.
         fps: frame rate of the motion, frames per second.
         voice, rate: passed to the speech backend.
+        speedup: how much faster than real time the live clock runs (1: real time; more
+            for previews and tests).
     """
 
     def __init__(
@@ -53,6 +65,7 @@ class Agent:
         fps: float = 60.0,
         voice: str | None = None,
         rate: float = 1.0,
+        speedup: float = 1.0,
     ) -> None:
         self.avatar = load_avatar(avatar) if isinstance(avatar, str) else avatar
         self.tts = make_synthesizer(tts) if isinstance(tts, str) else tts
@@ -60,7 +73,10 @@ class Agent:
         self.config = SchedulerConfig(voice=voice, rate=rate)
         self._live: Scheduler | None = None
         self._live_lock = threading.Lock()
-        self._observers: list[Callable[[Event], None]] = []
+        self._observers: list[Callable[[Event | BmlFeedback], None]] = []
+        self._speedup = float(speedup)
+        self._feedback = FeedbackTranslator(self._tell)
+        self._handles: dict[str, LiveHandle] = {}
 
     def render(self, utterance: UtteranceSource, name: str | None = None) -> Performance:
         """Perform ``utterance`` offline; raises :class:`SpecError` for a bad spec and
@@ -82,18 +98,54 @@ class Agent:
         does (``partial`` None)."""
         return render_to_files(utterance, directory, self.tts, self.avatar, self.fps, self.config, name, glb=glb)
 
-    def subscribe(self, observer: Callable[[Event], None]) -> None:
-        """Receive every event of live utterances (chunk states, feedback, frames)."""
+    def subscribe(self, observer: Callable[[Event | BmlFeedback], None]) -> None:
+        """Receive every event of live utterances (chunk states, feedback, frames) and the
+        BML feedback of live blocks."""
         self._observers.append(observer)
         if self._live is not None:
             self._live.subscribe(observer)
 
     def say(self, utterance: UtteranceSource, name: str | None = None, audio: bool = True) -> LiveUtterance:
-        """Perform ``utterance`` live; returns at once with a handle to wait on or interrupt."""
-        model, default_name = read_utterance(utterance)
+        """Perform ``utterance`` (MURML, or a BML block with its composition) live; returns
+        at once with a handle to wait on or interrupt. A BML block keeps its id as its name."""
+        model, default_name, block = read_spec(utterance)
+        name = block.id if block is not None else name or default_name
         scheduler = self._live_scheduler(audio)
-        handle = scheduler.start(model, name or default_name)
-        return LiveUtterance(handle, name or default_name, self.avatar, self.fps)
+        with self._live_lock:
+            self._handles = {n: h for n, h in self._handles.items() if not h.done}
+            if name in self._handles:
+                raise SpecError(f"{name!r} is still being performed: a block id is used once at a time", SourceLocation(model.source, 1, 1))
+        self._feedback.register(name, _sync_points(model, block), _kinds(model, block), block.character if block else None, model.warnings)
+        if block is not None:
+            self._compose(block)
+        handle = scheduler.start(model, name)
+        with self._live_lock:
+            self._handles[name] = handle
+        return LiveUtterance(handle, name, self.avatar, self.fps)
+
+    def interrupt(self, name: str | None = None) -> list[str]:
+        """End the live utterance or block ``name`` (every one playing or queued when None)
+        gracefully; returns the names interrupted."""
+        with self._live_lock:
+            handles = {n: h for n, h in self._handles.items() if not h.done and (name is None or n == name)}
+        for handle in handles.values():
+            handle.interrupt()
+        return sorted(handles)
+
+    def _compose(self, block: BmlBlock) -> None:
+        for warning in block.warnings:
+            self._tell(WarningFeedback(block.id, warning.kind, warning.message, str(warning.where)))
+        if block.composition == "REPLACE":
+            self.interrupt()
+            return
+        with self._live_lock:
+            busy = sorted(n for n, h in self._handles.items() if not h.done)
+        if block.composition == "MERGE" and busy:
+            self._tell(WarningFeedback(block.id, "MERGE_QUEUED", f"mura performs one block at a time: {block.id!r} starts after {', '.join(busy)}"))
+
+    def _tell(self, event: Event | BmlFeedback) -> None:
+        for observer in list(self._observers):
+            observer(event)
 
     def close(self) -> None:
         """Wait for live utterances to end and release the live scheduler."""
@@ -105,12 +157,24 @@ class Agent:
     def _live_scheduler(self, audio: bool) -> Scheduler:
         with self._live_lock:
             if self._live is None:
-                self._live = Scheduler(self.tts, MotorControl(self.avatar, self.fps), WallClock(), self.config)
+                self._live = Scheduler(self.tts, MotorControl(self.avatar, self.fps), WallClock(self._speedup), self.config)
                 for observer in self._observers:
                     self._live.subscribe(observer)
+                self._live.subscribe(self._feedback)
                 if audio:
                     self._live.subscribe(SpeechPlayer())
             return self._live
+
+
+def _sync_points(model, block: BmlBlock | None) -> dict[str, tuple[str, ...]]:
+    """The sync points feedback reports: a block's own, or the seven pegs of each MURML gesture."""
+    if block is not None:
+        return dict(block.sync_points)
+    return {b.id: ("start", "ready", "strokeStart", "stroke", "strokeEnd", "relax", "end") for b in model.behaviors if b.moves_arms}
+
+
+def _kinds(model, block: BmlBlock | None) -> dict[str, str]:
+    return dict(block.kinds) if block is not None else {b.id: b.kind for b in model.behaviors}
 
 
 class LiveUtterance:

@@ -7,8 +7,10 @@ rotations — never the plans:
 * **Lip-sync**: for every example utterance with speech, spoken by espeak-ng, Pearson's r
   between each frame's ``jawOpen`` weight and the audio's energy envelope (the RMS of the
   samples within :data:`ENVELOPE_WINDOW` centred on the frame); and the largest
-  ``jawOpen`` in the middle half of every pause of the audio (a run of at least
-  :data:`PAUSE` seconds whose envelope stays below :data:`SILENCE` of its peak). The fake
+  ``jawOpen`` inside every pause of the audio (a run of at least :data:`PAUSE` seconds
+  whose envelope stays below :data:`SILENCE` of its peak): from a quarter into it to a
+  quarter, or :data:`LEAD_IN` seconds if longer, before its end — in the last tenth of a
+  second the mouth rightly begins the next word. The fake
   backend's r is given beside it (its audio is a buzz only as loud as vowel or consonant).
 * **Gaze**: for behaviours whose target is known (:data:`GAZE_CASES`), the angle between
   each eye's line of sight and the line from that eye to the target, at the behaviour's
@@ -35,6 +37,8 @@ ENVELOPE_WINDOW = 0.05
 #: A pause: at least this long, seconds, with the envelope below SILENCE of its peak.
 PAUSE = 0.2
 SILENCE = 0.02
+#: The end of a pause left out of its interior: the mouth's lead into the next word, seconds.
+LEAD_IN = 0.1
 FPS = 60.0
 #: The listener as the specs name it: this far straight ahead of the eyes at rest, metres.
 LISTENER_DISTANCE = 1.2
@@ -113,7 +117,7 @@ def energy_envelope(audio: np.ndarray, rate: int, times: np.ndarray, window: flo
 
 
 def pause_middles(envelope: np.ndarray, fps: float) -> list[np.ndarray]:
-    """Frame indices of the middle half of every pause of the envelope (module docstring)."""
+    """Frame indices of the interior of every pause of the envelope (module docstring)."""
     quiet = envelope < SILENCE * float(np.max(envelope, initial=0.0))
     edges = np.diff(np.concatenate([[0], quiet.astype(int), [0]]))
     starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
@@ -121,7 +125,7 @@ def pause_middles(envelope: np.ndarray, fps: float) -> list[np.ndarray]:
     for start, end in zip(starts, ends):
         if (end - start) / fps >= PAUSE:
             quarter = (end - start) // 4
-            middles.append(np.arange(start + quarter, end - quarter))
+            middles.append(np.arange(start + quarter, end - max(quarter, int(round(LEAD_IN * fps)))))
     return middles
 
 

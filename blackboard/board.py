@@ -14,7 +14,7 @@ from blackboard.chunk import ChunkState, ChunkStateMachine, Transition
 from blackboard.events import BehaviorFeedback, ChunkStateChanged, EventBus
 from blackboard.planning import GestureDemands, MotorProgramLike
 from blackboard.timeline import Timeline
-from blackboard.timing import ChunkTiming, GestureTiming
+from blackboard.chunk_timing import ChunkTiming, GestureTiming
 from mura.model import BehaviorSpec, ChunkSpec
 from tts import SpeechTiming
 

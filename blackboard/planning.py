@@ -2,47 +2,25 @@
 
 The scheduler times gestures against speech; the motor side turns a timed gesture into
 a motor program of LMPs and samples frames from everything activated so far. This module
-is the whole interface: :class:`GestureDemands`, what the scheduler must know before it
-can time a gesture, and :class:`MotorControl`, the object it calls. Times are seconds on
-the utterance clock of the session (the clock the scheduler hands out), distances metres.
+is the whole interface: :class:`GestureDemands` (the motor's own dataclass), what the
+scheduler must know before it can time a gesture, and :class:`MotorControl`, the object
+it calls. Times are seconds on the utterance clock of the session (the clock the
+scheduler hands out), distances metres.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
 from typing import Protocol, runtime_checkable
 
 from motor.motion import Motion
+from motor.program.gesture import GestureDemands
 from motor.program.lmp import TimePegs
 from mura.model import BehaviorSpec
 from tts.speech import SpeechTiming
 
 #: The pegs in phase order, as they appear in the timeline.
 PEG_NAMES: tuple[str, ...] = ("start", "ready", "stroke_start", "stroke", "stroke_end", "relax", "end")
-
-
-@dataclass(frozen=True)
-class GestureDemands:
-    """What the scheduler must know about a gesture before timing it.
-
-    Attributes:
-        arms: the arms the gesture occupies, ``{"right"}``, ``{"left"}`` or both; empty for
-            a behaviour that moves no arm (head, gaze).
-        stroke_duration: natural (comfortable) duration of the stroke, s; 0 for a purely
-            static stroke (a held posture).
-        dynamic: True when the stroke moves, False when it holds a posture.
-        repeatable: the stroke can be performed again to fill a longer affiliate.
-        preparation_distance: metres from the rest position to the stroke's start (the
-            planner's estimate); Fitts' law ``T = 0.24 · ln(100·A + 1)`` turns it into a
-            preparation time (``motor.trajectory.spline.fitts_duration``).
-    """
-
-    arms: frozenset[str]
-    stroke_duration: float
-    dynamic: bool
-    repeatable: bool
-    preparation_distance: float
 
 
 @runtime_checkable
@@ -58,7 +36,7 @@ class MotorProgramLike(Protocol):
 class MotorControl(Protocol):
     """The motor side as the scheduler uses it.
 
-    Call order for each chunk: ``demands`` and ``preparation_duration`` while timing
+    Call order for each chunk: ``demands`` and ``preparation_distances`` while timing
     (InPrep), ``plan`` once the pegs are fixed, ``activate`` when the chunk becomes
     Lurking, always before ``frames`` samples any time at or after the program's start.
     Frames are asked for in consecutive windows ``[start, end)`` that never overlap.
@@ -70,9 +48,9 @@ class MotorControl(Protocol):
         """Arms, stroke duration and preparation distance of ``behavior``'s gesture."""
         ...
 
-    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
-        """Seconds to bring the arm(s) from where they will be at ``at_time`` (given the
-        programs activated so far) to the start of ``behavior``'s stroke."""
+    def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> Mapping[str, float]:
+        """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
+        activated so far) to the start of ``behavior``'s stroke."""
         ...
 
     def plan(

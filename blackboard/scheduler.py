@@ -5,10 +5,10 @@ One loop serves offline rendering (a :class:`VirtualClock`: time jumps to the ne
 to do) and live runs (a :class:`WallClock`: the loop sleeps, and the next chunk is
 planned in a worker thread while the current one plays). For each chunk:
 
-1. InPrep: speech synthesis and the movement planner's demands contribute concurrently;
-   the chunk's timing is solved (:mod:`blackboard.timing`) and each gesture is planned
-   with the motor control. Knowing that a chunk follows sets ``final=False`` for the
-   speech and ``next_gesture_follows`` for gestures followed by another on the same arm.
+1. InPrep (:mod:`blackboard.inprep`): speech synthesis and the movement planner's
+   demands contribute concurrently; the time tags are anchored on the audio, the chunk's
+   timing is solved, relaxing what must give (:mod:`blackboard.chunk_timing`), and each
+   gesture is planned with the motor control.
 2. Pending once planned (the next chunk's planning starts when this one is InExec).
    Lurking as soon as the previous chunk is Subsiding (or
    Completed): its motor programs are activated before any frame at their start is sampled.
@@ -23,122 +23,49 @@ crosses the time a program is activated (nor any other agenda event), so the win
 length only decides how many frames one motor call makes, never which. In a live run a
 frame window is sampled when the clock reaches its end (the viewer buffers one window).
 
-Absolutely timed behaviours of an utterance with speech are planned with the first chunk
-whose speech ends after their onset (the last chunk takes the rest); a gesture-only
-utterance (no text) is one chunk without speech. Other behaviours than gestures (facial,
+A gesture-only utterance (no text) is one chunk without speech. Other behaviours than gestures (facial,
 …) are listed in the timeline's ``other_behaviors`` but not performed; gestures and signs are.
+Behaviours of a BML block are timed by the block's sync constraints (:mod:`blackboard.synced`):
+those no motor module performs yet are timed and listed (``performed`` false), not performed;
+a BML speech reports its start, its sync markers and its end as behaviour feedback. Observers
+also hear when a chunk is planned (:class:`ChunkPlanned`) and when an utterance ends
+(:class:`UtteranceEnded`), from which :mod:`blackboard.feedback` makes BML's feedback.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import heapq
-import itertools
 import math
 import threading
 from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
-from dataclasses import dataclass, field
 
-import numpy as np
-
+from blackboard import synced
+from blackboard.agenda import Agenda
+from blackboard.anchors import acoustic_anchors
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
-from blackboard.errors import BehaviorError, OverlappingGestures, ScheduleError
-from blackboard.events import (
-    EventBus,
-    FramesReady,
-    Observer,
-    SpeechEnded,
-    SpeechStarted,
-)
-from blackboard.planning import PEG_NAMES, MotorControl, TimePegs
-from blackboard.timeline import BehaviorEntry, ChunkEntry, PlanningSlack, Timeline
-from blackboard.timing import ChunkTiming, GestureRequest, TimingConfig, time_chunk
-from motor.motion import Motion
-from motor.trajectory.spline import fitts_duration
+from blackboard.config import SchedulerConfig
+from blackboard.errors import ScheduleError
+from blackboard.events import ChunkPlanned, EventBus, FramesReady, Observer, SpeechEnded, SpeechStarted, UtteranceEnded
+from blackboard.inprep import ChunkPlanner, result
+from blackboard.job import Job, ScheduledUtterance, performed
+from blackboard.planning import PEG_NAMES, MotorControl
+from blackboard.timeline import ChunkEntry, PlanningSlack, Timeline
+from blackboard.validation import validate
 from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
-from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
+from tts import SpeechError, SpeechSynthesizer
+
+__all__ = ["LiveHandle", "ScheduledUtterance", "Scheduler", "SchedulerConfig", "validate"]
 
 _EPS = 1e-9
-
-
-@dataclass(frozen=True)
-class SchedulerConfig:
-    """Scheduler settings.
-
-    ``frame_window``: seconds of frames sampled at a time in a live run;
-    ``offline_frame_window`` the same on a virtual clock, where nobody waits for a window
-    and longer ones spare the motor control's per-call cost. ``live_margin``: in a live
-    run, how far ahead of the moment planning starts the planned chunk may begin, s (the
-    time planning may take). ``voice``/``rate``/``with_audio`` go to the speech requests.
-    ``keep_output``: collect the frames and audio into the result; when False they reach
-    observers only (``FramesReady``, ``SpeechStarted``), each chunk's audio is dropped once
-    published, and memory stays flat however long the utterance.
-    """
-
-    timing: TimingConfig = TimingConfig()
-    frame_window: float = 0.1
-    live_margin: float = 0.1
-    voice: str | None = None
-    rate: float = 1.0
-    with_audio: bool = True
-    keep_output: bool = True
-    offline_frame_window: float = 1.0
-
-    def __post_init__(self) -> None:
-        for name in ("frame_window", "offline_frame_window"):
-            value = getattr(self, name)
-            if not value > 0.0:
-                raise ValueError(f"SchedulerConfig.{name} must be a positive number of seconds, got {value}")
-
-
-@dataclass(frozen=True)
-class ScheduledUtterance:
-    """A performed utterance: its timeline, the audio (int16 mono, pauses included, None when
-    the speech backend gave none), the motion from the utterance start to the end of the last
-    retraction, warnings, and, when a chunk failed, its index and the error. Without
-    ``SchedulerConfig.keep_output`` the audio and motion are None (``sample_rate`` stays)."""
-
-    timeline: Timeline
-    audio: np.ndarray | None
-    sample_rate: int | None
-    motion: Motion | None
-    warnings: tuple[str, ...]
-    failed_chunk: int | None = None
-    error: Exception | None = None
-
-
-@dataclass
-class _Job:
-    utterance: Utterance
-    name: str
-    chunks: tuple[ChunkSpec, ...]
-    timeline: Timeline
-    origin: float = 0.0
-    boards: list[Blackboard] = field(default_factory=list)
-    absolute: list[BehaviorSpec] = field(default_factory=list)
-    absolute_delay: float = 0.0  # how late the absolute clock starts, seconds (see blackboard.timing)
-    frames: list[Motion] = field(default_factory=list)
-    audio_end: int = 0  # without keep_output: samples from the utterance start to the end of the last audio
-    sample_rate: int | None = None
-    failed: Blackboard | None = None
-    interrupted: bool = False
-    done: threading.Event = field(default_factory=threading.Event)
-    result: ScheduledUtterance | None = None
-    end: float = 0.0
-
-    @property
-    def finished(self) -> bool:
-        planned_all = len(self.boards) == len(self.chunks) or self.failed is not None or self.interrupted
-        return planned_all and all(b.machine.finished for b in self.boards)
 
 
 class LiveHandle:
     """A live utterance: ``wait()`` for its result, ``interrupt()`` to end it gracefully."""
 
-    def __init__(self, scheduler: Scheduler, job: _Job) -> None:
+    def __init__(self, scheduler: Scheduler, job: Job) -> None:
         self._scheduler = scheduler
         self._job = job
 
@@ -158,6 +85,11 @@ class LiveHandle:
     def timeline(self) -> Timeline:
         return self._job.timeline
 
+    @property
+    def done(self) -> bool:
+        """True once the utterance is over (performed, interrupted or failed)."""
+        return self._job.done.is_set()
+
 
 class Scheduler:
     """Plans and runs utterances chunk by chunk on ``clock`` (see the module docstring)."""
@@ -169,22 +101,21 @@ class Scheduler:
         self.clock = clock if clock is not None else VirtualClock()
         self.config = config
         self.bus = EventBus()
-        self._agenda: list[tuple[float, int, Callable[[], None]]] = []
-        self._cancelled: set[int] = set()
-        self._counter = itertools.count()
+        self._agenda = Agenda()
         self._frame_cursor: float | None = None
         self._time = 0.0  # the scheduler's own time: how far frames and events have been processed
         self._arm_last: dict[str, tuple[Blackboard, PlannedGesture]] = {}
-        self._queue: list[_Job] = []
-        self._board_jobs: dict[Blackboard, _Job] = {}
-        self._active: list[_Job] = []
+        self._queue: list[Job] = []
+        self._board_jobs: dict[Blackboard, Job] = {}
+        self._active: list[Job] = []
         self._lock = threading.Lock()
         self._thread: threading.Thread | None = None
         self._running = False
-        self._interrupts: list[_Job] = []
+        self._interrupts: list[Job] = []
         self._crash: BaseException | None = None
         self._planner = ThreadPoolExecutor(1, thread_name_prefix="chunk-planner") if self.clock.live else None
         self._contributors = ThreadPoolExecutor(2, thread_name_prefix="chunk-contributor") if self.clock.live else None
+        self._inprep = ChunkPlanner(tts, motor, config, self._contribute)
 
     def subscribe(self, observer: Observer) -> Callable[[], None]:
         """Call ``observer`` with every event; returns the unsubscribe function."""
@@ -236,22 +167,24 @@ class Scheduler:
             for job in jobs:
                 job.done.set()
 
-    def _request_interrupt(self, job: _Job) -> None:
+    def _request_interrupt(self, job: Job) -> None:
         with self._lock:
             self._interrupts.append(job)
 
     # ----------------------------------------------------------------- validation
 
-    def _job(self, utterance: Utterance, name: str) -> _Job:
+    def _job(self, utterance: Utterance, name: str) -> Job:
         validate(utterance, self.motor)
         chunks = utterance.chunks or (ChunkSpec(0, "", ()),)
         absolute = sorted((b for b in utterance.behaviors if isinstance(b.timing, AbsoluteTiming) and b.moves_arms),
                           key=lambda b: b.timing.onset)
         timeline = Timeline(name, self.motor.fps)
+        for warning in utterance.warnings:
+            timeline.warn(warning)
         for b in utterance.behaviors:
-            if not b.moves_arms:
+            if not b.moves_arms and not synced.is_synced(b):  # BML's reader says it of its own
                 timeline.warn(f"behaviour {b.id!r} ({b.kind}) is listed but not performed: only gestures and signs are scheduled")
-        return _Job(utterance, name, chunks, timeline, absolute=list(absolute))
+        return Job(utterance, name, chunks, timeline, absolute=list(absolute))
 
     # ----------------------------------------------------------------- the loop
 
@@ -261,7 +194,7 @@ class Scheduler:
             while board is not None:
                 board = self._perform_chunk(board)
             while self._agenda:
-                self._advance_to(self._agenda[0][0])
+                self._advance_to(self._agenda.next_time())
             with self._lock:
                 leftover = [j for j in self._active if not j.done.is_set()]
             for job in leftover:
@@ -278,7 +211,7 @@ class Scheduler:
             return None
         return self._plan(job, index, current)
 
-    def _following(self, current: Blackboard | None) -> tuple[_Job | None, int]:
+    def _following(self, current: Blackboard | None) -> tuple[Job | None, int]:
         with self._lock:
             job = self._board_jobs.get(current) if current is not None else None
         if job is not None:
@@ -301,7 +234,7 @@ class Scheduler:
             self._time = max(self._time, job.origin)
         return job, 0
 
-    def _job_of(self, board: Blackboard) -> _Job:
+    def _job_of(self, board: Blackboard) -> Job:
         with self._lock:
             return self._board_jobs[board]
 
@@ -320,8 +253,8 @@ class Scheduler:
             board.move(ChunkState.IN_EXEC, self._time)
         pending = self._submit_next(board)  # Fig. 6: the next chunk is prepared while this one executes
         if not job.interrupted:
-            self._advance_to(max(board.strokes_done, self._time))
-        following = _result(pending)
+            self._advance_to(max(board.strokes_done, self._time), unless=lambda: job.interrupted)  # REPLACE goes on at once
+        following = result(pending)
         if job.interrupted:
             return following
         if following is not None and following.state is ChunkState.PENDING:
@@ -354,8 +287,22 @@ class Scheduler:
                 job.timeline.warn(warning)
             self._at(onset, lambda: self._start_speech(job, board, onset))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
+            if board.spec.speech is not None:
+                self._schedule_speech_feedback(board)
 
-    def _start_speech(self, job: _Job, board: Blackboard, onset: float) -> None:
+    def _schedule_speech_feedback(self, board: Blackboard) -> None:
+        """A BML speech's progress, on the audio: ``started`` at the first word, ``sync`` at
+        the word after each marker, ``finished`` at the end of the last word."""
+        speech = board.spec.speech
+        anchors = acoustic_anchors(board.speech, board.spec.time_tags)
+        for tag in board.spec.time_tags:
+            point = tag.id.split(":", 1)[1]
+            anchor = anchors[tag.id]
+            t = board.speech_onset + (anchor.end if point == "end" else anchor.onset)
+            kind = {"start": "started", "end": "finished"}.get(point, "sync")
+            board.feedback_entries.append(self._at(t, lambda k=kind, p=point, t=t: board.post(speech, k, p, t)))
+
+    def _start_speech(self, job: Job, board: Blackboard, onset: float) -> None:
         speech = board.speech
         self.bus.publish(SpeechStarted(job.name, board.index, board.spec.text, onset - job.origin, speech.audio, speech.sample_rate))
         if self.config.keep_output or speech.audio is None:
@@ -412,36 +359,32 @@ class Scheduler:
         board.move(ChunkState.COMPLETED, self._time, reason)
         self._check_done(self._job_of(board))
 
-    def _check_done(self, job: _Job) -> None:
+    def _check_done(self, job: Job) -> None:
         if job.finished and not job.done.is_set():
             self._finish(job)
 
     # ----------------------------------------------------------------- time and frames
 
     def _at(self, t: float, action: Callable[[], None]) -> int:
-        key = next(self._counter)
-        heapq.heappush(self._agenda, (t, key, action))
-        return key
+        return self._agenda.at(t, action)
 
     def _cancel(self, key: int) -> None:
-        self._cancelled.add(key)
+        self._agenda.cancel(key)
 
-    def _advance_to(self, t: float) -> None:
-        """Let time pass until ``t``: sample frames window by window and fire due agenda events."""
+    def _advance_to(self, t: float, unless: Callable[[], bool] | None = None) -> None:
+        """Let time pass until ``t``: sample frames window by window and fire due agenda
+        events; return early once ``unless()`` holds (checked after each interrupt check)."""
         while True:
             self._handle_interrupts()
-            next_event = self._agenda[0][0] if self._agenda else math.inf
-            stop = min(t, next_event, self._frame_cursor + self._frame_window())
+            if unless is not None and unless():
+                return
+            stop = min(t, self._agenda.next_time(), self._frame_cursor + self._frame_window())
             self.clock.sleep_until(stop)
             self._time = max(self._time, stop)
             self._sample_frames(stop)
-            while self._agenda and self._agenda[0][0] <= stop + _EPS:
-                _, key, action = heapq.heappop(self._agenda)
-                if key in self._cancelled:
-                    self._cancelled.discard(key)
-                    continue
+            while (action := self._agenda.pop_due(stop + _EPS)) is not None:
                 action()
-            if stop >= t - _EPS and not (self._agenda and self._agenda[0][0] <= t + _EPS):
+            if stop >= t - _EPS and not self._agenda.next_time() <= t + _EPS:
                 return
 
     def _frame_window(self) -> float:
@@ -464,7 +407,7 @@ class Scheduler:
 
     # ----------------------------------------------------------------- interrupts
 
-    def _take_interrupt(self, job: _Job) -> bool:
+    def _take_interrupt(self, job: Job) -> bool:
         self._handle_interrupts()
         return job.interrupted
 
@@ -508,17 +451,18 @@ class Scheduler:
 
     # ----------------------------------------------------------------- planning (InPrep)
 
-    def _plan(self, job: _Job, index: int, previous: Blackboard | None) -> Blackboard:
+    def _plan(self, job: Job, index: int, previous: Blackboard | None) -> Blackboard:
         spec = job.chunks[index]
         now = self.clock.now()
         job.timeline.add_chunk(ChunkEntry(index, spec.text))
-        behaviors = job.utterance.behaviors_in_chunk(index) if job.utterance.chunks else ()
+        behaviors = job.utterance.behaviors_in_chunk(index)
         board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.moves_arms), job.origin, now, self.bus, job.timeline)
         job.boards.append(board)
         with self._lock:
             self._board_jobs[board] = job
         try:
-            self._fill(board, job, previous, now)
+            margin = self.config.live_margin if self.clock.live else 0.0
+            self._inprep.fill(board, job, previous, now, margin, self._followed(job, board.index))
         except (SpeechError, ScheduleError, ValueError) as error:
             board.error = error
             job.failed = board
@@ -528,47 +472,26 @@ class Scheduler:
             return board
         board.move(ChunkState.PENDING, self.clock.now())
         job.timeline.slack.append(PlanningSlack(index, self.clock.now() - job.origin, board.exec_start - job.origin))
+        self._announce_plan(board, job)
         return board
 
-    def _fill(self, board: Blackboard, job: _Job, previous: Blackboard | None, now: float) -> None:
-        """Everything InPrep does: speech and demands concurrently, then timing, then motor programs."""
-        margin = self.config.live_margin if self.clock.live else 0.0
-        follows = self._followed(job, board.index)
-        speech_future = self._contribute(self._speak, board, follows)
-        demand_futures = {b.id: self._contribute(self.motor.demands, b) for b in board.behaviors}
-        board.speech = _result(speech_future)
-        board.demands = {k: _result(f) for k, f in demand_futures.items()}
-        last_word = board.speech.words[-1].end if board.has_speech else 0.0
-
-        if previous is not None and previous.state is not ChunkState.FAILED:
-            earliest = max(previous.speech_end + (self.config.timing.min_pause if previous.has_speech else 0.0), now + margin)
-            onset_reason = f"speech onset of chunk {board.index + 1} at least {self.config.timing.min_pause:.3f} s after the previous speech end"
-            arm_free = max(previous.strokes_done, now + margin)
-            arm_reason = "arm free once the previous chunk's strokes are done"
-        else:
-            earliest = arm_free = max(job.origin, now + margin)
-            onset_reason = f"speech onset of chunk {board.index + 1} not before the utterance starts"
-            arm_reason = "arm free from the utterance start"
-        board.lurk_allowed = previous.strokes_done if previous is not None and previous.state is not ChunkState.FAILED else job.origin
-
-        absolute = self._take_absolute(job, board, earliest + last_word)
-        board.behaviors = board.behaviors + tuple(absolute)
-        for b in absolute:
-            board.demands[b.id] = self.motor.demands(b)
-        marks = dict(board.speech.marks) if board.speech is not None else {}
-        self._check_marks(board, marks)
-        timing = self._solve(board, job, marks, earliest, onset_reason, arm_free, arm_reason)
-        board.timing = timing
-        board.speech_end = timing.speech_onset + last_word
-        board.gestures = self._program(board, job, timing, follows)
-        self._record(board, job, timing)
+    def _announce_plan(self, board: Blackboard, job: Job) -> None:
+        """Tell observers the chunk's planned times (BML's prediction feedback is made of them)."""
+        tl, entry = job.timeline, job.timeline.chunk(board.index)
+        phases = {b.id: dict(b.phases) for b in list(tl.behaviors) if b.chunk == board.index}
+        tags = {}
+        for tag in board.spec.time_tags:
+            anchor = tl.tag_anchors.get(tag.id)
+            if anchor is not None:
+                tags[tag.id] = anchor["acoustic_end" if tag.id.endswith(":end") and board.spec.speech else "acoustic_onset"]
+        self.bus.publish(ChunkPlanned(job.name, board.index, job.origin, entry.speech_onset, entry.speech_end, phases, tags, tuple(tl.warnings)))
 
     def _contribute(self, function: Callable, *args) -> Future | object:
         if self._contributors is None:
             return function(*args)
         return self._contributors.submit(function, *args)
 
-    def _followed(self, job: _Job, index: int) -> Blackboard | tuple[BehaviorSpec, ...] | None:
+    def _followed(self, job: Job, index: int) -> tuple[BehaviorSpec, ...] | None:
         """The behaviours of the chunk that follows chunk ``index`` (None when nothing follows yet)."""
         if index + 1 < len(job.chunks):
             return job.utterance.behaviors_in_chunk(index + 1)
@@ -578,190 +501,20 @@ class Scheduler:
             return None
         return queued.utterance.behaviors_in_chunk(0) + tuple(queued.absolute)
 
-    def _speak(self, board: Blackboard, follows) -> SpeechTiming | None:
-        spec = board.spec
-        if not spec.text.strip():
-            return None
-        emphasis = []
-        tags = {t.id: t for t in spec.time_tags}
-        for b in board.behaviors:
-            if isinstance(b.timing, Affiliate) and b.timing.onset in tags and b.timing.end in tags:
-                emphasis.append((tags[b.timing.onset].offset, tags[b.timing.end].offset))
-        request = SpeechRequest(
-            text=spec.text,
-            marks=tuple(TextMark(t.id, t.offset) for t in spec.time_tags),
-            emphasis=tuple(sorted(emphasis)),
-            final=follows is None,
-            voice=self.config.voice,
-            rate=self.config.rate,
-            with_audio=self.config.with_audio,
-        )
-        try:
-            return self.tts.synthesize(request)
-        except SpeechError as error:
-            raise SpeechError(f"speech of chunk {spec.index + 1} ({spec.text!r}) failed: {error}") from error
-
-    def _take_absolute(self, job: _Job, board: Blackboard, speech_end: float) -> list[BehaviorSpec]:
-        last = board.index == len(job.chunks) - 1
-        taken = [b for b in job.absolute if last or job.origin + b.timing.onset < speech_end]
-        job.absolute = [b for b in job.absolute if b not in taken]
-        return taken
-
-    def _check_marks(self, board: Blackboard, marks: dict[str, float]) -> None:
-        for b in board.behaviors:
-            if isinstance(b.timing, Affiliate):
-                missing = [t for t in (b.timing.onset, b.timing.end) if t not in marks]
-                if missing:
-                    raise BehaviorError(f"behaviour {b.id!r}: the speech of chunk {board.index + 1} gave no time for tag(s) {missing}")
-
-    def _requests(self, board: Blackboard, job: _Job, prep: dict[str, float]) -> list[GestureRequest]:
-        out = []
-        for b in board.behaviors:
-            d = board.demands[b.id]
-            if isinstance(b.timing, Affiliate):
-                out.append(GestureRequest(b.id, d, prep[b.id], affiliate=(b.timing.onset, b.timing.end)))
-            else:
-                out.append(GestureRequest(b.id, d, prep[b.id], absolute=(job.origin + b.timing.onset, job.origin + b.timing.end)))
-        return out
-
-    def _solve(self, board, job, marks, earliest, onset_reason, arm_free, arm_reason) -> ChunkTiming:
-        """Two passes: preparation times from where the arms are at the naive start, then at the solved start."""
-        cfg = self.config.timing
-        naive = {}
-        for b in board.behaviors:
-            stroke = (earliest + marks[b.timing.onset] - cfg.stroke_lead) if isinstance(b.timing, Affiliate) else job.origin + b.timing.onset
-            guess = float(fitts_duration(board.demands[b.id].preparation_distance))
-            naive[b.id] = self.motor.preparation_duration(b, max(arm_free, stroke - guess))
-        delay = job.absolute_delay
-        timing = time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, naive), cfg, delay)
-        solved = {g.behavior: self.motor.preparation_duration(b, g.prep_start) for g, b in zip(timing.gestures, board.behaviors)}
-        if all(abs(solved[k] - naive[k]) < 1e-6 for k in solved):
-            return timing
-        return time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, marks, self._requests(board, job, solved), cfg, delay)
-
-    def _program(self, board: Blackboard, job: _Job, timing: ChunkTiming, follows) -> tuple[PlannedGesture, ...]:
-        later_arms = self._arms_following(board, timing, follows)
-        planned = []
-        for g, b in zip(timing.gestures, board.behaviors):
-            d = board.demands[b.id]
-            retraction = float(fitts_duration(d.preparation_distance))
-            pegs = TimePegs(g.prep_start, g.stroke_start, g.stroke_start, g.stroke, g.stroke_end, g.relax, g.relax + retraction)
-            next_follows = bool(d.arms & later_arms[b.id])
-            program = self.motor.plan(b, pegs, repetitions=g.repetitions, next_gesture_follows=next_follows)
-            for warning in program.warnings:
-                job.timeline.warn(warning)  # the motor names the behaviour in its warnings
-            planned.append(PlannedGesture(b, d, g, program, next_follows))
-        return tuple(planned)
-
-    def _arms_following(self, board: Blackboard, timing: ChunkTiming, follows) -> dict[str, frozenset[str]]:
-        """Per gesture, the arms another gesture uses after it (later in this chunk, or in the next chunk)."""
-        next_arms: frozenset[str] = frozenset()
-        for b in follows or ():
-            if b.moves_arms:
-                next_arms |= self.motor.demands(b).arms
-        out = {}
-        for g in timing.gestures:
-            arms = set(next_arms)
-            for other in timing.gestures:
-                if other.stroke_start > g.stroke_start:
-                    arms |= board.demands[other.behavior].arms
-            out[g.behavior] = frozenset(arms)
-        return out
-
-    def _record(self, board: Blackboard, job: _Job, timing: ChunkTiming) -> None:
-        tl, o, i = job.timeline, job.origin, board.index
-        entry = tl.chunk(i)
-        entry.speech_onset = timing.speech_onset - o
-        entry.speech_end = board.speech_end - o
-        if timing.stretch is not None:
-            tl.stretches.append(timing.stretch)
-        if timing.absolute_stretch is not None:
-            tl.warn(f"absolute timings delayed by {timing.absolute_stretch.amount:.3f} s: {timing.absolute_stretch.reason}")
-        job.absolute_delay = timing.absolute_delay
-        tl.absolute_delay = timing.absolute_delay
-        if board.speech is not None:
-            onset = timing.speech_onset - o
-            tl.words.extend({"text": w.text, "start": onset + w.start, "end": onset + w.end, "chunk": i} for w in board.speech.words)
-            tl.phonemes.extend({"symbol": p.symbol, "start": onset + p.start, "end": onset + p.end, "chunk": i} for p in board.speech.phonemes)
-            tl.time_tags.update({name: onset + t for name, t in board.speech.marks.items()})
-        for g in board.gestures:
-            b = g.behavior
-            pegs = g.program.pegs
-            affiliate = None
-            if isinstance(b.timing, Affiliate):
-                affiliate = {"onset": tl.time_tags[b.timing.onset], "end": tl.time_tags[b.timing.end]}
-            else:
-                delay = timing.absolute_delay
-                affiliate = {"onset": b.timing.onset + delay, "end": b.timing.end + delay, "absolute": True}
-            tl.add_behavior(BehaviorEntry(
-                b.id, i, b.kind, tuple(sorted(g.demands.arms, reverse=True)),
-                {name: getattr(pegs, name) - o for name in PEG_NAMES}, affiliate,
-                g.timing.mode, g.timing.repetitions, g.timing.slowdown, False, g.next_gesture_follows,
-            ))
-
     # ----------------------------------------------------------------- results
 
-    def _finish(self, job: _Job) -> None:
-        performed = [b for b in job.boards if b.timing is not None and b.state is not ChunkState.FAILED]
-        ends = [b.effective_end for b in performed]
-        job.end = max(ends + [job.origin])
-        audio, rate = self._audio(job, performed) if self.config.keep_output else (None, job.sample_rate)
-        if audio is not None:
-            job.end = max(job.end, job.origin + len(audio) / rate)
-        elif job.audio_end:
-            job.end = max(job.end, job.origin + job.audio_end / rate)
-        job.timeline.duration = job.end - job.origin
-        failed = job.failed
-        job.result = ScheduledUtterance(
-            timeline=job.timeline,
-            audio=audio,
-            sample_rate=rate,
-            motion=_concatenate(job.frames, job.origin),
-            warnings=tuple(job.timeline.warnings),
-            failed_chunk=failed.index if failed is not None else None,
-            error=failed.error if failed is not None else None,
-        )
+    def _finish(self, job: Job) -> None:
+        job.result = performed(job, self.config.keep_output)
         with self._lock:
             (self._active if job in self._active else self._queue).remove(job)
             for board in job.boards:
                 self._board_jobs.pop(board, None)
+        failed = job.failed
+        status = "interrupted" if job.interrupted else "failed" if failed is not None else "done"
+        error = f"{type(failed.error).__name__}: {failed.error}" if failed is not None and failed.error is not None else None
+        ended = min(job.end, max(self._time, job.origin)) if job.interrupted else job.end  # not the unspoken rest of the audio
+        self.bus.publish(UtteranceEnded(job.name, ended - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
         job.done.set()
-
-    def _audio(self, job: _Job, performed: list[Blackboard]) -> tuple[np.ndarray | None, int | None]:
-        pieces = [(b.speech_onset - job.origin, b.speech) for b in performed if b.speech is not None and b.speech.audio is not None]
-        if not pieces:
-            return None, None
-        rate = pieces[0][1].sample_rate
-        if any(s.sample_rate != rate for _, s in pieces):
-            raise ScheduleError(f"{job.name}: chunks came back at different sample rates")
-        starts = [int(round(onset * rate)) for onset, _ in pieces]
-        length = max(start + len(s.audio) for start, (_, s) in zip(starts, pieces))
-        mix = np.zeros(length, dtype=np.int32)
-        for start, (_, speech) in zip(starts, pieces):
-            mix[start:start + len(speech.audio)] += speech.audio.astype(np.int32)
-        return np.clip(mix, -32768, 32767).astype(np.int16), rate
-
-
-def _result(value):
-    return value.result() if isinstance(value, Future) else value
-
-
-def _concatenate(frames: list[Motion], origin: float) -> Motion | None:
-    if not frames:
-        return None
-    first = frames[0]
-    faces = [m.face_weights for m in frames if m.face_weights is not None]
-    return Motion(
-        fps=first.fps,
-        joint_names=first.joint_names,
-        parents=first.parents,
-        offsets=first.offsets,
-        rotations=np.concatenate([m.rotations for m in frames]),
-        root_translation=np.concatenate([m.root_translation for m in frames]),
-        start_time=first.start_time - origin,
-        face_names=first.face_names,
-        face_weights=np.concatenate(faces) if first.face_names and len(faces) == len(frames) else None,
-    )
 
 
 def _accents(board: Blackboard) -> tuple[tuple[float, float], ...]:
@@ -772,53 +525,3 @@ def _accents(board: Blackboard) -> tuple[tuple[float, float], ...]:
         for g in board.gestures
         if isinstance(g.behavior.timing, Affiliate) and g.behavior.timing.onset in marks and g.behavior.timing.end in marks
     )
-
-
-def validate(utterance: Utterance, motor: MotorControl) -> None:
-    """Refuse an utterance the scheduler cannot perform, naming the behaviour at fault.
-
-    Checks: something to say or do; every affiliate names time tags of its own chunk,
-    onset not after end; gestures have timing; two gestures on one arm in one chunk do
-    not have affiliates that overlap or touch (their strokes, which start 0.2 s before the
-    affiliate and span it, would overlap).
-    """
-    if not utterance.chunks and not utterance.behaviors:
-        raise ScheduleError(f"{utterance.source}: the utterance has neither text nor behaviours")
-    if not utterance.chunks and not any(b.moves_arms for b in utterance.behaviors):
-        raise ScheduleError(f"{utterance.source}: the utterance has no text and no gesture to perform")
-    tags = utterance.time_tags
-    for b in utterance.behaviors:
-        if b.moves_arms and b.timing is None:
-            raise BehaviorError(f"behaviour {b.id!r}: a gesture needs an affiliate or an absolute timing")
-        if isinstance(b.timing, Affiliate):
-            _check_affiliate(b, tags, utterance)
-    for chunk in utterance.chunks:
-        _check_same_arm(utterance.behaviors_in_chunk(chunk.index), tags, motor)
-
-
-def _check_affiliate(b: BehaviorSpec, tags, utterance: Utterance) -> None:
-    for which in ("onset", "end"):
-        name = getattr(b.timing, which)
-        if name not in tags:
-            raise BehaviorError(f"behaviour {b.id!r}: affiliate {which} names unknown time tag {name!r} (known: {', '.join(tags) or 'none'})")
-        if b.chunk is None or tags[name].chunk != b.chunk:
-            raise BehaviorError(
-                f"behaviour {b.id!r}: affiliate {which} tag {name!r} lies in chunk {tags[name].chunk + 1}, "
-                f"not in the behaviour's chunk {'?' if b.chunk is None else b.chunk + 1}"
-            )
-    if tags[b.timing.onset].offset >= tags[b.timing.end].offset:
-        raise BehaviorError(f"behaviour {b.id!r}: affiliate from {b.timing.onset!r} to {b.timing.end!r} spans no words")
-
-
-def _check_same_arm(behaviors: tuple[BehaviorSpec, ...], tags, motor: MotorControl) -> None:
-    gestures = [b for b in behaviors if b.moves_arms and isinstance(b.timing, Affiliate)]
-    arms = {b.id: motor.demands(b).arms for b in gestures}
-    gestures.sort(key=lambda b: tags[b.timing.onset].offset)
-    for earlier, later in itertools.combinations(gestures, 2):
-        shared = arms[earlier.id] & arms[later.id]
-        if shared and tags[later.timing.onset].offset <= tags[earlier.timing.end].offset:
-            raise OverlappingGestures(
-                f"gestures {earlier.id!r} and {later.id!r} both need the {', '.join(sorted(shared))} arm "
-                f"and their strokes overlap (affiliates {earlier.timing.onset}–{earlier.timing.end} and "
-                f"{later.timing.onset}–{later.timing.end})"
-            )

@@ -11,7 +11,7 @@ import threading
 from dataclasses import dataclass, field
 
 from blackboard.chunk import ChunkState, Transition
-from blackboard.timing import PauseStretch
+from blackboard.chunk_timing import PauseStretch
 
 JSON_VERSION = 1
 
@@ -30,7 +30,10 @@ class ChunkEntry:
 
 @dataclass
 class BehaviorEntry:
-    """One behaviour's phases (the pegs its motor program realized) and affiliate times."""
+    """One behaviour's phases (the pegs its motor program realized), affiliate times (the
+    acoustic onset and end of its words, with the mark times beside them) and the
+    relaxations taken for it (``step``, ``amount``, ``unit``, ``constraint``, ``conflict``);
+    ``performed`` is False for a BML behaviour that is timed but that no motor module performs."""
 
     id: str
     chunk: int
@@ -43,6 +46,8 @@ class BehaviorEntry:
     slowdown: float = 1.0
     retraction_skipped: bool = False
     next_gesture_follows: bool = False
+    relaxations: list[dict] = field(default_factory=list)
+    performed: bool = True
 
 
 @dataclass(frozen=True)
@@ -71,7 +76,8 @@ class Timeline:
         self.behaviors: list[BehaviorEntry] = []
         self.words: list[dict] = []
         self.phonemes: list[dict] = []
-        self.time_tags: dict[str, float] = {}
+        self.time_tags: dict[str, float] = {}  # the speech backend's mark times
+        self.tag_anchors: dict[str, dict] = {}  # per tag: mark, acoustic_onset, acoustic_end
         self.stretches: list[PauseStretch] = []
         self.slack: list[PlanningSlack] = []
         self.warnings: list[str] = []
@@ -108,7 +114,9 @@ class Timeline:
         return [t.state for t in self.chunk(index).states]
 
     def to_json(self) -> dict:
-        """The viewer's JSON shape (version 1) plus ``origin``, ``absolute_delay``, ``stretches``, ``slack`` and ``warnings``."""
+        """The viewer's JSON shape (version 1) plus ``origin``, ``absolute_delay``, ``stretches``, ``slack``,
+        ``warnings`` and ``tag_anchors``; ``time_tags`` are the backend's mark times, ``tag_anchors``
+        each tag's mark beside the acoustic onset of the word after it and end of the word before it."""
         with self._lock:
             return {
                 "version": JSON_VERSION,
@@ -120,6 +128,7 @@ class Timeline:
                 "words": list(self.words),
                 "phonemes": list(self.phonemes),
                 "time_tags": dict(self.time_tags),
+                "tag_anchors": {name: dict(anchor) for name, anchor in self.tag_anchors.items()},
                 "origin": self.origin,
                 "absolute_delay": self.absolute_delay,
                 "stretches": [
@@ -157,4 +166,6 @@ def _behavior_json(b: BehaviorEntry) -> dict:
         "slowdown": b.slowdown,
         "retraction_skipped": b.retraction_skipped,
         "next_gesture_follows": b.next_gesture_follows,
+        "relaxations": [dict(r) for r in b.relaxations],
+        "performed": b.performed,
     }

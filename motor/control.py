@@ -73,6 +73,7 @@ from motor.program.lmp import (
 from motor.signing.behavior import SignBehaviorPlanner
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.trajectory.spline import fitts_duration
+from motor.verbs.behavior import VerbBehaviorPlanner
 from mura.model import BehaviorSpec
 from tts.speech import SpeechTiming
 
@@ -114,6 +115,7 @@ class MotorControl:
         self.fps = float(fps)
         self.planner = Planner(avatar)
         self.signs = SignBehaviorPlanner(avatar)
+        self.verbs = VerbBehaviorPlanner(avatar)
         self.neck = NeckControl(avatar, self.palm_centres)
         self.neck_planner = NeckPlanner(self.neck)
         self.face = FaceControl(face_seed)
@@ -147,37 +149,49 @@ class MotorControl:
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
         """Arms, natural stroke duration and preparation distance of ``behavior``."""
+        if behavior.spatial is not None:
+            return self.verbs.demands(behavior)
         if behavior.sign is not None:
             return self.signs.demands(behavior)
         return self.planner.demands(behavior)
 
-    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
-        """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
-        programs activated so far) to the start of the stroke; the slowest arm counts."""
-        if behavior.sign is not None:
+    def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
+        """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
+        activated so far) to the start of the stroke; arms the stroke leaves free are absent."""
+        if behavior.spatial is not None:
+            targets = self.verbs.first_wrists(behavior)
+        elif behavior.sign is not None:
             targets = self.signs.first_wrists(behavior)
         else:
             fragment = self.planner.fragment(behavior)
             targets = {arm: first_location(fragment, arm) for arm in ARMS}
-        longest = 0.0
-        for arm, target in targets.items():
-            if target is None:
-                continue
-            here = self.timeline((arm, "wrist_position")).state(at_time).value
-            longest = max(longest, float(fitts_duration(float(np.linalg.norm(target - here)))))
-        if behavior.gesture is not None:
-            longest = max(longest, self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time))
-        return longest
+        return {
+            arm: float(np.linalg.norm(target - self.timeline((arm, "wrist_position")).state(at_time).value))
+            for arm, target in targets.items() if target is not None
+        }
+
+    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+        """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
+        programs activated so far) to the start of the stroke; the slowest arm counts, or
+        the gaze shift the behaviour asks for (:mod:`motor.neck.planning`) when longer."""
+        arms = max((float(fitts_duration(d)) for d in self.preparation_distances(behavior, at_time).values()), default=0.0)
+        if behavior.gesture is None:
+            return arms
+        return max(arms, self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time))
 
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
     ) -> MotorProgram:
         """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program.gesture`;
-        a sign behaviour: :mod:`motor.signing.behavior`)."""
-        if behavior.sign is not None:
+        a sign behaviour: :mod:`motor.signing.behavior`; pointing and indicating verbs:
+        :mod:`motor.verbs.behavior`)."""
+        if behavior.spatial is not None:
+            program = self.verbs.plan(behavior, pegs, next_gesture_follows)
+        elif behavior.sign is not None:
             program = self.signs.plan(behavior, pegs, next_gesture_follows)
         else:
-            program = self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+            states = {arm: self.timeline((arm, "wrist_position")).state(pegs.start) for arm in ARMS}
+            program = self.planner.plan(behavior, pegs, repetitions, next_gesture_follows, start_states=states)
         return self._with_head_and_face(behavior, program)
 
     def _with_head_and_face(self, behavior: BehaviorSpec, program: MotorProgram) -> MotorProgram:

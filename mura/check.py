@@ -1,9 +1,10 @@
 """Checking spec files of any of mura's languages, for ``mura check``.
 
 The document's root element says which language a file is in: ``<definition>`` or
-``<utterance>`` (MURML), ``<lexicon>`` (a gesture lexicon), ``<sigml>`` or
-``<sigml_collection>`` (signs). Every problem found comes back as a :class:`SpecError`
-(for SiGML, one per broken sign); a file with none is valid.
+``<utterance>`` (MURML), ``<bml>`` (a BML 1.0 block), ``<lexicon>`` (a gesture lexicon),
+``<sigml>`` or ``<sigml_collection>`` (signs). Every problem found comes back as a
+:class:`SpecError` (for SiGML, one per broken sign); a file with none is valid. What a
+valid BML block leaves out or does not perform comes back as warnings.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from mura.bml import BmlBlock, is_bml, read_bml
 from mura.errors import SpecError, SpecErrors
 from mura.lexicon import load_lexicon
 from mura.murml import read_utterances
@@ -26,6 +28,7 @@ class CheckResult:
     path: str
     summary: str
     errors: tuple[SpecError, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -37,12 +40,22 @@ def check_file(path: str | Path) -> CheckResult:
     name = str(path)
     try:
         source = XmlSource.from_path(path)
+        if is_bml(source.root):
+            block = read_bml(source)
+            return CheckResult(name, _bml_summary(block), warnings=tuple(str(w) for w in block.warnings))
         summary = _check_source(source)
     except SpecErrors as many:
         return CheckResult(name, "", many.errors)
     except SpecError as error:
         return CheckResult(name, "", (error,))
     return CheckResult(name, summary)
+
+
+def _bml_summary(block: BmlBlock) -> str:
+    utterance = block.utterance
+    timed = len(block.kinds) - len(block.performed)
+    return (f"BML block {block.id!r} ({block.composition}), {len(utterance.chunks)} speech(es), "
+            f"{len(utterance.behaviors)} other behaviour(s) of which {timed} timed only, {len(utterance.constraints)} constraint(s)")
 
 
 def _check_source(source: XmlSource) -> str:
@@ -60,4 +73,4 @@ def _check_source(source: XmlSource) -> str:
     if root == "lexicon":
         lexicon = load_lexicon(source.file)
         return f"lexicon of {len(lexicon.entries)} function(s), {len(lexicon.scene)} place(s)"
-    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance>, <lexicon>, <sigml> or <sigml_collection>)", source.root)
+    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance>, <bml>, <lexicon>, <sigml> or <sigml_collection>)", source.root)

@@ -77,6 +77,7 @@ from mura.model import (
 from mura.schema import validate_murml
 from mura.sigml import read_sign_element
 from mura.signs import Sign
+from mura.space import SpatialReference, is_spatial_sign, read_space, read_spatial_sign
 from mura.values import (
     Direction,
     Location,
@@ -136,8 +137,11 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None) ->
     scene = dict(lexicon.scene)
     for child in root.iterchildren("scene"):
         scene.update(read_scene(source, child, unit))
+    placed: dict[str, SpatialReference] = {}
+    for child in root.iterchildren("space"):
+        read_space(source, child, placed)
     return tuple(
-        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, published=_is_published(root)).read(child)
+        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, placed=dict(placed), published=_is_published(root)).read(child)
         for child in root.iterchildren("utterance")
     )
 
@@ -167,11 +171,14 @@ class _UtteranceReader:
     scene: dict[str, SceneLocation]
     lexicon: GestureLexicon
     tags: dict[str, TimeTag] = field(default_factory=dict)
+    placed: dict[str, SpatialReference] = field(default_factory=dict)
     published: bool = False
 
     def read(self, utterance: etree._Element) -> Utterance:
         for child in utterance.iterchildren("scene"):
             self.scene.update(read_scene(self.source, child, self.unit))
+        for child in utterance.iterchildren("space"):
+            read_space(self.source, child, self.placed)
         specification = utterance.find("specification")
         chunks = self._read_specification(specification) if specification is not None else ()
         behaviors: list[BehaviorSpec] = []
@@ -195,7 +202,7 @@ class _UtteranceReader:
             errors.append(self.source.error("utterance has neither spoken text nor behaviours", utterance))
         if errors:
             raise errors[0] if len(errors) == 1 else SpecErrors(errors)
-        return Utterance(tuple(chunks), tuple(behaviors), self.source.file)
+        return Utterance(tuple(chunks), tuple(behaviors), self.source.file, space=tuple(self.placed.values()))
 
     # -- speech ---------------------------------------------------------------------
 
@@ -247,11 +254,12 @@ class _UtteranceReader:
         timing_element = _timing_element(element, body)
         timing = self._read_timing(timing_element, behavior_id) if timing_element is not None else None
         gesture = self._read_gesture(body, behavior_id) if body.tag == "gesture" else None
-        sign = self._read_sign(body, behavior_id) if body.tag == "sign" else None
-        if (gesture is not None or sign is not None) and timing is None:
+        spatial = read_spatial_sign(self.source, body, behavior_id, self.placed) if body.tag == "sign" and is_spatial_sign(body) else None
+        sign = self._read_sign(body, behavior_id) if body.tag == "sign" and spatial is None else None
+        if (gesture is not None or sign is not None or spatial is not None) and timing is None:
             raise self.source.error(f"{body.tag} {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
-        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign)
+        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial=spatial)
 
     def _read_sign(self, element: etree._Element, behavior_id: str) -> Sign:
         """A sign behaviour: ``<hamnosys>`` text (HamNoSys 4 Unicode) or a SiGML
@@ -315,18 +323,41 @@ class _UtteranceReader:
     def _read_function_gesture(self, function: etree._Element, gesture: etree._Element, behavior_id: str, scope: str | None) -> Gesture:
         name = function.get("name", "")
         params = {param.get("name"): param.get("value") for param in function.iterchildren("param")}
-        call = FunctionCall(name, params, self.source.where(function))
-        entry = self.lexicon.entry(name)
-        if entry is None:
+        if self.lexicon.entry(name) is None:
             known = ", ".join(sorted(self.lexicon.entries)) or "none"
             raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function, "name")
-        try:
-            bound = bind_params(entry, params)
-        except ValueError as error:
-            raise self.source.error(str(error), function) from None
-        reader = _ConstraintReader(entry.source, self.lexicon.unit, self.scene, bound, call_site=self.source.where(function))
-        tree = reader.read_root(entry.constraints, _arm_or_none(scope))
-        return Gesture(gesture.get("id") or behavior_id, tree, call, scope, self.source.where(gesture))
+        call = FunctionCall(name, params, self.source.where(function))
+        return function_gesture(call, gesture.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(gesture))
+
+
+def function_gesture(
+    call: FunctionCall,
+    gesture_id: str,
+    scope: str | None,
+    lexicon: GestureLexicon,
+    scene: Mapping[str, SceneLocation],
+    where: SourceLocation | None,
+) -> Gesture:
+    """The gesture a lexicon function makes for ``call`` (raises :class:`SpecError` at the
+    call's place for an unknown function or a missing parameter); also read by BML."""
+    entry = lexicon.entry(call.name)
+    if entry is None:
+        known = ", ".join(sorted(lexicon.entries)) or "none"
+        raise SpecError(f"unknown gesture function {call.name!r} (the lexicon has: {known})", call.where)
+    try:
+        bound = bind_params(entry, call.params)
+    except ValueError as error:
+        raise SpecError(str(error), call.where) from None
+    reader = _ConstraintReader(entry.source, lexicon.unit, scene, bound, call_site=call.where)
+    tree = reader.read_root(entry.constraints, _arm_or_none(scope))
+    return Gesture(gesture_id, tree, call, scope, where)
+
+
+def read_gesture_element(source: XmlSource, element: etree._Element, behavior_id: str, lexicon: GestureLexicon, unit: str = "m") -> Gesture:
+    """A MURML ``<gesture>``-like element (``<function>`` or ``<constraints>`` inside, plain
+    names without a namespace) read as the MURML reader reads it; lengths without a unit are
+    in ``unit``. BML reads the MURML gestures it embeds with it."""
+    return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon)._read_gesture(element, behavior_id)
 
 
 def _timing_element(behaviorspec: etree._Element, body: etree._Element) -> etree._Element | None:

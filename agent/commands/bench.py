@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from bench.machine import REPO_ROOT
+from bench.motion_audit.report import format_summary
 from bench.runner import MODULES, format_table, readme_section, run_bench, update_readme
 
 
@@ -31,6 +32,10 @@ def run(args: argparse.Namespace) -> int:
     chosen = {"modules": tuple(args.only)} if args.only else {}
     report = run_bench(**chosen, quick=args.quick, command=command, progress=lambda name: print(f"running {name} …", file=sys.stderr))
     print(format_table(report))
+    audit = report["results"].get("bench.motion_audit", {})
+    if "corpus" in audit:
+        print()
+        print(format_summary(audit["corpus"]["overall"], "motion audit (look at the renders: python -m bench.motion_audit --corpus --keep DIR)"))
     if args.json is not None:
         args.json.write_text(json.dumps(report, indent=2, default=str) + "\n", encoding="utf-8")
     if args.readme:

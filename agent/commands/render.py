@@ -37,7 +37,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json, "
         "NAME.html and NAME.glb (the avatar with its animation) into the output folder. Files appear only when complete.",
     )
-    parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files")
+    parser.add_argument("files", nargs="+", metavar="FILE", help="MURML utterance files or BML 1.0 blocks (.bml)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
     parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write NAME.glb")
     add_agent_options(parser)
@@ -70,5 +70,6 @@ def render_one(agent: Agent, path: Path, output: Path, glb: bool = True) -> int:
         return 1
     print(f"{path}: {files.duration:.2f} s -> {files.html}")
     for warning in files.warnings:
-        print(f"{path}: warning: {warning}", file=sys.stderr)
+        located = warning.startswith(f"{path}:")  # a reader's warning names its own place
+        print(warning if located else f"{path}: warning: {warning}", file=sys.stderr)
     return 0

@@ -79,7 +79,15 @@ class SignBehaviorPlanner:
             default=0.0,
         )
         moving = not plan.static
-        return GestureDemands(frozenset(plan.first), plan.duration if moving else 0.0, moving, False, distance)
+        paths = {arm: np.concatenate([move.values for move in moves])
+                 for (arm, channel), moves in plan.moves.items() if channel == "wrist_position" and moves}
+        return GestureDemands(
+            frozenset(plan.first), plan.duration if moving else 0.0, moving, False, distance,
+            first_wrists={arm: tuple(pose.wrist) for arm, pose in plan.first.items()},
+            last_wrists={arm: tuple(paths[arm][-1]) if arm in paths else tuple(pose.wrist) for arm, pose in plan.first.items()},
+            stroke_distance=max((float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) for path in paths.values()), default=0.0),
+            manner="targetted" if plan.static else "lax",
+        )
 
     def plan(self, behavior: BehaviorSpec, pegs: TimePegs, next_gesture_follows: bool = False) -> MotorProgram:
         """The sign's LMPs on ``pegs``: transition until ``stroke_start``, the sign's moves

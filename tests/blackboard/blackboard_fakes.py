@@ -76,6 +76,11 @@ class FakeMotor:
         self.sampled_until = 0.0
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
+        if behavior.spatial is not None:  # pointing or an indicating verb: one right-arm stroke here
+            distance = self.distances.get(behavior.id, DEFAULT_DISTANCE)
+            where = {"right": (distance, 0.0, 0.0)}
+            return GestureDemands(frozenset({"right"}), STROKE_PER_SEGMENT, True, False, distance,
+                                  first_wrists=where, last_wrists=where, stroke_distance=0.1)
         gesture = behavior.gesture
         node = gesture.constraints if gesture is not None else behavior.sign.to_constraint()
         scope = (gesture.scope if gesture is not None else None) or ""
@@ -89,17 +94,17 @@ class FakeMotor:
             arms = frozenset({"right"})
         dynamic = any(isinstance(leaf, Dynamic) for leaf in iter_leaves(node))
         distance = self.distances.get(behavior.id, DEFAULT_DISTANCE if arms else HEAD_DISTANCE)
-        return GestureDemands(arms, STROKE_PER_SEGMENT * _count_dynamic(node), dynamic, dynamic and self.repeatable, distance)
+        where = {arm: (distance, 0.0, 0.0) for arm in arms}  # the stroke holds at its distance from rest
+        return GestureDemands(arms, STROKE_PER_SEGMENT * _count_dynamic(node), dynamic, dynamic and self.repeatable, distance,
+                              first_wrists=where, last_wrists=where, stroke_distance=0.1 * _count_dynamic(node))
 
     def position(self, arm: str, t: float | np.ndarray) -> np.ndarray:
         times, values = zip(*self.keys[arm])
         return np.interp(t, times, values)
 
-    def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
+    def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
         d = self.demands(behavior)
-        if not d.arms:
-            return float(fitts_duration(d.preparation_distance))
-        return max(float(fitts_duration(abs(d.preparation_distance - float(self.position(a, at_time))))) for a in d.arms)
+        return {a: abs(d.preparation_distance - float(self.position(a, at_time))) for a in d.arms}
 
     def plan(self, behavior, pegs, *, repetitions=1, next_gesture_follows=False) -> FakeProgram:
         d = self.demands(behavior)
@@ -138,7 +143,6 @@ class FakeMotor:
         return self.keys[arm][-1][0]
 
     def speak(self, speech, onset: float, accents=()) -> tuple[str, ...]:
-        assert onset >= self.sampled_until - 1e-9, f"speech at {onset} handed over after frames there were sampled"
         self.spoken.append((onset, tuple(accents)))
         return ()
 

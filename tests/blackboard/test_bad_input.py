@@ -13,8 +13,10 @@ from blackboard import (
     OverlappingGestures,
     ScheduleError,
     Scheduler,
+    TimingConflict,
     VirtualClock,
 )
+from motor.trajectory.speed_budget import budget
 from motor.trajectory.spline import fitts_duration
 from mura.model import Affiliate, Utterance
 from mura.murml import parse_utterance
@@ -74,12 +76,27 @@ def test_overlapping_strokes_on_one_arm_are_refused_naming_both():
         schedule(utt)
 
 
-def test_touching_affiliates_on_one_arm_overlap_by_the_stroke_lead():
-    text = """<definition><utterance><specification>
-      Take <time id="t1"/> this <time id="t2"/> and that <time id="t3"/></specification>%s</utterance></definition>"""
-    utt = parse_utterance(text % (BEAT % ("one", "t1", "t2") + BEAT % ("two", "t2", "t3")))
-    with pytest.raises(OverlappingGestures, match="'one' and 'two'"):
-        schedule(utt)
+TOUCHING = """<definition><utterance><specification>
+  Take <time id="t1"/> this <time id="t2"/> and that <time id="t3"/></specification>%s</utterance></definition>"""
+
+
+def test_touching_affiliates_on_one_arm_go_stroke_to_stroke_when_the_second_starts_where_the_first_ends():
+    utt = parse_utterance(TOUCHING % (BEAT % ("one", "t1", "t2") + BEAT % ("two", "t2", "t3")))
+    result = schedule(utt)  # the fake motor's strokes end and start at the same place: no preparation needed
+    assert result.failed_chunk is None, result.error
+    one, two = result.timeline.to_json()["behaviors"]
+    assert [r["step"] for r in two["relaxations"]][:1] == ["co_articulation"]
+    assert two["phases"]["start"] >= one["phases"]["relax"] - 1e-9
+
+
+def test_touching_affiliates_on_one_arm_that_no_relaxation_separates_fail_naming_the_constraints():
+    utt = parse_utterance(TOUCHING % (BEAT % ("one", "t1", "t2") + BEAT % ("two", "t2", "t3")))
+    result = schedule(utt, motor=FakeMotor(distances={"one": 0.3, "two": 0.8}))
+    assert result.failed_chunk == 0 and isinstance(result.error, TimingConflict)
+    names = result.error.constraints
+    assert "one: stroke spans its affiliate up to t2" in names and "two prepares after the stroke of one on the right arm" in names
+    assert any(n.startswith("two: preparation takes") for n in names)
+    assert "no relaxation satisfies them" in str(result.error)
 
 
 def test_same_arm_gestures_apart_in_one_chunk_follow_without_retraction():
@@ -114,17 +131,27 @@ def test_a_speech_failure_in_the_first_chunk_yields_an_empty_result():
     assert result.timeline.states_of(0) == [ChunkState.IN_PREP, ChunkState.FAILED]
 
 
-def test_an_absolute_stroke_too_soon_for_its_preparation_delays_the_absolute_clock():
-    utt = utterance("stack_height.xml")
-    motor = FakeMotor(distances={"look_at_user": 2.0})  # a 1.26 s preparation before a stroke at 0.2 s
-    result = schedule(utt, motor=motor)
+WAVE = """<behaviorspec id="wave"><gesture><timing onset="0.2" end="0.9"/><constraints><parallel>
+  <static slot="HandShape" value="BSflat"/>
+  <dynamic slot="HandLocation"><segment type="linear">
+    <value type="start" name="LocChest LocCenterRight LocNorm"/><value type="direction" name="DirU"/>
+    <value type="distance" name="DistShort"/></segment></dynamic>
+</parallel></constraints></gesture></behaviorspec>"""
+
+
+def test_an_absolute_stroke_too_soon_for_its_preparation_shortens_it_then_delays_the_absolute_clock():
+    utt = parse_utterance(FOUR_CHUNKS % WAVE)
+    result = schedule(utt, motor=FakeMotor(distances={"wave": 0.6}))  # a 0.99 s preparation (0.75 s at the budget) before 0.2 s
     assert result.failed_chunk is None
     data = result.timeline.to_json()
-    look = next(b for b in data["behaviors"] if b["id"] == "look_at_user")
+    wave = next(b for b in data["behaviors"] if b["id"] == "wave")
     delay = data["absolute_delay"]
-    assert delay > 1.0
-    assert look["phases"]["stroke_start"] == pytest.approx(0.2 + delay, abs=1e-6)
-    assert look["phases"]["stroke_start"] - look["phases"]["start"] >= float(fitts_duration(2.0)) - 1e-6
-    assert look["affiliate"] == {"onset": pytest.approx(0.2 + delay), "end": pytest.approx(0.9 + delay), "absolute": True}
-    (warning,) = [w for w in data["warnings"] if w.startswith("absolute timings delayed")]
-    assert "look_at_user: preparation takes" in warning and "look_at_user: stroke onset at absolute 0.200 s" in warning
+    shortest = budget(None).shortest_duration(0.6)
+    assert delay == pytest.approx(shortest - 0.2, abs=1e-6)
+    assert wave["phases"]["stroke_start"] == pytest.approx(0.2 + delay, abs=1e-6)
+    assert wave["phases"]["stroke_start"] - wave["phases"]["start"] == pytest.approx(shortest, abs=1e-6)
+    assert wave["affiliate"] == {"onset": pytest.approx(0.2 + delay), "end": pytest.approx(0.9 + delay), "absolute": True}
+    steps = [(r["step"], r["amount"]) for r in wave["relaxations"]]
+    assert steps == [("shorter_preparation", pytest.approx(float(fitts_duration(0.6)) - shortest)), ("stretched_pause", pytest.approx(delay))]
+    (warning,) = [w for w in data["warnings"] if "stretched_pause" in w]
+    assert "wave: preparation takes" in warning and "wave: stroke onset at absolute 0.200 s" in warning

@@ -131,7 +131,7 @@ def test_observers_hear_states_feedback_speech_and_frames():
     scheduler.subscribe(events.append)
     result = scheduler.run(utterance("fig2_take_this_bar.xml"), name="fig2")
     kinds = {type(e).__name__ for e in events}
-    assert kinds == {"ChunkStateChanged", "BehaviorFeedback", "SpeechStarted", "SpeechEnded", "FramesReady"}
+    assert kinds == {"ChunkStateChanged", "BehaviorFeedback", "SpeechStarted", "SpeechEnded", "FramesReady", "ChunkPlanned", "UtteranceEnded"}
     points = [(e.behavior, e.point) for e in events if type(e).__name__ == "BehaviorFeedback"]
     assert ("gesture_1", "stroke_start") in points and ("gesture_2", "end") in points
     frames = [e for e in events if isinstance(e, FramesReady)]

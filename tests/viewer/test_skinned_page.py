@@ -18,6 +18,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "avatar"))
 from avatar_fixtures import make_vrm, read_glb  # noqa: E402  (the avatar tests' fixture maker)
 
 REPO = Path(__file__).resolve().parents[2]
+#: Joints spanning the right hand in every orientation (its size on screen is their widest spread).
+HAND_OUTLINE = ("r_wrist", "r_thumb3", "r_index3", "r_middle3", "r_pinky3")
 FIG2 = REPO / "specs" / "utterances" / "fig2_take_this_bar.xml"
 BACKGROUND = np.array([0x20, 0x25, 0x2C]) / 255.0
 READY = (
@@ -81,8 +83,8 @@ def test_close_up_shows_the_hands_larger(browser: Browser, skinned_page) -> None
     sizes = {}
     for view in ("front", "hands"):
         browser.evaluate(f"window.__mura.view({view!r})")
-        left, right = (np.array(browser.evaluate(f"window.__mura.screenOf({j!r})")) for j in ("r_middle3", "r_wrist"))
-        sizes[view] = np.linalg.norm(left - right)
+        points = np.array([browser.evaluate(f"window.__mura.screenOf({j!r})") for j in HAND_OUTLINE])
+        sizes[view] = float(np.max(np.linalg.norm(points[:, None] - points[None], axis=-1)))
     assert sizes["hands"] > 1.5 * sizes["front"]
 
 

@@ -1,6 +1,7 @@
 // mura's avatar page. File mode: the page carries the BVH (script#mura-bvh, a JSON string)
 // and the timeline (script#mura-timeline) inline and plays them against <audio id=mura-audio>.
-// Live mode (?live=1): see live.js. Query ?t=SECONDS opens the page paused at that time.
+// Live mode (?live=1): see live.js; as a client of `mura serve` (?live=ws): see socket.js.
+// Query ?t=SECONDS opens the page paused at that time.
 // When the first frame is drawn, window.__muraReady is true; window.__mura exposes
 // time(), seek(t), play(), pause(), jointPosition(name), face() (the morph weights shown
 // now), morph(name) (the model's morph influence), showFace(on) and counts for tests and scripting.
@@ -25,6 +26,7 @@ import { faceAt, morphDriver, readFace, vrmDriver } from './face.js';
 import { loadModel, modelSpec } from './model.js';
 import { PLACE_COLOUR, addPlaces } from './places.js';
 import { applyFrame, connectLive } from './live.js';
+import { connectSocket, describeFeedback, socketUrl } from './socket.js';
 import { UNIT, jointBones, parseBVH, skeletonFromLive } from './skeleton.js';
 import { CSS } from './style.js';
 import { TimelineView, normalizeTimeline } from './timeline.js';
@@ -60,7 +62,7 @@ function buildUI() {
   const legend = element('div', { id: 'mura-legend' });
   const list = element('section', { id: 'mura-timeline-list' });
   app.prepend(title, stage, controls, strip, legend, list);
-  return { app, title, stage, status, play, scrub, time, strip, legend, list, viewButtons };
+  return { app, title, stage, status, controls, play, scrub, time, strip, legend, list, viewButtons };
 }
 
 function buildScene(stage) {
@@ -357,7 +359,19 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   requestAnimationFrame(loop);
 }
 
-function startLive(ui, view, timelineView) {
+// The realizer's page: a box to send BML, the latest feedback line in the status.
+function buildSender(ui, send) {
+  const form = element('form', { id: 'mura-send' });
+  const box = element('textarea', { id: 'mura-bml', rows: 4, placeholder: '<bml xmlns="http://www.bml-initiative.org/bml/bml-1.0" id="b1">…</bml>' }, form);
+  element('button', { type: 'submit', textContent: 'Send BML' }, form);
+  form.addEventListener('submit', (event) => {
+    event.preventDefault();
+    send(box.value);
+  });
+  ui.controls.after(form);
+}
+
+function startLive(ui, view, timelineView, transport = 'sse') {
   ui.play.disabled = true;
   ui.scrub.disabled = true;
   ui.status.textContent = 'live: connecting…';
@@ -368,7 +382,7 @@ function startLive(ui, view, timelineView) {
   let meshes = 0;
   let time = 0;
   let timeline = normalizeTimeline({}, 0);
-  connectLive('./stream', {
+  const handlers = {
     onSkeleton(description) {
       if (root) view.scene.remove(root);
       const skeleton = skeletonFromLive(description);
@@ -398,7 +412,17 @@ function startLive(ui, view, timelineView) {
     onError(message) {
       ui.status.textContent = message;
     },
-  });
+    onFeedback(message) {
+      const line = describeFeedback(message);
+      if (line !== null) ui.status.textContent = line;
+    },
+  };
+  if (transport === 'ws') {
+    const client = connectSocket(socketUrl(window.location), handlers);
+    buildSender(ui, (xml) => client.send(xml));
+  } else {
+    connectLive('./stream', handlers);
+  }
   const loop = () => {
     ui.scrub.value = String(time);
     ui.time.textContent = format(time);
@@ -419,6 +443,7 @@ function boot() {
   try {
     const view = buildScene(ui.stage);
     if (params.get('live') === '1') startLive(ui, view, timelineView);
+    else if (params.get('live') === 'ws') startLive(ui, view, timelineView, 'ws');
     else startFile(ui, view, timelineView, params);
   } catch (error) {
     ui.status.textContent = `viewer error: ${error.message}`;

@@ -21,4 +21,6 @@ html, body { margin: 0; background: #101317; color: #dfe3ea; font: 14px/1.4 syst
 #mura-timeline-list ol, #mura-timeline-list ul { margin: 0; padding-left: 22px; }
 #mura-timeline-list li.active { color: #ffd27f; }
 #mura-timeline-list p { margin: 0; font-size: 12px; color: #b8bec8; }
+#mura-send { display: flex; gap: 8px; margin: 8px 0; }
+#mura-send textarea { flex: 1; background: #1a1f26; color: #dfe3ea; border: 1px solid #4a5866; border-radius: 4px; font: 12px/1.3 monospace; }
 `;
