@@ -50,7 +50,8 @@ class MotorControl(Protocol):
 
     def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> Mapping[str, float]:
         """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
-        activated so far) to the start of ``behavior``'s stroke."""
+        activated so far) to the start of ``behavior``'s stroke (and possibly ``"gaze"``: a
+        distance whose preparation time lets eyes and head reach the behaviour's gaze target)."""
         ...
 
     def plan(

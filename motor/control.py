@@ -96,6 +96,9 @@ _FRAME_TOLERANCE = 1e-9
 _NONMANUAL = ("neck", "face")
 #: The head beat on an accented vowel starts this long before it and ends this long after, s.
 BEAT_LEAD, BEAT_TAIL = 0.15, 0.2
+#: Fitts' law ``T = FITTS_SCALE · ln(FITTS_AMPLITUDE · A + 1)`` (motor.trajectory.spline), inverted
+#: to express a gaze shift's time as the wrist distance the scheduler times preparations from.
+FITTS_SCALE, FITTS_AMPLITUDE = 0.24, 100.0
 #: Nothing of a chunk's face shows earlier than this before its speech onset, s (the
 #: articulation's lead-in: a pause, the anticipation and the dominance's reach).
 SPEECH_REACH = 1.0
@@ -157,7 +160,12 @@ class MotorControl:
 
     def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
         """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
-        activated so far) to the start of the stroke; arms the stroke leaves free are absent."""
+        activated so far) to the start of the stroke; arms the stroke leaves free are absent.
+
+        A behaviour that shifts the gaze (:mod:`motor.neck.planning`) adds ``"gaze"``: the
+        wrist distance whose Fitts' law time is the time eyes and head need to get on the
+        target, so that the scheduler, which times preparations from distances, leaves them
+        that time before the stroke."""
         if behavior.spatial is not None:
             targets = self.verbs.first_wrists(behavior)
         elif behavior.sign is not None:
@@ -165,19 +173,20 @@ class MotorControl:
         else:
             fragment = self.planner.fragment(behavior)
             targets = {arm: first_location(fragment, arm) for arm in ARMS}
-        return {
+        distances = {
             arm: float(np.linalg.norm(target - self.timeline((arm, "wrist_position")).state(at_time).value))
             for arm, target in targets.items() if target is not None
         }
+        gaze = self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time) if behavior.gesture is not None else 0.0
+        if gaze > 0.0:
+            distances["gaze"] = float(np.expm1(gaze / FITTS_SCALE) / FITTS_AMPLITUDE)
+        return distances
 
     def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
         """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
         programs activated so far) to the start of the stroke; the slowest arm counts, or
-        the gaze shift the behaviour asks for (:mod:`motor.neck.planning`) when longer."""
-        arms = max((float(fitts_duration(d)) for d in self.preparation_distances(behavior, at_time).values()), default=0.0)
-        if behavior.gesture is None:
-            return arms
-        return max(arms, self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time))
+        the gaze shift the behaviour asks for when longer."""
+        return max((float(fitts_duration(d)) for d in self.preparation_distances(behavior, at_time).values()), default=0.0)
 
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
