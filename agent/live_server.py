@@ -100,15 +100,24 @@ def skeleton_message(motion: Motion) -> dict:
 
 
 def frame_messages(motion: Motion) -> list[str]:
-    """One JSON message per frame of ``motion``: frame index, time, rotations, root."""
+    """One JSON message per frame of ``motion``: frame index, time, rotations, root and,
+    when the motion has a face, ``face``: ``{name: weight}`` of the weights not zero."""
     first = int(round(motion.start_time * motion.fps))
     rotations = np.round(motion.rotations.reshape(motion.frame_count, -1), 5).tolist()
     roots = np.round(motion.root_translation, 5).tolist()
     times = np.round(motion.times, 5).tolist()
+    faces = _face_frames(motion)
     return [
-        json.dumps({"frame": first + i, "time": t, "rotations": r, "root": root}, separators=(",", ":"))
-        for i, (t, r, root) in enumerate(zip(times, rotations, roots))
+        json.dumps({"frame": first + i, "time": t, "rotations": r, "root": root, **face}, separators=(",", ":"))
+        for i, (t, r, root, face) in enumerate(zip(times, rotations, roots, faces))
     ]
+
+
+def _face_frames(motion: Motion) -> list[dict]:
+    if motion.face_weights is None:
+        return [{} for _ in range(motion.frame_count)]
+    weights = np.round(motion.face_weights, 3)
+    return [{"face": {motion.face_names[j]: float(row[j]) for j in np.flatnonzero(row)}} for row in weights]
 
 
 class LiveServer:

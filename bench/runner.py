@@ -31,6 +31,7 @@ MODULES: tuple[str, ...] = (
     "bench.scheduler_speed",
     "bench.signing_speed",
     "bench.motion_quality",
+    "bench.head_face",
     "bench.motion_audit",
     "bench.memory",
     "bench.verbs",
@@ -96,6 +97,8 @@ TARGETS: tuple[Target, ...] = (
     Target("motion audit: stroke onset lead vs acoustic onset (max error, espeak)", "200 ms ± 1 frame", ("bench.motion_audit", "stroke_onset_error_max_frames"), "max", 1.0, "frames"),
     Target("memory for one hour of speech", "< 500 MB", ("bench.memory", "one_hour_peak_rss_mb"), "below", 500.0, "MB"),
     Target("real SiGML signs rendered", "≥ 99.5%", ("bench.signing_speed", "rendered_percent"), "min", 99.5, "%"),
+    Target("mouth opening vs audio energy, espeak (lowest example)", "r ≥ 0.5", ("bench.head_face", "lipsync_r_min"), "min", 0.5),
+    Target("gaze direction error at the stroke (largest)", "< 5°", ("bench.head_face", "gaze_error_max_deg"), "below", 5.0, "°"),
 )
 
 

@@ -54,7 +54,7 @@ from blackboard.job import Job, ScheduledUtterance, performed
 from blackboard.planning import PEG_NAMES, MotorControl
 from blackboard.timeline import ChunkEntry, PlanningSlack, Timeline
 from blackboard.validation import validate
-from mura.model import AbsoluteTiming, BehaviorSpec, ChunkSpec, Utterance
+from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
 from tts import SpeechSynthesizer
 
 __all__ = ["LiveHandle", "ScheduledUtterance", "Scheduler", "SchedulerConfig", "validate"]
@@ -283,6 +283,8 @@ class Scheduler:
             self._schedule_feedback(board, gesture)
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
+            for warning in self.motor.speak(board.speech, onset, _accents(board)):
+                job.timeline.warn(warning)
             self._at(onset, lambda: self._start_speech(job, board, onset))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
             if board.spec.speech is not None:
@@ -513,3 +515,13 @@ class Scheduler:
         ended = min(job.end, max(self._time, job.origin)) if job.interrupted else job.end  # not the unspoken rest of the audio
         self.bus.publish(UtteranceEnded(job.name, ended - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
         job.done.set()
+
+
+def _accents(board: Blackboard) -> tuple[tuple[float, float], ...]:
+    """The utterance-clock spans of the chunk's affiliates, which its speech emphasizes."""
+    marks, onset = board.speech.marks, board.speech_onset
+    return tuple(
+        (onset + marks[g.behavior.timing.onset], onset + marks[g.behavior.timing.end])
+        for g in board.gestures
+        if isinstance(g.behavior.timing, Affiliate) and g.behavior.timing.onset in marks and g.behavior.timing.end in marks
+    )

@@ -16,6 +16,18 @@ Two dialects are read alike:
 published dialect (its symbol table is in cm, and ``40`` is a 40 cm zip-fastener stroke).
 A document is in the published dialect when it contains ``<timing>`` or
 ``<dynamicElement>``.
+
+**Head and gaze values** (``GazeDirection``, ``Neck``, ``HeadDirection``): a ``Dir…``
+name or three numbers are a direction from the eyes in the avatar frame; with
+``mode="pointTo"`` three numbers are a position like any other (the document's unit,
+relative to the root joint); ``$place`` and grid names are places. The published dialect
+writes gaze vectors in its own frame — x ahead, y up, z to the avatar's right, judging by
+its files (``1000 -500 0`` looks ahead and down, ``1000 -500 1000`` down toward the right
+hand's periphery) — and, ``pointTo`` or not, as seen from the eyes: mura reads them as
+directions in that frame. Any other word (``Nod``, ``Listener``, ``RightHand`` …) is kept
+as a :class:`~mura.values.Symbol` for ``motor/`` to read; so is the value of the other
+non-arm slots (``FaceExpression``, ``Mouth``, ``Shoulders``, ``Torso``) when it is not a
+vector, a direction or a place.
 """
 
 from __future__ import annotations
@@ -76,6 +88,7 @@ from mura.values import (
     PalmOrientation,
     PointLocation,
     SlotValue,
+    Symbol,
     Vector,
 )
 from mura.xml_source import XmlSource
@@ -89,6 +102,8 @@ _ROUNDNESS = {"Sharpe": 0.9, "Sharp": 0.9, "Normal": 0.0, "Broad": -0.9}
 _SKEWEDNESS = {"Round": 0.0, "FunnelS": -0.9, "FunnelE": 0.9}
 _SEGMENT_VALUE_TYPES = ("start", "end", "direction", "distance", "normal", "shape", "extent", "extension", "roundness", "skewedness")
 _SIGN_FORMS = ("hamnosys", "hns_sign", "hamgestural_sign")
+#: Slots whose values aim the eyes or the head (see *Head and gaze values*).
+_HEAD_SLOTS = ("GazeDirection", "Neck", "HeadDirection")
 _TRUE = {"true", "1", "yes"}
 _FALSE = {"false", "0", "no"}
 
@@ -123,7 +138,7 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None, li
     unit = _document_unit(source, root)
     lexicon = lexicon if lexicon is not None else load_lexicon()
     if root.tag == "utterance":
-        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits).read(root),)
+        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits, published=_is_published(root)).read(root),)
     scene = dict(lexicon.scene)
     for child in root.iterchildren("scene"):
         scene.update(read_scene(source, child, unit))
@@ -131,14 +146,18 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None, li
     for child in root.iterchildren("space"):
         read_space(source, child, placed)
     return tuple(
-        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, limits, placed=dict(placed)).read(child)
+        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, limits, placed=dict(placed), published=_is_published(root)).read(child)
         for child in root.iterchildren("utterance")
     )
 
 
 def _document_unit(source: XmlSource, root: etree._Element) -> str:
-    published = any(True for _ in root.iter("timing", "dynamicElement"))
-    return _element_unit(source, root, "cm" if published else "mm")
+    return _element_unit(source, root, "cm" if _is_published(root) else "mm")
+
+
+def _is_published(root: etree._Element) -> bool:
+    """Whether a document is in the published dialect (module docstring)."""
+    return any(True for _ in root.iter("timing", "dynamicElement"))
 
 
 def _element_unit(source: XmlSource, element: etree._Element, default: str) -> str:
@@ -159,6 +178,7 @@ class _UtteranceReader:
     limits: Limits = DEFAULT_LIMITS
     tags: dict[str, TimeTag] = field(default_factory=dict)
     placed: dict[str, SpatialReference] = field(default_factory=dict)
+    published: bool = False
 
     def read(self, utterance: etree._Element) -> Utterance:
         for child in utterance.iterchildren("scene"):
@@ -325,7 +345,7 @@ class _UtteranceReader:
         constraints = element.find("constraints")
         if constraints is None:
             raise self.source.error(f"gesture {behavior_id!r} needs <function> or <constraints>", element)
-        reader = _ConstraintReader(self.source, self.unit, self.scene, {}, limits=self.limits)
+        reader = _ConstraintReader(self.source, self.unit, self.scene, {}, limits=self.limits, published=self.published)
         tree = reader.read_root(constraints, _arm_or_none(scope))
         check_movements(tree, self.limits, f"gesture {behavior_id!r}", self.source.where(element))
         return Gesture(element.get("id") or behavior_id, tree, None, scope, self.source.where(element))
@@ -428,6 +448,7 @@ class _ConstraintReader:
     params: Mapping[str, str]
     call_site: SourceLocation | None = None
     limits: Limits = DEFAULT_LIMITS
+    published: bool = False
 
     def read_root(self, constraints: etree._Element, scope: Arm | None) -> Constraint:
         children = list(constraints)
@@ -587,13 +608,40 @@ class _ConstraintReader:
                 return PalmOrientation(self._direction(text, element, attribute).vector, text, mode == "relative")
             palm = vocabulary.parse_palm_orientation(text)
             return PalmOrientation(palm.direction, palm.name, mode == "relative")
+        if slot in _HEAD_SLOTS:
+            return self._head_value(text, mode, element, attribute)
         if _is_numbers(text):
             return Vector(tuple(float(part) for part in text.split()))
         if text.startswith("Dir"):
             return vocabulary.parse_direction(text)
         if text.startswith("$"):
             return self._location(text, element, attribute)
-        raise ValueError(f"value {text!r} is not a vector, a direction or a place")
+        if not text.strip():
+            raise ValueError("empty value")
+        return Symbol(text.strip())
+
+    def _head_value(self, text: str, mode: str | None, element: etree._Element, attribute: str) -> SlotValue:
+        """A gaze or head value (module docstring, *Head and gaze values*)."""
+        if _is_numbers(text):
+            if self.published:
+                x, y, z = self._three(self._numbers(element, attribute, None, text), text)
+                return Direction(self._direction(f"{-z} {y} {x}", element, attribute).vector, text)
+            if mode == "pointTo":
+                return self._location(text, element, attribute)
+            return self._direction(text, element, attribute)
+        if text.startswith("Dir"):
+            return self._direction(text, element, attribute)
+        if text.startswith("$") or text.startswith("Loc"):
+            return self._location(text, element, attribute)
+        if not text.strip():
+            raise ValueError("empty value")
+        return Symbol(text.strip())
+
+    @staticmethod
+    def _three(values: tuple[float, ...], text: str) -> tuple[float, float, float]:
+        if len(values) != 3:
+            raise ValueError(f"a gaze or head vector needs three numbers, got {text!r}")
+        return values[0], values[1], values[2]
 
     def _location(self, text: str, element: etree._Element, attribute: str) -> Location:
         if text.startswith("$"):

@@ -103,7 +103,9 @@ def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[e
     raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
 
 
-def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:
+def _nonmanual_tiers(
+    element: etree._Element | None, where_of: Callable[[etree._Element], SourceLocation] | None = None
+) -> dict[str, tuple[NonmanualItem, ...]]:
     """Tier name → the items written in it, in order.
 
     A child with children of its own is a tier (``<head_tier>…</head_tier>`` in gestural
@@ -116,7 +118,7 @@ def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[Nonmanua
     for child in (c for c in element if isinstance(c.tag, str)):
         items = [e for e in child.iterdescendants() if isinstance(e.tag, str)] or [child]
         tier = tiers.setdefault(child.tag.removeprefix("hnm_"), [])
-        tier.extend(NonmanualItem(item.tag, tuple(sorted(item.attrib.items()))) for item in items)
+        tier.extend(NonmanualItem(item.tag, tuple(sorted(item.attrib.items())), where_of(item) if where_of else None) for item in items)
     return {tier: tuple(items) for tier, items in tiers.items()}
 
 
@@ -129,7 +131,7 @@ def _hns_sign(element: etree._Element, gloss: str, where_of: Callable[[etree._El
         raise SpecError(f"sign {gloss!r}: text {manual.text.strip()[:20]!r} in <hamnosys_manual> (expected only ham… tags)", where_of(manual))
     names = [(child.tag, where_of(child)) for child in manual if isinstance(child.tag, str)]
     tokens: list[Token] = tokens_from_names(names, gloss)
-    nonmanual = _nonmanual_tiers(element.find("hamnosys_nonmanual"))
+    nonmanual = _nonmanual_tiers(element.find("hamnosys_nonmanual"), where_of)
     return parse_manual(tokens, gloss, where, nonmanual=nonmanual)
 
 
@@ -200,7 +202,7 @@ class _GesturalReader:
         manual = element.find("sign_manual")
         if manual is None:
             raise self.error(element, "no <sign_manual>")
-        for tier, items in _nonmanual_tiers(element.find("sign_nonmanual")).items():
+        for tier, items in _nonmanual_tiers(element.find("sign_nonmanual"), self.where_of).items():
             self.nonmanual.setdefault(tier, []).extend(items)
         self.dominant = Arm.LEFT if manual.get("nondominant") == "true" or manual.get("dominant") == "left" else Arm.RIGHT
         both = self.flag(manual, "both_hands")
@@ -419,7 +421,7 @@ class _GesturalReader:
 
     def keep_nonmanual(self, element: etree._Element) -> None:
         """A ``<nonman_motion>`` inside the manual part goes to the nonmanual tiers."""
-        for tier, items in _nonmanual_tiers(element).items():
+        for tier, items in _nonmanual_tiers(element, self.where_of).items():
             self.nonmanual.setdefault(tier, []).extend(items)
 
     def qualities(self, element: etree._Element, segment: Segment) -> Segment:

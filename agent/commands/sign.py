@@ -1,8 +1,8 @@
 """``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and avatar pages.
 
-Every sign is rendered on its own (``<gloss>.bvh`` and ``<gloss>.html``), or with
-``--sequence`` all signs of all files in order as one performance (``sequence.bvh``,
-``sequence.html``) with transitions between them. A sign that cannot be read or realized
+Every sign is rendered on its own (``<gloss>.bvh``, ``<gloss>.face.json`` — the
+non-manuals' morph weights — and ``<gloss>.html``), or with ``--sequence`` all signs of
+all files in order as one performance (``sequence.bvh`` …) with transitions between them. A sign that cannot be read or realized
 fails alone with its reason; the others still render. ``--report`` writes a JSON record
 of every sign: whether it rendered, its duration, and why not when it did not.
 
@@ -25,6 +25,7 @@ from tqdm import tqdm
 
 from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.face import face_json, page_face_json
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
 from agent.export.names import OutputNameError, OutputPlan
@@ -42,7 +43,7 @@ from mura.signs import Sign
 from mura.xml_source import XmlSource
 
 #: The files one rendered sign is written as.
-SIGN_SUFFIXES = (".bvh", ".html", ".glb")
+SIGN_SUFFIXES = (".bvh", ".face.json", ".html", ".glb")
 
 #: Longest file name stem derived from a gloss.
 MAX_STEM = 80
@@ -232,14 +233,15 @@ def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str,
     """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB,
     written into ``folder``; returns their paths in ``output``, where they end up."""
     write_bvh(signed.motion, folder / f"{stem}.bvh")
-    files = [str(output / f"{stem}.bvh")]
+    (folder / f"{stem}.face.json").write_text(face_json(signed.motion), encoding="ascii")
+    files = [str(output / f"{stem}.bvh"), str(output / f"{stem}.face.json")]
     if glb_avatar is not None:
         write_motion_glb(signed.motion, folder / f"{stem}.glb", motion_model(glb_avatar), glb_avatar.root_height)
         files.append(str(output / f"{stem}.glb"))
     try:
         model = page_model(page_avatar) if page_avatar is not None else None
         write_html(folder / f"{stem}.html", name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name),
-                   wav_filename=None, model=model)
+                   wav_filename=None, model=model, face_json=page_face_json(signed.motion))
         files.append(str(output / f"{stem}.html"))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)

@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 #: The files one performance named ``NAME`` is saved as.
-PERFORMANCE_SUFFIXES: tuple[str, ...] = (".wav", ".bvh", ".timeline.json", ".html", ".glb")
+PERFORMANCE_SUFFIXES: tuple[str, ...] = (".wav", ".bvh", ".timeline.json", ".face.json", ".html", ".glb")
 #: Longest name accepted, characters (file systems allow 255 bytes, suffixes included).
 MAX_STEM = 200
 

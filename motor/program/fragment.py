@@ -59,8 +59,10 @@ import numpy as np
 
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.locations import resolve_location
+from motor.face.planning import FACE_SLOTS
 from motor.hand.contact import palm_thickness
 from motor.hand.shape import handshape_params
+from motor.neck.planning import NECK_SLOTS
 from motor.trajectory.biocontrol import MANNERS, movement_duration
 from motor.trajectory.guiding_strokes import circle_from_start, curve_breakpoints
 from motor.trajectory.spline import time_breakpoints
@@ -345,13 +347,16 @@ class Compiler:
     def static(self, leaf: Static) -> Fragment:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+            return Fragment(0.0, {}, self.unrealized(leaf.slot))
         arm = self.arm_of(leaf)
         value = self.value(feature, leaf.value, arm, leaf.mode, leaf.where)
         return Fragment(0.0, {(arm, feature): (Key(0.0, 0.0, value),)})
 
-    def unrealized(self, slot: str) -> str:
-        return f"{self.behavior}: slot {slot} is not realized by the arm motor programs"
+    def unrealized(self, slot: str) -> tuple[str, ...]:
+        """The warning for a slot no motor module realizes; none for the neck's and the face's."""
+        if slot in NECK_SLOTS | FACE_SLOTS:
+            return ()
+        return (f"{self.behavior}: slot {slot} is not realized by the arm motor programs",)
 
     def value(self, feature: str, value: object, arm: str, mode: str | None, where: SourceLocation | None) -> object:
         """A slot value as the planner keys it (metres, unit vectors, hand parameters)."""
@@ -401,7 +406,7 @@ class Compiler:
     def dynamic(self, leaf: Dynamic, origin: Mapping[str, np.ndarray]) -> Fragment:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+            return Fragment(0.0, {}, self.unrealized(leaf.slot))
         if not leaf.segments:
             raise self.error(f"dynamic {leaf.slot} has no segments", leaf.where)
         arm = self.arm_of(leaf)

@@ -72,6 +72,7 @@ class FakeMotor:
         self.activated: list[FakeProgram] = []
         self.cuts: list[tuple[str, str, float]] = []  # (arm, behaviour whose retraction was cut, time)
         self.interrupts: list[float] = []
+        self.spoken: list[tuple[float, tuple[tuple[float, float], ...]]] = []  # (speech onset, accents)
         self.sampled_until = 0.0
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
@@ -140,6 +141,10 @@ class FakeMotor:
 
     def busy_until(self, arm: str) -> float:
         return self.keys[arm][-1][0]
+
+    def speak(self, speech, onset: float, accents=()) -> tuple[str, ...]:
+        self.spoken.append((onset, tuple(accents)))
+        return ()
 
     def interrupt(self, at_time: float) -> None:
         self.interrupts.append(at_time)

@@ -120,7 +120,7 @@ def test_huge_chunks_are_refused_under_a_memory_limit(write, tmp_path):
         assert f"{spec}:1:12: chunk 1 has {len(text.strip())} characters, more than the limit of 2000" in checked.out
     rendered = run_mura("render", *map(str, specs), str(good), "-o", str(tmp_path / "out"), *LIGHT)
     assert rendered.status == 1
-    assert all_files(tmp_path / "out") == ["good.bvh", "good.html", "good.timeline.json", "good.wav"]
+    assert all_files(tmp_path / "out") == ["good.bvh", "good.face.json", "good.html", "good.timeline.json", "good.wav"]
     assert "rendered 1 of 4 utterances; 3 failed" in rendered.err
 
 

@@ -61,7 +61,7 @@ def test_two_inputs_with_one_name_are_not_silently_merged(write, tmp_path, capsy
     err = capsys.readouterr().err
     assert f"{second}: its output name 'x' is already used by {first} in this run" in err
     assert "rendered 1 of 2 utterances; 1 failed" in err
-    assert all_files(out) == ["x.bvh", "x.html", "x.timeline.json", "x.wav"]
+    assert all_files(out) == ["x.bvh", "x.face.json", "x.html", "x.timeline.json", "x.wav"]
     assert "First of all." in (out / "x.timeline.json").read_text()
 
 
@@ -101,4 +101,4 @@ def test_sign_glosses_become_safe_unique_names(write, tmp_path, capsys):
                     for gloss in ("../../evil", "../../evil", "CON"))
     document = write("s.sigml", f"<sigml>{signs}</sigml>")
     assert main(["sign", str(document), "-o", str(tmp_path / "out"), *LIGHT]) == 0
-    assert all_files(tmp_path / "out") == ["CON.bvh", "CON.html", "evil.bvh", "evil.html", "evil_2.bvh", "evil_2.html"]
+    assert all_files(tmp_path / "out") == [f"{stem}{suffix}" for stem in ("CON", "evil", "evil_2") for suffix in (".bvh", ".face.json", ".html")]

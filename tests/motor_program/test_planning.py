@@ -32,6 +32,7 @@ from mura.values import (
     HandShape,
     PalmOrientation,
     PointLocation,
+    Symbol,
 )
 from tests.motor_program.conftest import behavior, pegs
 
@@ -220,7 +221,7 @@ def test_impossible_constraints_raise_errors_naming_the_behaviour(control, const
         (line(0.1), pegs(1.0, 1.0, 1.0, 1.5), "no time for the preparation"),
         (line(0.1), pegs(0.0, 0.5, 1.0, 1.0), "stroke interval"),
         (Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, end=CHEST),), scope=Arm.RIGHT), pegs(0.0, 0.5, 1.0, 1.5), "without a start"),
-        (Static("GazeDirection", PointLocation((0.0, 0.5, 1.0)), scope="head"), pegs(0.0, 0.5, 1.0, 1.5), "GazeDirection is not realized"),
+        (Static("GazeDirection", Symbol("Nowhere"), scope="head"), pegs(0.0, 0.5, 1.0, 1.5), "unknown gaze target 'Nowhere'"),
         (Repetition(Static("HandShape", HandShape("fist"), scope=Arm.RIGHT), 2), pegs(0.0, 0.5, 1.0, 1.5), "cannot be repeated"),
     ],
 )

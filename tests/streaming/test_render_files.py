@@ -24,7 +24,7 @@ from tts.wav import read_wav
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((REPO / "specs" / "utterances").glob("*.xml"))
-SUFFIXES = (".wav", ".bvh", ".timeline.json", ".html")
+SUFFIXES = (".wav", ".bvh", ".timeline.json", ".face.json", ".html")
 
 
 class FailingSpeech:

@@ -3,7 +3,10 @@
 // Live mode (?live=1): see live.js; as a client of `mura serve` (?live=ws): see socket.js.
 // Query ?t=SECONDS opens the page paused at that time.
 // When the first frame is drawn, window.__muraReady is true; window.__mura exposes
-// time(), seek(t), play(), pause(), jointPosition(name) and counts for tests and scripting.
+// time(), seek(t), play(), pause(), jointPosition(name), face() (the morph weights shown
+// now), morph(name) (the model's morph influence), showFace(on) and counts for tests and scripting.
+// The face's morph weights (script#mura-face, see face.js) play on the model's ARKit
+// morph targets, VRM expressions, or the capsule figure's face.
 import {
   AnimationMixer,
   Box3,
@@ -19,6 +22,7 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { buildAvatar } from './avatar.js';
 import { Clock } from './clock.js';
+import { faceAt, morphDriver, readFace, vrmDriver } from './face.js';
 import { loadModel, modelSpec } from './model.js';
 import { PLACE_COLOUR, addPlaces } from './places.js';
 import { applyFrame, connectLive } from './live.js';
@@ -96,7 +100,9 @@ const VIEWS = [
   ['front', 'Front'],
   ['hands', 'Hands'],
   ['side', 'Side'],
+  ['face', 'Face'],
 ];
+const FACE_BOX = 0.24; // metres around the face that the face view shows
 
 function isLeg(bone) {
   for (let node = bone; node?.isBone; node = node.parent) if (LEG.test(node.name)) return true;
@@ -143,10 +149,13 @@ function fitBox(view, box, direction, margin) {
 }
 
 // Frame a view of the measured poses: 'front' (signing space, hips to crown), 'hands'
-// (where the hands go, close up) or 'side' (from the avatar's right).
+// (where the hands go, close up), 'side' (from the avatar's right) or 'face' (the head,
+// close up, where it is when chosen).
 function frameView(view, boxes, name) {
   const front = new Vector3(0.12, 0.05, 1).normalize();
-  if (name === 'hands') {
+  if (name === 'face' && boxes.headNow) {
+    fitBox(view, boxes.headNow(), new Vector3(0.05, 0.02, 1).normalize(), 1.0);
+  } else if (name === 'hands') {
     const box = boxes.handsNow ? boxes.handsNow() : boxes.hands.clone();
     const size = box.getSize(new Vector3());
     const grow = Math.max(0, 0.22 * UNIT - Math.max(size.x, size.y)) / 2;
@@ -203,6 +212,11 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   } else {
     meshes = buildAvatar(root);
   }
+  const face = readFace();
+  const morphs = loaded ? morphDriver(loaded.object) : null;
+  const expressions = loaded?.vrm ? vrmDriver(loaded.vrm) : null;
+  let shown = {};
+  let faceOn = true;
   const mixer = new AnimationMixer(root);
   const action = mixer.clipAction(clip);
   action.play();
@@ -210,6 +224,12 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   const pose = (t) => {
     action.time = Math.min(clip.duration, Math.max(0, t - motionStart));
     mixer.update(0);
+    if (face) {
+      shown = faceOn ? faceAt(face, t - motionStart) : Object.fromEntries(face.names.map((name) => [name, 0]));
+      if (morphs) morphs.apply(shown);
+      if (expressions) expressions.apply(shown);
+      if (!loaded) root.userData.face?.apply(shown);
+    }
     if (loaded) {
       root.updateMatrixWorld(true);
       loaded.drive(root);
@@ -238,6 +258,20 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   boxes.handsNow = () => {
     pose(clock.time());
     return measurePoses(root, [() => root.updateMatrixWorld(true)]).hands;
+  };
+  boxes.headNow = () => {
+    pose(clock.time());
+    root.updateMatrixWorld(true);
+    const eyes = ['l_eyeball_joint', 'r_eyeball_joint'].map((name) => root.getObjectByName(name)).filter(Boolean);
+    const centre = new Vector3();
+    if (eyes.length === 2) {
+      eyes.forEach((eye) => centre.add(eye.getWorldPosition(new Vector3()).multiplyScalar(0.5)));
+      centre.y -= 0.03 * UNIT; // between the eyes and the mouth
+    } else {
+      root.getObjectByName('skullbase')?.getWorldPosition(centre);
+      centre.y += 0.07 * UNIT;
+    }
+    return new Box3().setFromCenterAndSize(centre, new Vector3(1, 1, 1).multiplyScalar(FACE_BOX * UNIT));
   };
   frameView(view, boxes, 'front');
   addFloor(view, boxes);
@@ -311,6 +345,15 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
     camera: () => ({ position: view.camera.position.toArray(), target: view.controls.target.toArray(), aspect: view.camera.aspect }),
     // World position of a joint in the drawn pose, scene units (cm).
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
+    face: () => ({ ...shown }),
+    // Play the face (true) or hold it at rest (false), to see what the face alone changes.
+    showFace: (on) => {
+      faceOn = Boolean(on);
+      draw();
+      return faceOn;
+    },
+    morph: (name) => morphs?.influence(name) ?? null,
+    faceNames: face ? face.names.length : 0,
   };
   window.__muraReady = true;
   requestAnimationFrame(loop);
@@ -357,6 +400,7 @@ function startLive(ui, view, timelineView, transport = 'sse') {
     },
     onFrame(frame) {
       applyFrame(bones, frame, UNIT);
+      if (root && frame.face) root.userData.face?.apply(frame.face);
       if (!framed && root) {
         // Frame on the first posed frame: the rest pose has the root at the origin.
         if (grid) view.scene.remove(grid);
