@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -180,7 +182,7 @@ def test_any_feasible_hand_rotation_is_met(avatar, side):
     rotations[:, 2] = quat.multiply(rotations[:, 2], quat.from_axis_angle(frame.twist_axis, twist))
     rotations[:, 3] = quat.from_rotation_vector(flexion[:, None] * frame.bend_axis + deviation[:, None] * frame.splay_axis)
     feasible = (posed.shortfall == 0) & (posed.penetration == 0)
-    posed_pose = _pose(avatar, side, ArmSolution(rotations, *[getattr(posed, f) for f in ("shoulder", "elbow", "wrist", "shortfall", "elbow_flexion", "swivel", "orientation_error", "penetration")]))
+    posed_pose = _pose(avatar, side, replace(posed, rotations=rotations))
     hands = posed_pose.orientations[:, avatar.arm_joints(side)[3]]
     solution = solve_arm(avatar, side, targets[feasible], hands[feasible])
     assert feasible.sum() > frames // 2

@@ -1,0 +1,198 @@
+"""The arm as a chain: its constants per avatar, the clavicle, the elbow circle and the
+natural swivel (seeds 000 and 004).
+
+The chain is sternoclavicular → shoulder → elbow → wrist. Once the wrist is placed, the
+elbow flexion follows from the law of cosines (Tolani, Goswami & Badler) and the elbow
+lies on a circle about the shoulder–wrist axis; its angle there, the *swivel*, is 0 with
+the elbow lowest (toward down-and-back; for a raised arm, toward the front) and positive
+as it rises outward. The natural
+swivel is the one the Soechting & Flanders sensorimotor model predicts (upper-arm
+elevation and yaw as linear functions of target distance, azimuth and elevation, as used
+by Koga et al.), projected onto the circle.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.body.avatar import Avatar, check_side
+
+#: Reach (fraction of arm length from the resting shoulder) where the clavicle starts to
+#: follow the hand, and where it reaches its limit.
+CLAVICLE_REACH = (0.65, 1.05)
+
+#: Soechting & Flanders (1989) as used by Koga et al. (1994): degrees and centimetres of
+#: a 60 cm arm. Upper-arm elevation from the vertical and yaw from straight ahead.
+_ELEVATION = (-4.0, 1.10, 0.90)  # constant, per cm distance, per degree target elevation
+_YAW = (13.2, 0.86, 0.11)  # constant, per degree azimuth, per degree target elevation
+_MODEL_ARM_CM = 60.0
+#: Direction (avatar frame) toward which swivel 0 points the elbow: down and back, blended
+#: into forward as the arm rises (its axis' upward component from the first value to
+#: the second), so that the reference is never near the arm's axis where a hand goes
+#: (the blend is degenerate only for a hand raised behind the head).
+_DOWN_BACK = np.array([0.0, -1.0, -0.5]) / np.sqrt(1.25)
+RAISED = (0.2, 0.7)
+
+
+@dataclass(frozen=True, eq=False)
+class ArmChain:
+    """Constants of one arm of one avatar (lengths metres, angles radians, axes unit
+    vectors in the avatar frame at rest)."""
+
+    side: str
+    side_sign: float
+    upper: float
+    fore: float
+    clavicle: np.ndarray
+    sc_offset: np.ndarray
+    upper_rest: np.ndarray
+    hinge_rest: np.ndarray
+    fore_rest: np.ndarray
+    pronation_axis: np.ndarray
+    flexion_axis: np.ndarray
+    deviation_axis: np.ndarray
+    clavicle_max: float
+    flexion_range: tuple[float, float]
+    twist_range: tuple[float, float]
+    wrist_flexion: tuple[float, float]
+    wrist_deviation: tuple[float, float]
+    torso_joint_rest: np.ndarray
+
+
+@functools.lru_cache(maxsize=32)
+def arm_chain(avatar: Avatar, side: str) -> ArmChain:
+    """The arm's constants, computed once per avatar and side (avatars are immutable)."""
+    sc, shoulder, elbow, wrist = avatar.arm_joints(check_side(side))
+    upper_rest = quat.normalize(avatar.offsets[elbow])
+    hand = avatar.hand_frames[side]
+    return ArmChain(
+        side=side,
+        side_sign=1.0 if side == "l" else -1.0,
+        upper=float(np.linalg.norm(avatar.offsets[elbow])),
+        fore=float(np.linalg.norm(avatar.offsets[wrist])),
+        clavicle=avatar.offsets[shoulder],
+        sc_offset=avatar.offsets[sc],
+        upper_rest=upper_rest,
+        hinge_rest=quat.normalize(quat.cross(upper_rest, [0.0, 0.0, 1.0])),
+        fore_rest=quat.normalize(avatar.offsets[wrist]),
+        pronation_axis=hand.twist_axis,
+        flexion_axis=hand.bend_axis,
+        deviation_axis=hand.splay_axis,
+        clavicle_max=avatar.limit(f"{side}_sternoclavicular", "swing")[1],
+        flexion_range=avatar.limit(f"{side}_elbow", "flexion"),
+        twist_range=avatar.limit(f"{side}_elbow", "twist"),
+        wrist_flexion=avatar.limit(f"{side}_wrist", "flexion"),
+        wrist_deviation=avatar.limit(f"{side}_wrist", "deviation"),
+        torso_joint_rest=avatar.rest_positions[avatar.parents[sc]],
+    )
+
+
+def clavicle_rotation(chain: ArmChain, torso_q: np.ndarray, sc_position: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Local sternoclavicular rotation ``(n, 4)`` turning the shoulder toward a far reach
+    (seed 000): a smooth function of the target, so it never jumps."""
+    clavicle = quat.rotate(torso_q, chain.clavicle)
+    reach = targets - (sc_position + clavicle)
+    distance = quat.norm(reach)
+    low, high = CLAVICLE_REACH
+    t = np.clip((distance / (chain.upper + chain.fore) - low) / (high - low), 0.0, 1.0)
+    amount = t * t * (3.0 - 2.0 * t)
+    axis = quat.cross(clavicle, reach)
+    axis_norm = quat.norm(axis)
+    # the shoulder moves across the clavicle toward the reach; fade out only when the
+    # reach runs almost along the clavicle (no defined direction to move in)
+    sine = axis_norm / np.maximum(quat.norm(clavicle) * distance, 1e-12)
+    across = np.clip(sine / 0.3, 0.0, 1.0)
+    axis = axis / np.maximum(axis_norm, 1e-12)[:, None]
+    world = quat.from_axis_angle(axis, chain.clavicle_max * amount * across)
+    return quat.multiply(quat.conjugate(torso_q), quat.multiply(world, torso_q))
+
+
+@dataclass(frozen=True, eq=False)
+class ElbowCircle:
+    """The elbow circle of each frame: centre, radius, in-plane basis; and the reach."""
+
+    shoulder: np.ndarray
+    axis: np.ndarray
+    center: np.ndarray
+    radius: np.ndarray
+    down: np.ndarray
+    out: np.ndarray
+    wrist: np.ndarray
+    shortfall: np.ndarray
+    flexion: np.ndarray
+
+    @staticmethod
+    def of(chain: ArmChain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray) -> ElbowCircle:
+        """The circles for wrist ``targets (n, 3)``; a target out of reach is replaced by
+        the nearest reachable point on the line from the shoulder."""
+        upper, fore = chain.upper, chain.fore
+        reach = targets - shoulder
+        distance = quat.norm(reach)
+        fallback = quat.rotate(torso_q, np.array([0.0, -1.0, 0.0]))
+        axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
+        low, high = chain.flexion_range
+        nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(high))
+        farthest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(low))
+        reached = np.clip(distance, nearest, farthest)
+        cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
+        flexion = np.arccos(np.clip(cos_flexion, -1.0, 1.0))
+        cos_shoulder = np.clip((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0, 1.0)
+        up = quat.rotate(torso_q, np.array([0.0, 1.0, 0.0]))
+        raised = np.clip((np.sum(axis * up, axis=-1, keepdims=True) - RAISED[0]) / (RAISED[1] - RAISED[0]), 0.0, 1.0)
+        raised = raised * raised * (3.0 - 2.0 * raised)
+        reference = (1.0 - raised) * quat.rotate(torso_q, _DOWN_BACK) + raised * quat.rotate(torso_q, np.array([0.0, 0.0, 1.0]))
+        down = reference - np.sum(reference * axis, axis=-1, keepdims=True) * axis
+        down_norm = np.linalg.norm(down, axis=-1, keepdims=True)
+        sideways = quat.rotate(torso_q, np.array([chain.side_sign, 0.0, 0.0]))
+        down = np.where(down_norm > 1e-6, down / np.maximum(down_norm, 1e-12), quat.cross(axis, sideways))
+        out = chain.side_sign * quat.cross(axis, down)
+        return ElbowCircle(
+            shoulder=shoulder,
+            axis=axis,
+            center=shoulder + axis * (upper * cos_shoulder)[:, None],
+            radius=upper * np.sqrt(1.0 - cos_shoulder**2),
+            down=down,
+            out=out,
+            wrist=shoulder + axis * reached[:, None],
+            shortfall=np.abs(distance - reached),
+            flexion=flexion,
+        )
+
+    def take(self, rows: np.ndarray) -> ElbowCircle:
+        """The circles of the frames selected by a boolean mask or indices."""
+        return ElbowCircle(**{name: getattr(self, name)[rows] for name in self.__dataclass_fields__})
+
+    def elbow(self, psi: np.ndarray, direction: np.ndarray | None = None) -> np.ndarray:
+        """Elbow positions ``(n, ..., 3)`` at swivels ``psi (n, ...)`` (their
+        :meth:`direction`, when known, spares computing it again)."""
+        at = (slice(None),) + (None,) * (psi.ndim - 1)
+        radial = self.direction(psi) if direction is None else direction
+        return self.center[at] + radial * self.radius[at][..., None]
+
+    def direction(self, psi: np.ndarray) -> np.ndarray:
+        """Unit direction from the circle's centre to the elbow at swivel ``psi (n, ...)``."""
+        cos, sin = np.cos(psi)[..., None], np.sin(psi)[..., None]
+        shape = (slice(None),) + (None,) * (psi.ndim - 1)
+        return self.down[shape] * cos + self.out[shape] * sin
+
+
+def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, torso_q: np.ndarray) -> np.ndarray:
+    """Swivel (radians) of the elbow the Soechting & Flanders model predicts for each target."""
+    shoulder = circle.shoulder
+    local = quat.rotate(quat.conjugate(torso_q), targets - shoulder)
+    lateral = chain.side_sign * local[:, 0]
+    distance_cm = quat.norm(local) / (chain.upper + chain.fore) * _MODEL_ARM_CM
+    target_elevation = np.degrees(np.arctan2(local[:, 1], np.hypot(lateral, local[:, 2])))
+    azimuth = np.degrees(np.arctan2(lateral, local[:, 2]))
+    elevation = np.radians(np.clip(_ELEVATION[0] + _ELEVATION[1] * distance_cm + _ELEVATION[2] * target_elevation, 0.0, 170.0))
+    yaw = np.radians(_YAW[0] + _YAW[1] * azimuth + _YAW[2] * target_elevation)
+    upper_dir = np.stack(
+        (chain.side_sign * np.sin(elevation) * np.sin(yaw), -np.cos(elevation), np.sin(elevation) * np.cos(yaw)), axis=-1
+    )
+    predicted = shoulder + chain.upper * quat.rotate(torso_q, upper_dir)
+    offset = predicted - circle.center
+    return np.arctan2(np.sum(offset * circle.out, axis=-1), np.sum(offset * circle.down, axis=-1))
