@@ -10,25 +10,21 @@ swivel track below), then the joint-space LMPs (hand shape → finger joint rota
 applied; every other joint keeps its rest rotation and the root stands still at
 ``(0, root_height, 0)``.
 
-The elbow's swivel is a smooth function of time by construction. On a fixed grid of the
-utterance clock, every :data:`SWIVEL_PERIOD` seconds, each candidate swivel gets the
-IK's cost (natural swivel, wrist comfort, clearance from the body and the other arm:
-:func:`motor.arm.ik.swivel_costs`) and a swivel track walks through the candidates,
-moving a bounded step from one grid point to the next toward what costs least now and
-:data:`motor.arm.swivel.HORIZON` grid points ahead (:func:`motor.arm.swivel.smooth_swivels`).
-The right arm's track is found first; the left arm's track keeps clear of the right arm
-where that track puts it at the same grid point. The forearm twist is carried along the grid the same way: at
-each grid point the turn (±2π) nearest the previous one, so it never wraps. Frames
-between grid points take the swivel by a Catmull-Rom spline (C¹) and the twist's turn
-from the grid; wrist positions and hand rotations are exact at every frame. Runs of
-identical channel values (holds, rest) are solved once and repeated, which is exact.
+The elbow's swivel is a smooth function of time by construction: both arms' swivel
+tracks and forearm twists live on a fixed grid of the utterance clock, every
+:data:`motor.arm.swivel_track.SWIVEL_PERIOD` seconds (:mod:`motor.arm.swivel_track`).
+Frames between grid points take the swivel by a Catmull-Rom spline (C¹) and the twist
+from the grid (:meth:`motor.arm.swivel_track.SwivelGrid.sample`); wrist positions and
+hand rotations are exact at every frame. Runs of identical channel values (holds, rest)
+are solved once and repeated, which is exact.
 
-A grid point's state depends on the state before it and on channel values up to
-:data:`TRACK_REACH` grid points ahead, nothing else; so frames depend only on their times
-and the activated LMPs, and sampling window after window gives exactly the frames of one
-call over the whole span. The track starts at the first grid point asked for. Activating
-an LMP forgets the grid states that could see its start — except those that frames
-already handed out used, which stay: the motion goes on from where it was shown.
+A grid state depends on the state before it and on channel values up to
+:data:`motor.arm.swivel_track.TRACK_REACH` grid points ahead, nothing else; so frames
+depend only on their times and the activated LMPs, and sampling window after window
+gives exactly the frames of one call over the whole span. The tracks start at the first
+grid point asked for. Activating an LMP forgets the grid states that could see its start
+— except those that frames already handed out used, which stay: the motion goes on from
+where it was shown.
 
 Frames and grid states are computed ahead of the window asked for
 (:data:`FRAME_LOOKAHEAD`, :data:`SWIVEL_LOOKAHEAD`), so that short windows share the
@@ -39,12 +35,11 @@ where it can change things.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from motor.arm.ik import CANDIDATES, other_arm_costs, solve_arm, swivel_costs, swivel_of, swivel_zeros
-from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
+from motor.arm.ik import solve_arm, swivel_of, swivel_zeros
+from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH, SwivelGrid
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso, separate_hands
 from motor.hand.shape import hand_rotations
@@ -70,26 +65,12 @@ from mura.model import BehaviorSpec
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
-#: Period of the grid on which the swivel track is computed, seconds (module docstring).
-SWIVEL_PERIOD = 0.1
 #: How far back (s) from the start of the latest window the LMP history is kept; covers
 #: the swivel grid's margin.
 HISTORY = 1.0
-#: How many grid points past a window the swivel track is solved ahead, in the same
-#: batch: short windows then share one search instead of each paying for its own.
-SWIVEL_LOOKAHEAD = 20
-#: How many grid points ahead a grid state depends on channel values: both tracks look
-#: :data:`HORIZON` ahead (the second arm keeps clear of the first where it is now, not
-#: where it will be).
-TRACK_REACH = HORIZON
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
-#: How much less of a twist the hand asks for must be left unachieved before the forearm
-#: turns over to the other side of its range (radians), and how fast it turns over
-#: (radians per grid point).
-TWIST_HYSTERESIS = math.radians(90.0)
-TWIST_STEP = math.radians(90.0)
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -112,7 +93,7 @@ class MotorControl:
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
         self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
-        self._grid: dict[int, dict[str, _GridState]] = {}  # grid index -> arm -> state
+        self._grid = SwivelGrid(avatar)
         self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray] | None = None  # first frame index, rotations
         self._last_arm = {arm: _LastRun() for arm in ARMS}
@@ -186,8 +167,7 @@ class MotorControl:
         are unchanged: an LMP only takes control at its start), except those that frames
         already handed out used, and the frames computed ahead from those states on."""
         first = max(math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE) - TRACK_REACH, self._committed + 1)
-        for index in [i for i in self._grid if i >= first]:
-            del self._grid[index]
+        self._grid.forget_from(first)
         if self._ahead is not None:
             # a frame's swivel is interpolated from grid points up to two periods after it
             kept = max(0, math.ceil((first - 2) * SWIVEL_PERIOD * self.fps - _FRAME_TOLERANCE) - self._ahead[0])
@@ -282,13 +262,24 @@ class MotorControl:
         """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
         rotations = np.empty((times.size, self.avatar.joint_count, 4))
         rotations[:] = self._rest_rotations
-        inputs = self._arm_inputs(times)
         first, last = self._grid_span(times)
-        self._ensure_grid(first, last)
+        plan = self._grid.plan(first, last)
+        if plan is None:
+            inputs = self._arm_inputs(times)
+        else:
+            # the frames and the grid points still to solve, sampled in one pass
+            grid = self._grid.times(plan[0], plan[1])
+            merged = np.concatenate([times, grid])
+            order = np.argsort(merged, kind="stable")
+            back = np.empty_like(order)
+            back[order] = np.arange(order.size)
+            sampled = self._arm_inputs(merged[order])
+            inputs = {arm: tuple(v[back[: times.size]] for v in values) for arm, values in sampled.items()}
+            self._grid.solve(*plan, {arm: tuple(v[back[times.size :]] for v in values) for arm, values in sampled.items()})
         for arm in ARMS:
             wrists, hands = inputs[arm]
             side = AVATAR_SIDE[arm]
-            swivel, twist = self._track(arm, times, first, last)
+            swivel, twist = self._grid.sample(arm, times, first, last)
             rows = np.concatenate([wrists, hands, swivel, twist], axis=1)
             rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
                 lambda rows, side=side: solve_arm(
@@ -302,6 +293,11 @@ class MotorControl:
             )
         return rotations
 
+    def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
+        """Per arm, the wrist positions ``(n, 3)`` the IK is given at sorted ``times``: the
+        wrist channel's, kept out of the torso and the hands a palm thickness apart."""
+        return {arm: values[0] for arm, values in self._arm_inputs(np.asarray(times, dtype=float)).items()}
+
     def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Per arm, the wrist positions and hand rotations the IK is given at sorted
         ``times``: the channels' values, the wrists kept out of the torso (a path between
@@ -314,83 +310,6 @@ class MotorControl:
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
         return {"left": (left, left_hands), "right": (right, right_hands)}
-
-    def _ensure_grid(self, first: int, last: int) -> None:
-        """Grid states for every index in ``[first, last]``: the track goes on from the last
-        known state, :data:`SWIVEL_LOOKAHEAD` points at a time; it starts afresh at
-        ``first`` when nothing before is known."""
-        known = self._grid
-        if known and min(known) <= first and last <= max(known):
-            return
-        if not known or first < min(known):
-            known.clear()
-            start, previous = first, None
-        else:
-            start = max(known) + 1
-            previous = known[start - 1]
-        self._solve_grid(start, max(last, start + SWIVEL_LOOKAHEAD - 1), previous)
-
-    def _solve_grid(self, start: int, end: int, previous: dict[str, _GridState] | None) -> None:
-        """Grid states ``start … end`` of both arms (module docstring): the first arm's track,
-        whose capsules the second arm's track keeps clear of at each grid point (a cost of
-        the point itself, not of the look ahead); then both forearm twists along the grid.
-
-        A track walks over candidates that turn with the swivel's zero from one grid point
-        to the next (:func:`motor.arm.ik.swivel_transport`), so that a track that stays on
-        its candidate keeps the elbow where it was, whatever the arm's elevation."""
-        times = np.arange(start - 1, end + HORIZON + 1) * SWIVEL_PERIOD
-        inputs = self._arm_inputs(times)
-        count = end - start + 1
-        states: dict[str, list[_GridState]] = {}
-        other = None
-        for arm in ARMS:
-            side = AVATAR_SIDE[arm]
-            wrists, hands = (values[1:] for values in inputs[arm])
-            before = None if previous is None else previous[arm]
-            zero, quarter = swivel_zeros(self.avatar, side, inputs[arm][0])
-            turns = swivel_of(zero[:-1], zero[1:], quarter[1:])
-            offsets = np.cumsum(np.concatenate([[0.0 if before is None else before.offset], turns]))[1:]
-            if before is None:
-                offsets = offsets - turns[0]
-            costs = self._costs(side, wrists, hands, offsets)
-            now = None if other is None else other_arm_costs(self.avatar, side, wrists[:count], other, offsets[:count])
-            track = smooth_swivels(costs, CANDIDATES, None if before is None else before.track, HORIZON, now)
-            swivels = np.array([state.swivel for state in track]) + offsets[:count]
-            solution = solve_arm(self.avatar, side, wrists[:count], hands[:count], swivels)
-            other = solution.segments(hands[:count], self.avatar, side)
-            wanted = solution.wanted_twist
-            twists = _twist_track(wanted, solution.twist_certainty, None if before is None else before.twist, self.avatar.limit(f"{side}_elbow", "twist"))
-            states[arm] = [
-                _GridState(state, float(offset), tuple(direction), twist, want)
-                for state, offset, direction, twist, want in zip(track[:count], offsets, zero[1:].tolist(), twists, wanted.tolist())
-            ]
-        for index in range(count):
-            self._grid[start + index] = {arm: states[arm][index] for arm in ARMS}
-
-    def _costs(self, side: str, wrists: np.ndarray, hands: np.ndarray, offsets: np.ndarray) -> np.ndarray:
-        """Swivel costs of the (turned) candidates at grid points; runs of identical inputs once."""
-        values = np.concatenate([wrists, hands, offsets[:, None]], axis=1)
-        starts = _run_starts(values)
-        costs = swivel_costs(self.avatar, side, wrists[starts], hands[starts], None, offsets[starts])
-        return np.repeat(costs, np.diff(np.append(starts, values.shape[0])), axis=0)
-
-    def _track(self, arm: str, times: np.ndarray, first: int, last: int) -> tuple[np.ndarray, np.ndarray]:
-        """The arm's swivel at sorted ``times`` as ``(n, 4)``: the track's swivel (Catmull-Rom
-        through the grid's) plus the turn of the grid point at or before each time, and that
-        grid point's direction of swivel 0, from which it is counted (so that between grid
-        points the elbow keeps to the track however the arm's zero turns); and the forearm
-        twist's reference ``(n, 2)``: the grid's twist and the twist the hand wanted there,
-        both linear between grid points (the wanted twist the shorter way round)."""
-        states = [self._grid[i][arm] for i in range(first, last + 1)]
-        positions = times / SWIVEL_PERIOD
-        track = _catmull_rom(np.array([s.track.swivel for s in states]), first, positions)
-        at = np.floor(positions + _FRAME_TOLERANCE).astype(int) - first
-        swivel = np.concatenate([(track + np.array([s.offset for s in states])[at])[:, None], np.array([s.zero for s in states])[at]], axis=1)
-        index = np.arange(first, last + 1)
-        wanted = np.array([s.wanted for s in states])
-        wanted = wanted[0] + np.concatenate([[0.0], np.cumsum((np.diff(wanted) + np.pi) % (2.0 * np.pi) - np.pi)])
-        reference = np.stack([np.interp(positions, index, np.array([s.twist for s in states])), np.interp(positions, index, wanted)], axis=1)
-        return swivel, reference
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
@@ -407,17 +326,17 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
-        limit = math.floor(horizon / SWIVEL_PERIOD) - 2
-        for index in [i for i in self._grid if i < limit]:
-            del self._grid[index]
+        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The arm's swivel (radians) at sorted ``times``, from the grid's track."""
         if times.size == 0:
             return np.zeros(0)
         first, last = self._grid_span(times)
-        self._ensure_grid(first, last)
-        swivel = self._track(arm, times, first, last)[0]
+        plan = self._grid.plan(first, last)
+        if plan is not None:
+            self._grid.solve(*plan, self._arm_inputs(self._grid.times(plan[0], plan[1])))
+        swivel = self._grid.sample(arm, times, first, last)[0]
         return swivel[:, 0] + swivel_of(swivel[:, 1:], *swivel_zeros(self.avatar, AVATAR_SIDE[arm], self._arm_inputs(times)[arm][0]))
 
     @staticmethod
@@ -435,50 +354,6 @@ class MotorControl:
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
         return {channel: tuple(lmps) for channel, lmps in self._lmps.items()}
-
-
-@dataclass(frozen=True)
-class _GridState:
-    """One arm at one grid point: its swivel track's state (over the turned candidates),
-    the candidates' turn (radians; the swivel is the track's plus this), the direction of
-    swivel 0 there, the forearm twist (radians) and the twist the hand wanted there
-    (radians, in (-π, π])."""
-
-    track: SwivelState
-    offset: float
-    zero: tuple[float, float, float]
-    twist: float
-    wanted: float
-
-
-def _twist_track(wanted: np.ndarray, certainty: np.ndarray, previous: float | None, limits: tuple[float, float]) -> list[float]:
-    """The forearm twist along grid points (radians, within the limits).
-
-    At each grid point the hand asks for a twist, known up to whole turns; it is taken on
-    the turn nearest the previous grid point's twist and clamped to the limits — unless
-    the other way round leaves at least :data:`TWIST_HYSTERESIS` less of it unachieved,
-    when the forearm turns over to that side instead. The twist then moves toward its
-    target by at most :data:`TWIST_STEP` per grid point, so turning over takes several
-    frames instead of one, and only as far as the hand's twist is defined (``certainty``,
-    :func:`motor.arm.ik.twist_certainty`). The first grid point, without a previous one,
-    takes the shortest turn."""
-    low, high = limits
-    twists = []
-    here = previous
-    for value, sure in zip(wanted.tolist(), certainty.tolist()):
-        if here is None:
-            here = min(max(value, low), high)
-            twists.append(here)
-            continue
-        value += 2.0 * math.pi * round((here - value) / (2.0 * math.pi))
-        other = value - 2.0 * math.pi if value > high else value + 2.0 * math.pi
-        short = max(value - high, low - value, 0.0)
-        if short > max(other - high, low - other, 0.0) + TWIST_HYSTERESIS:
-            value = other
-        target = min(max(value, low), high)
-        here += sure * min(max(target - here, -TWIST_STEP), TWIST_STEP)
-        twists.append(here)
-    return twists
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
@@ -524,13 +399,3 @@ class _LastRun:
         result = fresh if not reuse else (self.result[None] if fresh is None else np.concatenate([self.result[None], fresh]))
         self.row, self.result = unique[-1].copy(), result[-1].copy()
         return np.repeat(result, np.diff(np.append(starts, values.shape[0])), axis=0)
-
-
-def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.ndarray:
-    """Catmull-Rom spline through ``values`` at grid indices ``first, first + 1, …``,
-    evaluated at fractional grid ``positions`` (which need one grid point of margin)."""
-    index = np.floor(positions + _FRAME_TOLERANCE).astype(int) - first
-    u = positions - (index + first)
-    p0, p1, p2, p3 = values[index - 1], values[index], values[index + 1], values[index + 2]
-    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
-

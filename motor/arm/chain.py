@@ -91,24 +91,31 @@ def arm_chain(avatar: Avatar, side: str) -> ArmChain:
     )
 
 
-def clavicle_rotation(chain: ArmChain, torso_q: np.ndarray, sc_position: np.ndarray, targets: np.ndarray) -> np.ndarray:
+def _turned(torso_q: np.ndarray | None, vectors: np.ndarray) -> np.ndarray:
+    """Vectors given in the upper spine's frame, in the avatar frame (``torso_q`` None:
+    the spine upright, at rest)."""
+    return vectors if torso_q is None else quat.rotate(torso_q, vectors)
+
+
+def clavicle_rotation(chain: ArmChain, torso_q: np.ndarray | None, sc_position: np.ndarray, targets: np.ndarray) -> np.ndarray:
     """Local sternoclavicular rotation ``(n, 4)`` turning the shoulder toward a far reach
-    (seed 000): a smooth function of the target, so it never jumps."""
-    clavicle = quat.rotate(torso_q, chain.clavicle)
+    (seed 000): a smooth function of the target, so it never jumps. ``torso_q``: the
+    upper spine's global rotation ``(n, 4)``, None when upright."""
+    clavicle = _turned(torso_q, chain.clavicle)
     reach = targets - (sc_position + clavicle)
     distance = quat.norm(reach)
     low, high = CLAVICLE_REACH
-    t = np.clip((distance / (chain.upper + chain.fore) - low) / (high - low), 0.0, 1.0)
+    t = np.minimum(np.maximum((distance / (chain.upper + chain.fore) - low) / (high - low), 0.0), 1.0)
     amount = t * t * (3.0 - 2.0 * t)
     axis = quat.cross(clavicle, reach)
     axis_norm = quat.norm(axis)
     # the shoulder moves across the clavicle toward the reach; fade out only when the
     # reach runs almost along the clavicle (no defined direction to move in)
     sine = axis_norm / np.maximum(quat.norm(clavicle) * distance, 1e-12)
-    across = np.clip(sine / 0.3, 0.0, 1.0)
+    across = np.minimum(np.maximum(sine / 0.3, 0.0), 1.0)
     axis = axis / np.maximum(axis_norm, 1e-12)[:, None]
     world = quat.from_axis_angle(axis, chain.clavicle_max * amount * across)
-    return quat.multiply(quat.conjugate(torso_q), quat.multiply(world, torso_q))
+    return world if torso_q is None else quat.multiply(quat.conjugate(torso_q), quat.multiply(world, torso_q))
 
 
 @dataclass(frozen=True, eq=False)
@@ -126,28 +133,28 @@ class ElbowCircle:
     flexion: np.ndarray
 
     @staticmethod
-    def of(chain: ArmChain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray) -> ElbowCircle:
+    def of(chain: ArmChain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray | None) -> ElbowCircle:
         """The circles for wrist ``targets (n, 3)``; a target out of reach is replaced by
         the nearest reachable point on the line from the shoulder."""
         upper, fore = chain.upper, chain.fore
         reach = targets - shoulder
         distance = quat.norm(reach)
-        fallback = quat.rotate(torso_q, np.array([0.0, -1.0, 0.0]))
+        fallback = _turned(torso_q, np.array([0.0, -1.0, 0.0]))
         axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
         low, high = chain.flexion_range
         nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(high))
         farthest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(low))
-        reached = np.clip(distance, nearest, farthest)
+        reached = np.minimum(np.maximum(distance, nearest), farthest)
         cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
-        flexion = np.arccos(np.clip(cos_flexion, -1.0, 1.0))
-        cos_shoulder = np.clip((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0, 1.0)
-        up = quat.rotate(torso_q, np.array([0.0, 1.0, 0.0]))
-        raised = np.clip((np.sum(axis * up, axis=-1, keepdims=True) - RAISED[0]) / (RAISED[1] - RAISED[0]), 0.0, 1.0)
+        flexion = np.arccos(np.minimum(np.maximum(cos_flexion, -1.0), 1.0))
+        cos_shoulder = np.minimum(np.maximum((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0), 1.0)
+        up = _turned(torso_q, np.array([0.0, 1.0, 0.0]))
+        raised = np.minimum(np.maximum((np.sum(axis * up, axis=-1, keepdims=True) - RAISED[0]) / (RAISED[1] - RAISED[0]), 0.0), 1.0)
         raised = raised * raised * (3.0 - 2.0 * raised)
-        reference = (1.0 - raised) * quat.rotate(torso_q, _DOWN_BACK) + raised * quat.rotate(torso_q, np.array([0.0, 0.0, 1.0]))
+        reference = (1.0 - raised) * _turned(torso_q, _DOWN_BACK) + raised * _turned(torso_q, np.array([0.0, 0.0, 1.0]))
         down = reference - np.sum(reference * axis, axis=-1, keepdims=True) * axis
         down_norm = np.linalg.norm(down, axis=-1, keepdims=True)
-        sideways = quat.rotate(torso_q, np.array([chain.side_sign, 0.0, 0.0]))
+        sideways = _turned(torso_q, np.array([chain.side_sign, 0.0, 0.0]))
         down = np.where(down_norm > 1e-6, down / np.maximum(down_norm, 1e-12), quat.cross(axis, sideways))
         out = chain.side_sign * quat.cross(axis, down)
         return ElbowCircle(
@@ -180,19 +187,75 @@ class ElbowCircle:
         return self.down[shape] * cos + self.out[shape] * sin
 
 
-def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, torso_q: np.ndarray) -> np.ndarray:
+def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, torso_q: np.ndarray | None) -> np.ndarray:
     """Swivel (radians) of the elbow the Soechting & Flanders model predicts for each target."""
     shoulder = circle.shoulder
-    local = quat.rotate(quat.conjugate(torso_q), targets - shoulder)
+    local = targets - shoulder if torso_q is None else quat.rotate(quat.conjugate(torso_q), targets - shoulder)
     lateral = chain.side_sign * local[:, 0]
     distance_cm = quat.norm(local) / (chain.upper + chain.fore) * _MODEL_ARM_CM
     target_elevation = np.degrees(np.arctan2(local[:, 1], np.hypot(lateral, local[:, 2])))
     azimuth = np.degrees(np.arctan2(lateral, local[:, 2]))
-    elevation = np.radians(np.clip(_ELEVATION[0] + _ELEVATION[1] * distance_cm + _ELEVATION[2] * target_elevation, 0.0, 170.0))
+    elevation = np.radians(np.minimum(np.maximum(_ELEVATION[0] + _ELEVATION[1] * distance_cm + _ELEVATION[2] * target_elevation, 0.0), 170.0))
     yaw = np.radians(_YAW[0] + _YAW[1] * azimuth + _YAW[2] * target_elevation)
     upper_dir = np.stack(
         (chain.side_sign * np.sin(elevation) * np.sin(yaw), -np.cos(elevation), np.sin(elevation) * np.cos(yaw)), axis=-1
     )
-    predicted = shoulder + chain.upper * quat.rotate(torso_q, upper_dir)
+    predicted = shoulder + chain.upper * _turned(torso_q, upper_dir)
     offset = predicted - circle.center
     return np.arctan2(np.sum(offset * circle.out, axis=-1), np.sum(offset * circle.down, axis=-1))
+
+
+@dataclass(frozen=True, eq=False)
+class ArmPlacement:
+    """What every solve of the same targets shares: the shoulder girdle and elbow circles.
+
+    ``torso_q (n, 4)`` is the clavicles' parent's global rotation (None: upright, at
+    rest); ``body_frame`` (rotation
+    ``(n, 4)``, translation ``(n, 3)``) carries the body's rest geometry to where it is,
+    None when the torso stands upright at rest."""
+
+    chain: ArmChain
+    torso_q: np.ndarray | None
+    clavicle_local: np.ndarray
+    sc_global: np.ndarray
+    circle: ElbowCircle
+    targets: np.ndarray
+    hands: np.ndarray | None
+    body_frame: tuple[np.ndarray, np.ndarray] | None
+
+    def take(self, rows: np.ndarray) -> ArmPlacement:
+        """The placements of the selected frames."""
+        frame = None if self.body_frame is None else (self.body_frame[0][rows], self.body_frame[1][rows])
+        return ArmPlacement(
+            self.chain, None if self.torso_q is None else self.torso_q[rows], self.clavicle_local[rows], self.sc_global[rows], self.circle.take(rows),
+            self.targets[rows], None if self.hands is None else self.hands[rows], frame,
+        )  # fmt: skip
+
+
+def place_arm(
+    avatar: Avatar,
+    side: str,
+    wrist_targets: np.ndarray,
+    hand_rotations: np.ndarray | None = None,
+    torso_rotations: np.ndarray | None = None,
+    torso_positions: np.ndarray | None = None,
+) -> ArmPlacement:
+    """The clavicle, shoulder and elbow circle for wrist targets ``(n, 3)`` (see
+    :func:`motor.arm.ik.solve_arm` for the arguments)."""
+    chain = arm_chain(avatar, check_side(side))
+    targets = np.asarray(wrist_targets, dtype=float).reshape(-1, 3)
+    frames = targets.shape[0]
+    hands = None if hand_rotations is None else quat.normalize(np.asarray(hand_rotations, dtype=float).reshape(frames, 4))
+    if torso_rotations is None and torso_positions is None:
+        torso_q, body_frame = None, None
+        sc_position = np.broadcast_to(chain.torso_joint_rest + chain.sc_offset, (frames, 3))
+    else:
+        torso_q = np.broadcast_to(quat.IDENTITY, (frames, 4)) if torso_rotations is None else np.asarray(torso_rotations, float)
+        torso_p = np.broadcast_to(chain.torso_joint_rest, (frames, 3)) if torso_positions is None else np.asarray(torso_positions, float)
+        sc_position = torso_p + quat.rotate(torso_q, chain.sc_offset)
+        body_frame = (torso_q, torso_p - quat.rotate(torso_q, chain.torso_joint_rest))
+    clavicle_local = clavicle_rotation(chain, torso_q, sc_position, targets)
+    sc_global = clavicle_local if torso_q is None else quat.multiply(torso_q, clavicle_local)
+    shoulder = sc_position + quat.rotate(sc_global, chain.clavicle)
+    circle = ElbowCircle.of(chain, shoulder, targets, torso_q)
+    return ArmPlacement(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame)

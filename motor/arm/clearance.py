@@ -7,12 +7,11 @@ obstacles are the body's volumes (torso, pelvis, neck, head and any others that 
 with neither arm), carried rigidly by the clavicles' parent joint when the torso turns,
 and optionally the other arm's three capsules at the same instants.
 
-:func:`clearance` gives, for ``(n, K)`` candidate elbow positions, a penalty that grows
-quadratically as a segment comes within :data:`CLEARANCE` of an obstacle (so the
-feasible set is entered from its inside, smoothly) and the depth of the deepest
-penetration of the body. Obstacles no candidate of a frame can reach are skipped by a
-bound: every candidate arm lies within the circle's radius of the two segments from the
-shoulder and the wrist to the circle's centre.
+:func:`clearance` gives, for ``(n, K)`` candidate elbow positions (as coordinate arrays),
+a penalty that grows quadratically as a segment comes within :data:`CLEARANCE` of an
+obstacle (so the feasible set is entered from its inside, smoothly) and the depth of the
+deepest penetration of the body. Only the frames whose arm, for some candidate, comes
+near an obstacle's bounding box are measured against it.
 """
 
 from __future__ import annotations
@@ -23,9 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.chain import ElbowCircle
 from motor.body.avatar import HAND_JOINTS, Avatar
-from motor.body.collision import capsule_distance, point_segment_distance, segment_distance
+from motor.body.collision import Components, capsule_apart, segments_apart
 from motor.body.volumes import Capsule, Ellipsoid, Volume
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
@@ -51,12 +49,10 @@ class ArmCapsules:
 
 @dataclass(frozen=True, eq=False)
 class Obstacle:
-    """A body volume with the bounding sphere (centre, radius; rest frame) that decides
-    whether a frame's arm can reach it."""
+    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame)."""
 
     volume: Volume
-    center: np.ndarray
-    bound: float
+    box: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,18 +91,20 @@ def arm_capsules(avatar: Avatar, side: str) -> ArmCapsules:
 
 @functools.lru_cache(maxsize=32)
 def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
-    """The body's volumes with their bounding spheres."""
+    """The body's volumes with their bounding boxes."""
     limbs = frozenset(f"{side}_{joint}" for side in "lr" for joint in ("sternoclavicular", "shoulder", "elbow", "wrist", *HAND_JOINTS))
     obstacles = []
     for volume in avatar.collision.body(limbs):
         if isinstance(volume, Capsule):
-            center, bound = 0.5 * (volume.a + volume.b), 0.5 * float(np.linalg.norm(volume.b - volume.a)) + volume.radius
+            box = np.stack((np.minimum(volume.a, volume.b) - volume.radius, np.maximum(volume.a, volume.b) + volume.radius))
         elif isinstance(volume, Ellipsoid):
-            center, bound = np.asarray(volume.center), float(np.max(volume.radii))
+            box = np.stack((volume.center - volume.radii, volume.center + volume.radii))
         else:
-            center = np.array([volume.center[0], 0.5 * (volume.bottom + volume.top), volume.center[2]])
-            bound = float(np.hypot(max(volume.half_width, volume.half_depth), 0.5 * (volume.top - volume.bottom)))
-        obstacles.append(Obstacle(volume, center, bound))
+            box = np.array([
+                [volume.center[0] - volume.half_width, volume.bottom, volume.center[2] - volume.half_depth],
+                [volume.center[0] + volume.half_width, volume.top, volume.center[2] + volume.half_depth],
+            ])  # fmt: skip
+        obstacles.append(Obstacle(volume, box))
     return tuple(obstacles)
 
 
@@ -124,77 +122,95 @@ def arm_segments(capsules: ArmCapsules, shoulder: np.ndarray, elbow: np.ndarray,
 
 def penalty(distance: np.ndarray) -> np.ndarray:
     """Cost of a signed distance (m): 0 beyond :data:`CLEARANCE`, quadratic inside it."""
-    inside = np.maximum(CLEARANCE - distance, 0.0) / CLEARANCE
+    inside = np.maximum(CLEARANCE - distance, 0.0) * (1.0 / CLEARANCE)
     return CONTACT_PENALTY * inside * inside
 
 
 def clearance(
     avatar: Avatar,
     side: str,
-    circle: ElbowCircle,
-    elbow: np.ndarray,
+    shoulder: np.ndarray,
+    wrist: np.ndarray,
+    elbow: Components,
     body_frame: tuple[np.ndarray, np.ndarray] | None = None,
     other: ArmSegments | None = None,
     body: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Penalty and body penetration depth (m) ``(n, K)`` of the arm with its elbow at
-    ``elbow (n, K, 3)`` on ``circle`` (wrist at ``circle.wrist``).
+    """Penalty and body penetration depth (m) ``(n, K)`` of the arm from ``shoulder`` to
+    ``wrist`` ``(n, 3)`` with its elbow at the coordinate arrays ``elbow`` ``(n, K)``.
 
     ``body_frame`` (rotation ``(n, 4)``, translation ``(n, 3)``) carries the body's rest
     geometry to where it is when the torso is not upright (None: upright, at rest).
     ``other``: the other arm's capsules at the same instants, kept clear of too;
     ``body``: False to keep clear of the other arm only."""
     capsules = arm_capsules(avatar, side)
-    shoulder, wrist = circle.shoulder, circle.wrist
-    cost = np.zeros(elbow.shape[:2])
-    depth = np.zeros(elbow.shape[:2])
-    reach = max(capsules.upper_radius, capsules.fore_radius) + CLEARANCE
-    if body_frame is None:
-        rest_shoulder, rest_elbow, rest_wrist, rest_center = shoulder, elbow, wrist, circle.center
-    else:
+    shape = elbow[0].shape
+    cost = np.zeros(shape)
+    depth = np.zeros(shape)
+    if body and body_frame is not None:
         rotation, translation = body_frame
         inverse = quat.conjugate(rotation)
-        rest_shoulder, rest_wrist, rest_center = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist, circle.center))
-        rest_elbow = quat.rotate(inverse[:, None], elbow - translation[:, None])
-    for obstacle in body_obstacles(avatar) if body else ():
-        near = _within(obstacle.center, obstacle.bound + reach, rest_shoulder, rest_center, rest_wrist, circle.radius)
-        if not np.any(near):
-            continue
-        rows = np.flatnonzero(near)
-        s, e, w = rest_shoulder[rows][:, None], rest_elbow[rows], rest_wrist[rows][:, None]
-        for a, b, radius in _segments(capsules, s, e, w):
-            distance = capsule_distance(obstacle.volume, a, b, radius)
-            cost[rows] += penalty(distance)
-            depth[rows] = np.maximum(depth[rows], -distance)
-    if other is not None:
-        for a_other, b_other, r_other in other.capsules():
-            near = _segment_within(a_other, b_other, r_other + reach, shoulder, circle.center, wrist, circle.radius)
-            if not np.any(near):
-                continue
-            rows = np.flatnonzero(near)
-            s, e, w = shoulder[rows][:, None], elbow[rows], wrist[rows][:, None]
-            for a, b, radius in _segments(capsules, s, e, w):
-                distance = segment_distance(a, b, a_other[rows][:, None], b_other[rows][:, None]) - radius - r_other
+        rest_shoulder, rest_wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
+        stacked = np.stack(elbow, axis=-1) - translation[:, None]
+        rest_elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
+    else:
+        rest_shoulder, rest_wrist, rest_elbow = shoulder, wrist, elbow
+    if body:
+        boxes = _boxes(capsules, rest_shoulder, rest_wrist, rest_elbow)
+        for (a, b, radius), (low, high) in zip(_segments(capsules, rest_shoulder, rest_wrist, rest_elbow), boxes):
+            for obstacle in body_obstacles(avatar):
+                near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
+                if not np.any(near):
+                    continue
+                if np.all(near):
+                    distance = capsule_apart(obstacle.volume, a, b, radius)
+                    cost += penalty(distance)
+                    np.maximum(depth, -distance, out=depth)
+                    continue
+                rows = np.flatnonzero(near)
+                distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
                 cost[rows] += penalty(distance)
+                depth[rows] = np.maximum(depth[rows], -distance)
+    if other is not None:
+        boxes = _boxes(capsules, shoulder, wrist, elbow)
+        for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
+            for a_other, b_other, r_other in other.capsules():
+                near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
+                if not np.any(near):
+                    continue
+                rows = np.flatnonzero(near)
+                ends = tuple(a_other[rows, i : i + 1] for i in range(3)), tuple(b_other[rows, i : i + 1] for i in range(3))
+                distance = segments_apart(tuple(c[rows] for c in a), tuple(c[rows] for c in b), *ends)
+                cost[rows] += penalty(distance - radius - r_other)
     return cost, np.maximum(depth, 0.0)
 
 
-def _segments(capsules: ArmCapsules, s: np.ndarray, e: np.ndarray, w: np.ndarray):
-    """The upper arm's and forearm's capsules (end points broadcast to ``e``'s shape, radius)."""
+def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
+    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
+    capsules' ends are affine in the elbow with non-negative weights, so the box of the
+    candidate elbows bounds them."""
+    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
+    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
+    boxes = []
+    for (u0, u1), start, from_start, radius in (
+        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
+        (capsules.fore_ends, wrist, False, capsules.fore_radius),
+    ):
+        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
+        weight = lambda f: f if from_start else 1.0 - f
+        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
+        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
+        grow = radius + CLEARANCE
+        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
+    return boxes
+
+
+def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
+    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
+    do not move with the elbow ``(n, 1)``) and radii."""
+    s = tuple(shoulder[:, i : i + 1] for i in range(3))
+    w = tuple(wrist[:, i : i + 1] for i in range(3))
     (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
-    yield s + u0 * (e - s), s + u1 * (e - s), capsules.upper_radius
-    yield e + f0 * (w - e), e + f1 * (w - e), capsules.fore_radius
-
-
-def _within(center: np.ndarray, distance: float, shoulder: np.ndarray, middle: np.ndarray, wrist: np.ndarray, radius: np.ndarray) -> np.ndarray:
-    """Frames ``(n,)`` whose arm, for some swivel, may come within ``distance`` of ``center``."""
-    nearest = np.minimum(point_segment_distance(center, shoulder, middle), point_segment_distance(center, middle, wrist))
-    return nearest - radius < distance
-
-
-def _segment_within(
-    a: np.ndarray, b: np.ndarray, distance: float, shoulder: np.ndarray, middle: np.ndarray, wrist: np.ndarray, radius: np.ndarray
-) -> np.ndarray:
-    """Frames whose arm, for some swivel, may come within ``distance`` of segments ``a``–``b``."""
-    nearest = np.minimum(segment_distance(a, b, shoulder, middle), segment_distance(a, b, middle, wrist))
-    return nearest - radius < distance
+    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
+    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius

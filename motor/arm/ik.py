@@ -31,28 +31,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.chain import ArmChain, ElbowCircle, arm_chain, clavicle_rotation, natural_swivel
+from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.body.avatar import Avatar, check_side
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, candidate_costs, candidate_elbows, parabola_offset, wrist_state
+from motor.body.avatar import Avatar
+from motor.body.collision import components
 
-#: Candidate swivels (radians): the whole circle in steps of :data:`SWIVEL_STEP`.
-SWIVEL_STEP = np.deg2rad(10.0)
-CANDIDATES = np.arange(-np.pi, np.pi - 1e-9, SWIVEL_STEP)
-_COS, _SIN = np.cos(CANDIDATES), np.sin(CANDIDATES)
-#: Cost weights: distance from the natural swivel (per radian), wrist deviation and
-#: flexion as fractions of their limits, unachieved hand rotation (per radian squared,
-#: saturating beyond :data:`RESIDUAL_SATURATION` radians: a hand rotation no swivel comes
-#: near — e.g. halfway through turning the hand over — does not drag the elbow around).
-SWIVEL_SCALE = 0.7
-#: Farther than this from the natural swivel (radians) the elbow is forced, e.g. straight
-#: up, the shoulder leaves its comfortable range: the cost then grows by
-#: :data:`RANGE_WEIGHT` per radian squared beyond it.
-SWIVEL_RANGE = np.radians(100.0)
-RANGE_WEIGHT = 300.0
-DEVIATION_WEIGHT = 1.5
-FLEXION_WEIGHT = 0.4
-RESIDUAL_WEIGHT = 5000.0
-RESIDUAL_SATURATION = 0.25
 #: Swing (radians) between forearm and hand up to which the hand's twist about the
 #: forearm is taken as fully defined (:func:`twist_certainty`).
 SURE_SWING = np.radians(60.0)
@@ -101,44 +85,6 @@ class ArmSolution:
         return arm_segments(arm_capsules(avatar, side), self.shoulder, self.elbow, self.wrist, hand_rotations)
 
 
-@dataclass(frozen=True, eq=False)
-class _Setup:
-    """What every solve of the same targets shares: the shoulder girdle and elbow circles."""
-
-    chain: ArmChain
-    torso_q: np.ndarray
-    clavicle_local: np.ndarray
-    sc_global: np.ndarray
-    circle: ElbowCircle
-    targets: np.ndarray
-    hands: np.ndarray | None
-    body_frame: tuple[np.ndarray, np.ndarray] | None
-
-
-def _setup(
-    avatar: Avatar,
-    side: str,
-    wrist_targets: np.ndarray,
-    hand_rotations: np.ndarray | None,
-    torso_rotations: np.ndarray | None,
-    torso_positions: np.ndarray | None,
-) -> _Setup:
-    chain = arm_chain(avatar, check_side(side))
-    targets = np.asarray(wrist_targets, dtype=float).reshape(-1, 3)
-    frames = targets.shape[0]
-    upright = torso_rotations is None and torso_positions is None
-    torso_q = np.broadcast_to(quat.IDENTITY, (frames, 4)) if torso_rotations is None else np.asarray(torso_rotations, float)
-    torso_p = np.broadcast_to(chain.torso_joint_rest, (frames, 3)) if torso_positions is None else np.asarray(torso_positions, float)
-    hands = None if hand_rotations is None else quat.normalize(np.asarray(hand_rotations, dtype=float).reshape(frames, 4))
-    sc_position = torso_p + quat.rotate(torso_q, chain.sc_offset)
-    clavicle_local = clavicle_rotation(chain, torso_q, sc_position, targets)
-    sc_global = quat.multiply(torso_q, clavicle_local)
-    shoulder = sc_position + quat.rotate(sc_global, chain.clavicle)
-    body_frame = None if upright else (torso_q, torso_p - quat.rotate(torso_q, chain.torso_joint_rest))
-    circle = ElbowCircle.of(chain, shoulder, targets, torso_q)
-    return _Setup(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame)
-
-
 def solve_arm(
     avatar: Avatar,
     side: str,
@@ -171,7 +117,7 @@ def solve_arm(
         swivel_from: ``(n, 3)`` directions from which the given ``swivel`` is counted
             instead of the arm's own zero (:func:`swivel_of`): a nearby instant's zero.
     """
-    setup = _setup(avatar, side, wrist_targets, hand_rotations, torso_rotations, torso_positions)
+    setup = place_arm(avatar, side, wrist_targets, hand_rotations, torso_rotations, torso_positions)
     circle = setup.circle
     if swivel is None:
         psi = _cheapest_swivel(avatar, setup, other)
@@ -180,7 +126,7 @@ def solve_arm(
         if swivel_from is not None:
             psi = psi + swivel_of(np.asarray(swivel_from, dtype=float), circle.down, circle.out)
     arm = _arm_at(setup.chain, circle, psi, setup.sc_global, setup.hands, twist_reference)
-    depth = lambda: clearance(avatar, side, circle, arm.elbow[:, None], setup.body_frame)[1][:, 0]
+    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame)[1][:, 0]
     return ArmSolution(
         rotations=np.stack((setup.clavicle_local, arm.shoulder_local, arm.elbow_local, arm.wrist_local), axis=1),
         shoulder=circle.shoulder,
@@ -203,36 +149,77 @@ def swivel_costs(
     wrist_targets: np.ndarray,
     hand_rotations: np.ndarray | None = None,
     other: ArmSegments | None = None,
-    offsets: np.ndarray | None = None,
 ) -> np.ndarray:
-    """The cost ``(n, K)`` of every candidate swivel at each of ``n`` wrist targets (and
-    hand rotations), the other arm's capsules kept clear of: the candidates are
-    :data:`CANDIDATES` turned by ``offsets (n,)`` radians (0 if None)."""
-    setup = _setup(avatar, side, wrist_targets, hand_rotations, None, None)
+    """The cost ``(n, K)`` of every candidate swivel (:data:`CANDIDATES`,
+    :mod:`motor.arm.swivel_cost`) at each of ``n`` wrist targets (and hand rotations), the
+    other arm's capsules kept clear of."""
+    setup = place_arm(avatar, side, wrist_targets, hand_rotations)
     natural = natural_swivel(setup.chain, setup.circle, setup.targets, setup.torso_q)
-    if offsets is None:
-        return _cost(avatar, setup, _COS, _SIN, CANDIDATES, natural, other)
-    psi = CANDIDATES + np.asarray(offsets, dtype=float)[:, None]
-    return _cost(avatar, setup, np.cos(psi), np.sin(psi), psi, natural, other)
+    return candidate_costs(avatar, setup, natural, other)
 
 
-def other_arm_costs(
-    avatar: Avatar, side: str, wrist_targets: np.ndarray, other: ArmSegments, offsets: np.ndarray | None = None
-) -> np.ndarray:
-    """The part ``(n, K)`` of :func:`swivel_costs` that keeps clear of the other arm, alone."""
-    setup = _setup(avatar, side, wrist_targets, None, None, None)
-    circle = setup.circle
-    psi = CANDIDATES if offsets is None else CANDIDATES + np.asarray(offsets, dtype=float)[:, None]
-    radial = circle.down[:, None, :] * np.cos(psi)[..., None] + circle.out[:, None, :] * np.sin(psi)[..., None]
-    elbow = circle.center[:, None, :] + radial * circle.radius[:, None, None]
-    return clearance(avatar, side, circle, elbow, None, other, body=False)[0]
+@dataclass(frozen=True, eq=False)
+class TrackCosts:
+    """A swivel track's view of ``m`` consecutive instants (:func:`track_costs`).
+
+    Attributes:
+        costs: ``(m, K)`` costs of the candidates (:data:`CANDIDATES`).
+        turns: ``(m,)`` radians: how far the swivel's zero turned since the instant before
+            (:func:`swivel_of`): an elbow that keeps its place as well as the moving circle
+            allows changes its swivel by this much.
+        zeros: ``(m, 3)`` direction of swivel 0 at each instant.
+        placement, natural: the arm's placement and natural swivel there.
+    """
+
+    costs: np.ndarray
+    turns: np.ndarray
+    zeros: np.ndarray
+    placement: ArmPlacement
+    natural: np.ndarray
+
+    def pose(self, swivels: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """At the first ``n`` instants with the given ``swivels (n,)``: the elbow positions
+        ``(n, 3)``, the forearm twist the hand asks for (radians, in (-π, π]) and how well
+        defined it is (:func:`twist_certainty`'s 1 … 0) — as :func:`solve_arm` gives
+        them, from vectors alone."""
+        rows = self.placement.take(np.arange(len(swivels)))
+        elbow, radial = candidate_elbows(rows, np.cos(swivels)[:, None], np.sin(swivels)[:, None])
+        _, _, twist, swing = wrist_state(rows, elbow, radial)
+        return np.stack([c[:, 0] for c in elbow], axis=1), twist[:, 0], np.minimum(np.maximum(2.0 - swing[:, 0] / SURE_SWING, 0.0), 1.0)
+
+    def segments(self, avatar: Avatar, side: str, elbow: np.ndarray) -> ArmSegments:
+        """The arm's capsules at the first ``n`` instants, elbows at ``elbow (n, 3)``."""
+        rows = self.placement.take(np.arange(len(elbow)))
+        return arm_segments(arm_capsules(avatar, side), rows.circle.shoulder, elbow, rows.circle.wrist, rows.hands)
+
+    def near_other(self, avatar: Avatar, other: ArmSegments) -> np.ndarray:
+        """The costs ``(n, K)`` of keeping clear of the other arm's capsules at the first
+        ``n`` instants (``other``'s length), alone."""
+        rows = np.arange(len(other.upper[0]))
+        return candidate_costs(avatar, self.placement.take(rows), self.natural[rows], other, own=False)
+
+
+def track_costs(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray) -> TrackCosts:
+    """Swivel costs at ``m`` consecutive instants for a track, from wrist targets and hand
+    rotations ``(m + 1, ...)`` that include the instant before (for the first turn of the
+    swivel's zero). Runs of identical instants are measured once."""
+    placement = place_arm(avatar, side, wrist_targets, hand_rotations)
+    circle = placement.circle
+    turns = swivel_of(circle.down[:-1], circle.down[1:], circle.out[1:])
+    rows = placement.take(slice(1, None))
+    natural = natural_swivel(rows.chain, rows.circle, rows.targets, rows.torso_q)
+    values = np.concatenate([rows.targets, rows.hands], axis=1)
+    starts = np.concatenate([[0], np.flatnonzero(np.any(values[1:] != values[:-1], axis=1)) + 1])
+    unique = candidate_costs(avatar, rows.take(starts), natural[starts])
+    costs = np.repeat(unique, np.diff(np.append(starts, len(values))), axis=0)
+    return TrackCosts(costs, turns, circle.down[1:], rows, natural)
 
 
 def swivel_zeros(avatar: Avatar, side: str, wrist_targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The directions ``(n, 3)`` of swivel 0 and of swivel π/2 for wrist targets ``(n, 3)``
     (the elbow circle's in-plane axes; the zero turns with the arm's elevation,
     :mod:`motor.arm.chain`)."""
-    circle = _setup(avatar, side, wrist_targets, None, None, None).circle
+    circle = place_arm(avatar, side, wrist_targets).circle
     return circle.down, circle.out
 
 
@@ -277,19 +264,19 @@ def _arm_at(
     swing, negative_twist = quat.swing_twist(quat.conjugate(relative), chain.pronation_axis)
     wanted = -negative_twist
     certainty = twist_certainty(swing)
-    twist = np.clip(wanted, *chain.twist_range)
+    twist = np.minimum(np.maximum(wanted, chain.twist_range[0]), chain.twist_range[1])
     if reference is not None:
         # the reference's twist, plus the change the hand asks for since the reference
         # (none where the hand points so far off the forearm that its twist means little)
         reference = np.asarray(reference, dtype=float).reshape(-1, 2)
         more = (wanted - reference[:, 1] + np.pi) % (2.0 * np.pi) - np.pi
-        twist = np.clip(reference[:, 0] + certainty * more, *chain.twist_range)
+        twist = np.minimum(np.maximum(reference[:, 0] + certainty * more, chain.twist_range[0]), chain.twist_range[1])
     elbow_local = quat.multiply(bend, quat.from_axis_angle(chain.pronation_axis, twist))
     rest_of_hand = quat.multiply(quat.conjugate(quat.multiply(shoulder_global, elbow_local)), hands)
     swing, _ = quat.swing_twist(rest_of_hand, chain.pronation_axis)
     rotvec = quat.to_rotation_vector(swing)
-    flexion = np.clip(_dot(rotvec, chain.flexion_axis), *chain.wrist_flexion)
-    deviation = np.clip(_dot(rotvec, chain.deviation_axis), *chain.wrist_deviation)
+    flexion = np.minimum(np.maximum(_dot(rotvec, chain.flexion_axis), chain.wrist_flexion[0]), chain.wrist_flexion[1])
+    deviation = np.minimum(np.maximum(_dot(rotvec, chain.deviation_axis), chain.wrist_deviation[0]), chain.wrist_deviation[1])
     wrist_local = quat.from_rotation_vector(flexion[..., None] * chain.flexion_axis + deviation[..., None] * chain.deviation_axis)
     reached = quat.multiply(quat.multiply(shoulder_global, elbow_local), wrist_local)
     residual = quat.angle_between(reached, hands)
@@ -301,8 +288,8 @@ def twist_certainty(swing: np.ndarray) -> np.ndarray:
     ``(n, 4)`` that takes the forearm's axis onto the hand's: fully up to
     :data:`SURE_SWING`, not at all from twice that on (at a half-turn swing the twist is
     undefined: any tiny change of the hand turns it around)."""
-    angle = 2.0 * np.arccos(np.clip(np.abs(swing[..., 3]), 0.0, 1.0))
-    return np.clip(2.0 - angle / SURE_SWING, 0.0, 1.0)
+    angle = 2.0 * np.arccos(np.minimum(np.maximum(np.abs(swing[..., 3]), 0.0), 1.0))
+    return np.minimum(np.maximum(2.0 - angle / SURE_SWING, 0.0), 1.0)
 
 
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -311,99 +298,13 @@ def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1] + u[..., 2] * v[..., 2]
 
 
-def _cheapest_swivel(avatar: Avatar, setup: _Setup, other: ArmSegments | None) -> np.ndarray:
+def _cheapest_swivel(avatar: Avatar, setup: ArmPlacement, other: ArmSegments | None) -> np.ndarray:
     """The cheapest swivel of each frame on its own: the best candidate refined by a
-    parabola through it and its neighbours. Without a hand rotation and where the natural
-    swivel is clear of the body and the other arm, it is the natural swivel itself."""
+    parabola through it and its neighbours."""
     natural = natural_swivel(setup.chain, setup.circle, setup.targets, setup.torso_q)
-    if setup.hands is None:
-        free = _cost(avatar, setup, np.cos(natural)[:, None], np.sin(natural)[:, None], natural[:, None], natural, other)[:, 0]
-        needed = free > 0.0
-    else:
-        needed = np.ones(len(natural), dtype=bool)
-    if not np.any(needed):
-        return natural
-    rows = np.flatnonzero(needed)
-    sub = _subset(setup, rows)
-    other_rows = None if other is None else other.take(rows)
-    cost = _cost(avatar, sub, _COS, _SIN, CANDIDATES, natural[rows], other_rows)
+    cost = candidate_costs(avatar, setup, natural, other)
     best = np.argmin(cost, axis=1)
-    index = np.arange(len(rows))
+    rows = np.arange(len(best))
     count = len(CANDIDATES)
-    left, middle, right = cost[index, (best - 1) % count], cost[index, best], cost[index, (best + 1) % count]
-    offset = parabola_offset(left, middle, right)
-    refined = CANDIDATES[best] + offset * SWIVEL_STEP
-    refined_cost = _cost(avatar, sub, np.cos(refined)[:, None], np.sin(refined)[:, None], refined[:, None], natural[rows], other_rows)[:, 0]
-    swivel = natural.copy()
-    swivel[rows] = np.where(refined_cost <= middle, refined, CANDIDATES[best])
-    return swivel
-
-
-def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
-    """Where (in steps, within ±½) the parabola through three evenly spaced costs is lowest."""
-    curvature = left - 2.0 * middle + right
-    step = 0.5 * (left - right) / np.where(curvature > 1e-12, curvature, 1.0)
-    return np.where(curvature > 1e-12, np.clip(step, -0.5, 0.5), 0.0)
-
-
-def _subset(setup: _Setup, rows: np.ndarray) -> _Setup:
-    pick = lambda a: None if a is None else a[rows]
-    frame = None if setup.body_frame is None else (setup.body_frame[0][rows], setup.body_frame[1][rows])
-    return _Setup(
-        setup.chain, setup.torso_q[rows], setup.clavicle_local[rows], setup.sc_global[rows], setup.circle.take(rows),
-        setup.targets[rows], pick(setup.hands), frame,
-    )  # fmt: skip
-
-
-def _cost(
-    avatar: Avatar, setup: _Setup, cos: np.ndarray, sin: np.ndarray, psi: np.ndarray, natural: np.ndarray, other: ArmSegments | None
-) -> np.ndarray:
-    """Cost ``(n, K)`` of swivels ``psi`` (``(K,)`` shared or ``(n, K)``, with their cosines
-    and sines) — the module docstring's terms."""
-    circle, chain = setup.circle, setup.chain
-    away = np.abs((psi - natural[:, None] + np.pi) % (2.0 * np.pi) - np.pi)
-    beyond = np.maximum(away - SWIVEL_RANGE, 0.0)
-    cost = (away / SWIVEL_SCALE) ** 2 + RANGE_WEIGHT * beyond * beyond
-    radial = circle.down[:, None, :] * cos[..., None] + circle.out[:, None, :] * sin[..., None]
-    elbow = circle.center[:, None, :] + radial * circle.radius[:, None, None]
-    if setup.hands is not None:
-        deviation, flexion, residual = _wrist_load(chain, circle, radial, elbow, setup.hands)
-        deviation = deviation / np.where(deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
-        flexion = flexion / np.where(flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
-        unreached = residual * residual
-        cost = cost + DEVIATION_WEIGHT * deviation**2 + FLEXION_WEIGHT * flexion**2 + RESIDUAL_WEIGHT * unreached / (1.0 + unreached / RESIDUAL_SATURATION**2)
-    penalty, _ = clearance(avatar, chain.side, circle, elbow, setup.body_frame, other)
-    return cost + penalty
-
-
-def _wrist_load(
-    chain: ArmChain, circle: ElbowCircle, radial: np.ndarray, elbow: np.ndarray, hands: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Wrist deviation and flexion a hand rotation needs with the elbow at ``elbow
-    (n, K, 3)``, in ``radial`` directions from the circle's centre, and an
-    estimate of the rotation left unachieved by the joint limits (radians).
-
-    The same quantities :func:`_arm_at` computes, from vectors alone (no rotation
-    matrices): the wrist's swing is the rotation taking the forearm axis, seen from the
-    hand, onto the hand's long axis; the forearm twist is what turns the elbow hinge onto
-    where the hand rotation, undone by that swing, wants it.
-    """
-    hand = hands[:, None, :]
-    forearm = (circle.wrist[:, None, :] - elbow) / chain.fore
-    seen_from_hand = quat.rotate(quat.conjugate(hand), forearm)
-    axis = quat.cross(seen_from_hand, chain.fore_rest)
-    sine = quat.norm(axis)
-    angle = np.arctan2(sine, _dot(seen_from_hand, chain.fore_rest))
-    rotvec = axis * (angle / np.maximum(sine, 1e-12))[..., None]
-    flexion = _dot(rotvec, chain.flexion_axis)
-    deviation = _dot(rotvec, chain.deviation_axis)
-    swing = quat.from_rotation_vector(rotvec)
-    wanted_hinge = quat.rotate(quat.multiply(hand, quat.conjugate(swing)), chain.hinge_rest)
-    hinge = quat.normalize(quat.cross(radial, circle.axis[:, None, :]))
-    twist_axis = forearm * float(chain.pronation_axis @ chain.fore_rest)
-    twist = np.arctan2(_dot(quat.cross(hinge, wanted_hinge), twist_axis), _dot(hinge, wanted_hinge))
-    excess = lambda value, limits: value - np.clip(value, *limits)
-    residual = np.sqrt(
-        excess(flexion, chain.wrist_flexion) ** 2 + excess(deviation, chain.wrist_deviation) ** 2 + excess(twist, chain.twist_range) ** 2
-    )
-    return deviation, flexion, residual
+    left, middle, right = cost[rows, (best - 1) % count], cost[rows, best], cost[rows, (best + 1) % count]
+    return CANDIDATES[best] + parabola_offset(left, middle, right) * SWIVEL_STEP

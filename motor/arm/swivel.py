@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from motor.arm.ik import parabola_offset
+from motor.arm.swivel_cost import parabola_offset
 from motor.program.lmp import TimePegs, VectorKeyframeLMP
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
 
@@ -54,59 +54,95 @@ class SwivelState:
 
 
 def smooth_swivels(
-    costs: np.ndarray, candidates: np.ndarray, previous: SwivelState | None, horizon: int = HORIZON, now: np.ndarray | None = None
-) -> list[SwivelState]:
-    """A swivel track over ``m`` grid points, continuous by construction.
+    costs: np.ndarray,
+    candidates: np.ndarray,
+    previous: SwivelState | None,
+    horizon: int = HORIZON,
+    now: np.ndarray | None = None,
+    turns: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A swivel track over ``m`` grid points, continuous by construction: the candidates
+    chosen (unwrapped step counts from the first, ``(m,)`` integers) and the swivels there
+    (radians, unwrapped, ``(m,)``).
 
     ``costs (m + horizon, K)`` are the costs of the evenly spaced ``candidates (K,)`` (a
     whole circle) at consecutive grid points; ``previous`` is the track's state at the
     grid point before the first (None: the track starts here, at its cheapest candidate).
     ``now (m, K)``, if given, are costs that count at their own grid point only, not in
-    the look ahead of earlier ones (what depends on another track's future).
+    the look ahead of earlier ones (what depends on another track's future). ``turns
+    (m + horizon,)`` (radians, 0 if None) are how far the swivel's zero turned since the
+    grid point before: the change of swivel that keeps the elbow in place, which costs
+    nothing.
 
-    Each grid point's swivel moves at most :data:`MAX_STEP` candidates from the previous
-    one, to the candidate minimizing the cost of the change (:data:`SMOOTHNESS`) plus the
-    cost to go over the next ``horizon`` grid points — a fixed-lag dynamic programme
-    whose value tables are computed for all grid points at once; only the walk along the
-    chosen candidates is sequential, one table look-up per grid point. The swivel is then
-    refined between candidates by a parabola through the chosen one's neighbours. The
-    result depends on the costs up to ``horizon`` grid points ahead and on ``previous``
-    only, so a track computed piece by piece equals one computed at once.
+    Each grid point's swivel moves at most :data:`MAX_STEP` candidates (beyond the turn of
+    the zero) from the previous one, to the candidate minimizing the cost of the change
+    (:data:`SMOOTHNESS`) plus the cost to go over the next ``horizon`` grid points — a
+    fixed-lag dynamic programme whose value tables are computed for all grid points at
+    once; only the walk along the chosen candidates is sequential, one table look-up per
+    grid point. The swivel is then refined between candidates by a parabola through the
+    chosen one's neighbours. The result depends on the costs and turns up to ``horizon``
+    grid points ahead and on ``previous`` only, so a track computed piece by piece equals
+    one computed at once.
     """
     count = len(candidates)
     step = float(candidates[1] - candidates[0])
+    turn = np.zeros(costs.shape[0]) if turns is None else np.asarray(turns, dtype=float) / step
+    base = np.rint(turn).astype(np.int64)
     shifts = np.arange(-MAX_STEP, MAX_STEP + 1)
-    change = SMOOTHNESS * (shifts * step) ** 2
+    # the cost of moving from candidate i to i + base + d at each grid point
+    change = SMOOTHNESS * ((base[:, None] + shifts - turn[:, None]) * step) ** 2
     value = costs
     for _ in range(horizon):
-        value = costs[: value.shape[0] - 1] + _banded_minimum(value[1:], shifts, change)
+        rows = value.shape[0] - 1
+        value = costs[:rows] + _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
     if now is not None:
         value = value + now
     rows = value.shape[0]
-    options = np.stack([np.roll(value, -int(d), axis=1) + c for d, c in zip(shifts, change)], axis=1)
-    moves = (np.argmin(options, axis=1) - MAX_STEP).ravel()
-    cells = np.empty(rows, dtype=np.int64)
+    wrapped = _wrapped(_aligned(value, base[:rows]))
+    options = np.stack([wrapped[:, k : k + count] + change[:rows, k : k + 1] for k in range(len(shifts))], axis=1)
+    moves = (base[:rows, None] + np.argmin(options, axis=1) - MAX_STEP).ravel().tolist()
+    cells = [0] * rows
     cell = int(np.argmin(value[0])) if previous is None else previous.cell
     begin = 1 if previous is None else 0
-    if previous is None:
-        cells[0] = cell
+    cells[0] = cell
     for row in range(begin, rows):
-        cell += int(moves[row * count + cell % count])
+        cell += moves[row * count + cell % count]
         cells[row] = cell
-    before = np.concatenate([[cells[0] if previous is None else previous.cell], cells[:-1]])
-    near = cells[:, None] + np.array([-1, 0, 1])
-    quadratic = SMOOTHNESS * ((near - before[:, None]) * step) ** 2
+    chosen = np.array(cells)
+    # where the elbow would stay: the candidate before, turned with the zero
+    expected = np.concatenate([[chosen[0] if previous is None else previous.cell], chosen[:-1]]) + turn[:rows]
     if previous is None:
-        quadratic[0] = 0.0
-    around = value[np.arange(rows)[:, None], near % count] + quadratic
+        expected[0] = chosen[0]
+    near = chosen[:, None] + np.array([-1, 0, 1])
+    quadratic = SMOOTHNESS * ((near - expected[:, None]) * step) ** 2
+    around = np.take_along_axis(value, near % count, axis=1) + quadratic
     offsets = parabola_offset(around[:, 0], around[:, 1], around[:, 2])
-    swivels = candidates[0] + (cells + offsets) * step
-    return [SwivelState(int(c), float(s)) for c, s in zip(cells, swivels)]
+    return chosen, candidates[0] + (chosen + offsets) * step
 
 
-def _banded_minimum(value: np.ndarray, shifts: np.ndarray, change: np.ndarray) -> np.ndarray:
-    """``min_d change[d] + value[:, (i + shifts[d]) mod K]`` for every candidate ``i``."""
-    best = np.roll(value, -int(shifts[0]), axis=1) + change[0]
-    for d, c in zip(shifts[1:], change[1:]):
-        best = np.minimum(best, np.roll(value, -int(d), axis=1) + c)
+def _aligned(value: np.ndarray, base: np.ndarray) -> np.ndarray:
+    """``value (m, K)`` with row ``r`` turned so that column ``i`` holds candidate
+    ``i + base[r]`` (mod K); rows that need no turn — most — are left as they are."""
+    turned = np.flatnonzero(base)
+    if turned.size == 0:
+        return value
+    count = value.shape[1]
+    aligned = value.copy()
+    aligned[turned] = np.take_along_axis(value[turned], (np.arange(count) + base[turned, None]) % count, axis=1)
+    return aligned
+
+
+def _wrapped(value: np.ndarray) -> np.ndarray:
+    """``value (m, K)`` with :data:`MAX_STEP` columns of the other end on either side (the
+    candidates go round the circle)."""
+    return np.concatenate([value[:, -MAX_STEP:], value, value[:, :MAX_STEP]], axis=1)
+
+
+def _banded_minimum(value: np.ndarray, base: np.ndarray, change: np.ndarray) -> np.ndarray:
+    """``min_d change[:, d] + value[:, (i + base + d) mod K]`` over ``|d|`` ≤ :data:`MAX_STEP`."""
+    count = value.shape[1]
+    wrapped = _wrapped(_aligned(value, base))
+    best = wrapped[:, :count] + change[:, :1]
+    for k in range(1, 2 * MAX_STEP + 1):
+        best = np.minimum(best, wrapped[:, k : k + count] + change[:, k : k + 1])
     return best

@@ -56,87 +56,123 @@ def posed_capsule(capsule: Capsule, rotation: np.ndarray, translation: np.ndarra
     return quat.rotate(rotation, capsule.a) + translation, quat.rotate(rotation, capsule.b) + translation
 
 
-def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1] + u[..., 2] * v[..., 2]
+#: A vector field as its three coordinate arrays (any broadcastable shapes): the layout
+#: of the swivel search, where contiguous ``(n, K)`` arrays per coordinate are fastest.
+Components = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def components(v: np.ndarray) -> Components:
+    """The coordinate arrays of vectors ``(..., 3)``."""
+    return v[..., 0], v[..., 1], v[..., 2]
+
+
+def _dot(u: Components, v: Components) -> np.ndarray:
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+def _minus(u: Components, v: Components) -> Components:
+    return u[0] - v[0], u[1] - v[1], u[2] - v[2]
+
+
+def _clip01(value: np.ndarray) -> np.ndarray:
+    return np.minimum(np.maximum(value, 0.0), 1.0)
 
 
 def closest_parameters(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Parameters ``s, t`` in [0, 1] of the closest points ``p0 + s (p1 - p0)`` and
-    ``q0 + t (q1 - q0)`` of two segments (arrays broadcast; degenerate segments allowed)."""
-    d1, d2, r = p1 - p0, q1 - q0, p0 - q0
+    ``q0 + t (q1 - q0)`` of two segments (arrays ``(..., 3)`` broadcast; degenerate
+    segments allowed)."""
+    return _closest(components(p0), components(p1), components(q0), components(q1))
+
+
+def _closest(p0: Components, p1: Components, q0: Components, q1: Components) -> tuple[np.ndarray, np.ndarray]:
+    d1, d2, r = _minus(p1, p0), _minus(q1, q0), _minus(p0, q0)
     a, e, f = _dot(d1, d1), _dot(d2, d2), _dot(d2, r)
     b, c = _dot(d1, d2), _dot(d1, r)
     a_safe, e_safe = np.maximum(a, _TINY), np.maximum(e, _TINY)
     denominator = a * e - b * b
-    s = np.where(denominator > _TINY * np.maximum(a * e, _TINY), np.clip((b * f - c * e) / np.maximum(denominator, _TINY), 0.0, 1.0), 0.0)
+    s = np.where(denominator > _TINY * np.maximum(a * e, _TINY), _clip01((b * f - c * e) / np.maximum(denominator, _TINY)), 0.0)
     t = (b * s + f) / e_safe
-    s = np.where(t < 0.0, np.clip(-c / a_safe, 0.0, 1.0), np.where(t > 1.0, np.clip((b - c) / a_safe, 0.0, 1.0), s))
-    t = np.clip(t, 0.0, 1.0)
+    s = np.where(t < 0.0, _clip01(-c / a_safe), np.where(t > 1.0, _clip01((b - c) / a_safe), s))
     s = np.where(a > _TINY, s, 0.0)
-    t = np.where(e > _TINY, t, 0.0)
+    t = np.where(e > _TINY, _clip01(t), 0.0)
     return s, t
 
 
 def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
-    """Shortest distance between segments ``p0``–``p1`` and ``q0``–``q1`` (arrays broadcast)."""
-    s, t = closest_parameters(p0, p1, q0, q1)
-    gap = (p0 + s[..., None] * (p1 - p0)) - (q0 + t[..., None] * (q1 - q0))
+    """Shortest distance between segments ``p0``–``p1`` and ``q0``–``q1`` (arrays ``(..., 3)`` broadcast)."""
+    return segments_apart(components(p0), components(p1), components(q0), components(q1))
+
+
+def segments_apart(p0: Components, p1: Components, q0: Components, q1: Components) -> np.ndarray:
+    """:func:`segment_distance` of segments given by coordinate arrays."""
+    s, t = _closest(p0, p1, q0, q1)
+    gap = tuple((p0[i] + s * (p1[i] - p0[i])) - (q0[i] + t * (q1[i] - q0[i])) for i in range(3))
     return np.sqrt(_dot(gap, gap))
 
 
 def point_segment_distance(point: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
-    """Distance from points to segments ``q0``–``q1`` (arrays broadcast)."""
-    d = q1 - q0
-    t = np.clip(_dot(point - q0, d) / np.maximum(_dot(d, d), _TINY), 0.0, 1.0)
-    gap = point - (q0 + t[..., None] * d)
+    """Distance from points to segments ``q0``–``q1`` (arrays ``(..., 3)`` broadcast)."""
+    p, a, b = components(point), components(q0), components(q1)
+    d = _minus(b, a)
+    t = _clip01(_dot(_minus(p, a), d) / np.maximum(_dot(d, d), _TINY))
+    gap = tuple(p[i] - (a[i] + t * d[i]) for i in range(3))
     return np.sqrt(_dot(gap, gap))
 
 
 def capsule_distance(volume: Volume, a: np.ndarray, b: np.ndarray, radius: float | np.ndarray) -> np.ndarray:
     """Signed distance (m, negative inside) between the capsule ``a``–``b`` with
     ``radius`` and ``volume``; ``a``, ``b`` ``(..., 3)`` in the volume's rest frame."""
+    return capsule_apart(volume, components(a), components(b), radius)
+
+
+def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | np.ndarray) -> np.ndarray:
+    """:func:`capsule_distance` of a capsule given by coordinate arrays."""
     if isinstance(volume, Capsule):
-        return segment_distance(a, b, volume.a, volume.b) - volume.radius - radius
+        return segments_apart(a, b, tuple(volume.a), tuple(volume.b)) - volume.radius - radius
     if isinstance(volume, Ellipsoid):
         return _ellipsoid_distance(volume, a, b) - radius
     return _cylinder_distance(volume, a, b) - radius
 
 
-def _ellipsoid_distance(ellipsoid: Ellipsoid, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _ellipsoid_distance(ellipsoid: Ellipsoid, a: Components, b: Components) -> np.ndarray:
     """Signed radial distance of a segment from an ellipsoid: the segment's point nearest
     the centre in the space where the ellipsoid is a unit sphere, measured along its ray."""
-    p0 = (a - ellipsoid.center) / ellipsoid.radii
-    d = (b - a) / ellipsoid.radii
-    t = np.clip(-_dot(p0, d) / np.maximum(_dot(d, d), _TINY), 0.0, 1.0)
-    scaled = p0 + t[..., None] * d
+    (cx, cy, cz), (rx, ry, rz) = ellipsoid.center, ellipsoid.radii
+    p0 = ((a[0] - cx) / rx, (a[1] - cy) / ry, (a[2] - cz) / rz)
+    d = ((b[0] - a[0]) / rx, (b[1] - a[1]) / ry, (b[2] - a[2]) / rz)
+    t = _clip01(-_dot(p0, d) / np.maximum(_dot(d, d), _TINY))
+    scaled = (p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2])
     rho = np.sqrt(_dot(scaled, scaled))
-    unscaled = scaled * ellipsoid.radii
+    unscaled = (scaled[0] * rx, scaled[1] * ry, scaled[2] * rz)
     return np.sqrt(_dot(unscaled, unscaled)) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
 
 
-def _cylinder_distance(cylinder: EllipticCylinder, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components) -> np.ndarray:
     """Signed distance of a segment from a vertical elliptic cylinder: within the height
     range, radial (as :func:`_ellipsoid_distance`, in the horizontal plane); a segment
     wholly above or below it is as far as its nearest end's vertical and radial gaps."""
-    x0, z0 = (a[..., 0] - cylinder.center[0]) / cylinder.half_width, (a[..., 2] - cylinder.center[2]) / cylinder.half_depth
-    dx, dz = (b[..., 0] - a[..., 0]) / cylinder.half_width, (b[..., 2] - a[..., 2]) / cylinder.half_depth
-    y0, dy = a[..., 1], b[..., 1] - a[..., 1]
-    safe = np.where(np.abs(dy) > _TINY, dy, _TINY)
+    width, depth = cylinder.half_width, cylinder.half_depth
+    x0, z0 = (a[0] - cylinder.center[0]) / width, (a[2] - cylinder.center[2]) / depth
+    dx, dz = (b[0] - a[0]) / width, (b[2] - a[2]) / depth
+    y0, dy = a[1], b[1] - a[1]
+    flat = np.abs(dy) <= _TINY
+    safe = np.where(flat, _TINY, dy)
     low, high = (cylinder.bottom - y0) / safe, (cylinder.top - y0) / safe
-    enter = np.where(np.abs(dy) > _TINY, np.minimum(low, high), np.where((y0 >= cylinder.bottom) & (y0 <= cylinder.top), 0.0, 2.0))
-    leave = np.where(np.abs(dy) > _TINY, np.maximum(low, high), 1.0)
-    enter, leave = np.maximum(enter, 0.0), np.minimum(leave, 1.0)
+    level = (y0 >= cylinder.bottom) & (y0 <= cylinder.top)
+    enter = np.maximum(np.where(flat, np.where(level, 0.0, 2.0), np.minimum(low, high)), 0.0)
+    leave = np.minimum(np.where(flat, 1.0, np.maximum(low, high)), 1.0)
     inside = enter <= leave
-    t = np.clip(-(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY), enter, np.maximum(leave, enter))
+    t = np.minimum(np.maximum(-(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY), enter), np.maximum(leave, enter))
     # outside the height range: the end nearer to it
-    end = np.where(np.abs(y0 + dy - 0.5 * (cylinder.bottom + cylinder.top)) < np.abs(y0 - 0.5 * (cylinder.bottom + cylinder.top)), 1.0, 0.0)
-    t = np.where(inside, t, end)
+    middle = 0.5 * (cylinder.bottom + cylinder.top)
+    t = np.where(inside, t, np.where(np.abs(y0 + dy - middle) < np.abs(y0 - middle), 1.0, 0.0))
     sx, sz = x0 + t * dx, z0 + t * dz
     rho = np.sqrt(sx * sx + sz * sz)
-    radial = np.hypot(sx * cylinder.half_width, sz * cylinder.half_depth) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
+    radial = np.sqrt((sx * width) ** 2 + (sz * depth) ** 2) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
     y = y0 + t * dy
     vertical = np.maximum(cylinder.bottom - y, y - cylinder.top)
-    return np.where(inside, radial, np.where(radial > 0.0, np.hypot(vertical, radial), vertical))
+    return np.where(inside, radial, np.where(radial > 0.0, np.sqrt(vertical * vertical + radial * radial), vertical))
 
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
@@ -151,7 +187,7 @@ def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
     dx = np.abs(points[:, 0] - torso.center[0]) / a
-    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
     gap = points[:, 2] - front
     eased = np.where(gap >= SOFT_BAND, gap, SOFT_BAND * np.exp(np.minimum(gap, SOFT_BAND) / SOFT_BAND - 1.0))
     fade = (
@@ -174,13 +210,13 @@ def inside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
     dx = (points[:, 0] - torso.center[0]) / a
-    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
     return (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
 
 
 def _fade(beyond: np.ndarray) -> np.ndarray:
     """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly to 0 at :data:`EDGE_BAND`."""
-    u = np.clip(beyond / EDGE_BAND, 0.0, 1.0)
+    u = np.minimum(np.maximum(beyond / EDGE_BAND, 0.0), 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
 
@@ -203,8 +239,13 @@ def separate_hands(
     from :data:`HAND_BAND` above the thickness, so hands meet without a speed step;
     hands farther apart are unchanged."""
     thickness = avatar.collision.palm_thickness
-    l0, l1 = hand_segments(avatar, "l", left, left_hands)
-    r0, r1 = hand_segments(avatar, "r", right, right_hands)
+    reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
+    # only hands whose wrists are within two hand lengths can meet
+    near = np.flatnonzero(quat.norm(left - right) < 2.0 * reach + thickness + HAND_BAND)
+    if near.size == 0:
+        return left, right
+    l0, l1 = hand_segments(avatar, "l", left[near], left_hands[near])
+    r0, r1 = hand_segments(avatar, "r", right[near], right_hands[near])
     s, t = closest_parameters(l0, l1, r0, r1)
     between = (l0 + s[:, None] * (l1 - l0)) - (r0 + t[:, None] * (r1 - r0))
     gap = quat.norm(between) - thickness
@@ -214,7 +255,10 @@ def separate_hands(
     direction = between + 0.25 * thickness * _parting(l1 - l0, r1 - r0)
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
     half = (0.5 * (eased - gap))[:, None] * direction
-    return left + half, right - half
+    left, right = np.array(left, dtype=float), np.array(right, dtype=float)
+    left[near] += half
+    right[near] -= half
+    return left, right
 
 
 def _parting(left: np.ndarray, right: np.ndarray) -> np.ndarray:
@@ -226,6 +270,6 @@ def _parting(left: np.ndarray, right: np.ndarray) -> np.ndarray:
     sine = quat.norm(across) / np.maximum(quat.norm(left) * quat.norm(right), _TINY)
     across = across * np.where(across @ _PREFERRED >= 0.0, 1.0, -1.0)[:, None]
     across = across / np.maximum(quat.norm(across), _TINY)[:, None]
-    weight = np.clip(sine / CROSSING_SINE, 0.0, 1.0)[:, None]
+    weight = np.minimum(np.maximum(sine / CROSSING_SINE, 0.0), 1.0)[:, None]
     parting = weight * across + (1.0 - weight) * np.array([1.0, 0.0, 0.0])
     return parting / np.maximum(quat.norm(parting), _TINY)[:, None]

@@ -25,7 +25,6 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
 from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
 from motor.motion import Motion
@@ -269,16 +268,17 @@ def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
 
 def frame_faults(avatar: Avatar, signed: SignedMotion) -> dict[str, np.ndarray]:
     """Per frame: ``non_finite`` (bool), ``shortfall`` (m between the wrist reached by
-    forward kinematics and the wrist asked for, worse arm) and ``upper_arm_depth`` (m,
+    forward kinematics and the wrist the arm was given — the sign's, kept out of the torso
+    and the hands a palm thickness apart — worse arm) and ``upper_arm_depth`` (m,
     worse arm, see :func:`upper_arm_depths`)."""
     motion = signed.motion
     finite = np.all(np.isfinite(motion.rotations), axis=(1, 2))
     pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
     shortfall = np.zeros(motion.frame_count)
+    asked = signed.control.wrist_targets(motion.times)
     for arm in ARMS:
         wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
-        asked = outside_torso(avatar, signed.control.timeline((arm, "wrist_position")).sample(motion.times))
-        shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked, axis=1))
+        shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked[arm], axis=1))
     depths = upper_arm_depths(avatar, motion)
     return {"non_finite": ~finite, "shortfall": shortfall, "upper_arm_depth": np.maximum(*depths.values())}
 

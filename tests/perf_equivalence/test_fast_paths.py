@@ -12,7 +12,8 @@ from motor import quaternion as quat
 from motor.arm.swivel import SwivelLMP
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import load_avatar
-from motor.control import SWIVEL_PERIOD, TRACK_REACH, MotorControl
+from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH
+from motor.control import MotorControl
 from motor.program.lmp import (
     ChannelState,
     ChannelTimeline,
@@ -118,7 +119,7 @@ def test_frames_after_a_late_activation_are_those_of_a_fresh_control(avatar):
     first, second = _programs(streaming)
     streaming.activate(first)
     early = [streaming.frames(0.0, 1.0), streaming.frames(1.0, 1.1)]  # swivels solved to 1.9 s
-    assert max(streaming._grid) * 0.1 > second.pegs.start
+    assert streaming._grid.last * SWIVEL_PERIOD > second.pegs.start
     streaming.activate(second)
     late = [streaming.frames(a, b) for a, b in ((1.1, 1.2), (1.2, 1.5), (1.5, 1.9), (1.9, 5.0))]  # partly from frames computed ahead
     fresh = MotorControl(avatar, fps=30.0)
