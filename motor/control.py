@@ -283,7 +283,7 @@ class MotorControl:
             rows = np.concatenate([wrists, hands, swivel, twist], axis=1)
             rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
                 lambda rows, side=side: solve_arm(
-                    self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:], swivel_from=rows[:, 8:11]
+                    self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]
                 ).rotations,
                 rows,
             )

@@ -111,7 +111,10 @@ def solve_arm(
             asked for there (radians): the twist is the reference's plus the change the
             hand asks for since (the shorter way round), within the limits — so it never
             wraps from one limit to the other. None: the hand's twist, the shorter way
-            round, within the limits.
+            round, within the limits. Two more columns, the wrist's flexion and deviation
+            there (radians), make the wrist keep to them as far as the hand's own way is
+            undefined (``twist_certainty`` below 1: the hand points far off the forearm,
+            where the wrist that comes nearest to it jumps from one limit to the other).
         other: the other arm's capsules at the same instants, which this arm keeps clear
             of (when the swivel is searched, and in ``penetration``'s cost only).
         swivel_from: ``(n, 3)`` directions from which the given ``swivel`` is counted
@@ -177,15 +180,23 @@ class TrackCosts:
     placement: ArmPlacement
     natural: np.ndarray
 
-    def pose(self, swivels: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def pose(self, swivels: np.ndarray) -> tuple[np.ndarray, ...]:
         """At the first ``n`` instants with the given ``swivels (n,)``: the elbow positions
-        ``(n, 3)``, the forearm twist the hand asks for (radians, in (-π, π]) and how well
-        defined it is (:func:`twist_certainty`'s 1 … 0) — as :func:`solve_arm` gives
-        them, from vectors alone."""
+        ``(n, 3)``, the forearm twist the hand asks for (radians, in (-π, π]), how well
+        defined it is (:func:`twist_certainty`'s 1 … 0) and the wrist's flexion and
+        deviation within their limits (radians) — as :func:`solve_arm` gives them where
+        the twist is within its limits, from vectors alone."""
         rows = self.placement.take(np.arange(len(swivels)))
+        chain = rows.chain
         elbow, radial = candidate_elbows(rows, np.cos(swivels)[:, None], np.sin(swivels)[:, None])
-        _, _, twist, swing = wrist_state(rows, elbow, radial)
-        return np.stack([c[:, 0] for c in elbow], axis=1), twist[:, 0], np.minimum(np.maximum(2.0 - swing[:, 0] / SURE_SWING, 0.0), 1.0)
+        flexion, deviation, twist, swing = (value[:, 0] for value in wrist_state(rows, elbow, radial))
+        return (
+            np.stack([c[:, 0] for c in elbow], axis=1),
+            twist,
+            np.minimum(np.maximum(2.0 - swing / SURE_SWING, 0.0), 1.0),
+            np.minimum(np.maximum(flexion, chain.wrist_flexion[0]), chain.wrist_flexion[1]),
+            np.minimum(np.maximum(deviation, chain.wrist_deviation[0]), chain.wrist_deviation[1]),
+        )
 
     def segments(self, avatar: Avatar, side: str, elbow: np.ndarray) -> ArmSegments:
         """The arm's capsules at the first ``n`` instants, elbows at ``elbow (n, 3)``."""
@@ -268,7 +279,7 @@ def _arm_at(
     if reference is not None:
         # the reference's twist, plus the change the hand asks for since the reference
         # (none where the hand points so far off the forearm that its twist means little)
-        reference = np.asarray(reference, dtype=float).reshape(-1, 2)
+        reference = np.asarray(reference, dtype=float)
         more = (wanted - reference[:, 1] + np.pi) % (2.0 * np.pi) - np.pi
         twist = np.minimum(np.maximum(reference[:, 0] + certainty * more, chain.twist_range[0]), chain.twist_range[1])
     elbow_local = quat.multiply(bend, quat.from_axis_angle(chain.pronation_axis, twist))
@@ -277,6 +288,10 @@ def _arm_at(
     rotvec = quat.to_rotation_vector(swing)
     flexion = np.minimum(np.maximum(_dot(rotvec, chain.flexion_axis), chain.wrist_flexion[0]), chain.wrist_flexion[1])
     deviation = np.minimum(np.maximum(_dot(rotvec, chain.deviation_axis), chain.wrist_deviation[0]), chain.wrist_deviation[1])
+    if reference is not None and reference.shape[1] == 4:
+        # the wrist, too, keeps to its reference where the hand's way is undefined
+        flexion = reference[:, 2] + certainty * (flexion - reference[:, 2])
+        deviation = reference[:, 3] + certainty * (deviation - reference[:, 3])
     wrist_local = quat.from_rotation_vector(flexion[..., None] * chain.flexion_axis + deviation[..., None] * chain.deviation_axis)
     reached = quat.multiply(quat.multiply(shoulder_global, elbow_local), wrist_local)
     residual = quat.angle_between(reached, hands)

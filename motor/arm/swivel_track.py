@@ -38,12 +38,15 @@ TRACK_REACH = HORIZON
 #: turns over to the other side of its range (radians), and how fast it turns over
 #: (radians per grid point).
 TWIST_HYSTERESIS = math.radians(90.0)
-TWIST_STEP = math.radians(90.0)
+TWIST_STEP = math.radians(60.0)
+#: How far the wrist's flexion and deviation may move per grid point where the hand's
+#: way is only partly defined (radians).
+WRIST_STEP = math.radians(40.0)
 #: The columns kept per arm and grid point: the track's candidate (unwrapped step count)
 #: and swivel (radians, unwrapped), how far the swivel's zero turned since the grid point
-#: before, the direction of swivel 0 (3 columns), the forearm twist and the twist the hand
-#: wanted there (radians, in (-π, π]).
-_COLUMNS = ("cell", "swivel", "turn", "zero_x", "zero_y", "zero_z", "twist", "wanted")
+#: before, the direction of swivel 0 (3 columns), the forearm twist, the twist the hand
+#: wanted there (radians, in (-π, π]) and the wrist's flexion and deviation.
+_COLUMNS = ("cell", "swivel", "turn", "zero_x", "zero_y", "zero_z", "twist", "wanted", "flexion", "deviation")
 
 
 @dataclass
@@ -52,10 +55,10 @@ class _Arm:
 
     rows: np.ndarray
 
-    def state(self, row: int) -> tuple[SwivelState, float]:
-        """The track's state and the twist at a row."""
+    def state(self, row: int) -> tuple[SwivelState, tuple[float, float, float]]:
+        """The track's state, and the twist, flexion and deviation at a row."""
         values = self.rows[row]
-        return SwivelState(int(values[0]), float(values[1])), float(values[6])
+        return SwivelState(int(values[0]), float(values[1])), (float(values[6]), float(values[8]), float(values[9]))
 
 
 class SwivelGrid:
@@ -107,11 +110,12 @@ class SwivelGrid:
             costs = track_costs(self.avatar, side, *inputs[arm])
             now = None if other is None else costs.near_other(self.avatar, other)
             cells, swivels = smooth_swivels(costs.costs, CANDIDATES, None if before is None else before[0], HORIZON, now, costs.turns)
-            elbows, wanted, certainty = costs.pose(swivels)
+            elbows, wanted, certainty, flexion, deviation = costs.pose(swivels)
             other = costs.segments(self.avatar, side, elbows)
             limits = self.avatar.limit(f"{side}_elbow", "twist")
-            twists = twist_track(wanted, certainty, None if before is None else before[1], limits)
-            rows = np.column_stack([cells, swivels, costs.turns[:count], costs.zeros[:count], twists, wanted])
+            twists = twist_track(wanted, certainty, None if before is None else before[1][0], limits)
+            wrist = wrist_track(np.stack([flexion, deviation], axis=1), certainty, None if before is None else before[1][1:])
+            rows = np.column_stack([cells, swivels, costs.turns[:count], costs.zeros[:count], twists, wanted, wrist])
             self._arms[arm].rows = np.concatenate([self._arms[arm].rows, rows])
 
     def forget_from(self, index: int) -> None:
@@ -137,8 +141,8 @@ class SwivelGrid:
         between them), and that grid point's direction of swivel 0, from which the swivel
         is counted (so that between grid points the elbow keeps to the track however the
         arm's zero turns); and the forearm twist's reference ``(n, 2)``: the grid's twist
-        and the twist the hand wanted there, both linear between grid points (the wanted
-        twist the shorter way round)."""
+        and the twist the hand wanted there, and the wrist's flexion and deviation, all
+        linear between grid points (the wanted twist the shorter way round)."""
         rows = self._arms[arm].rows[first - self.first : last - self.first + 1]
         positions = times / SWIVEL_PERIOD
         at = np.floor(positions + 1e-9).astype(int) - first
@@ -146,9 +150,9 @@ class SwivelGrid:
         points = (swivel[at - 1] + turn[at], swivel[at], swivel[at + 1] - turn[at + 1], swivel[at + 2] - turn[at + 1] - turn[at + 2])
         swivel = np.concatenate([_catmull_rom(*points, positions - (at + first))[:, None], rows[at, 3:6]], axis=1)
         u = positions - (at + first)
-        twist, wanted = rows[at, 6], rows[at, 7]
+        twist, wanted, wrist = rows[at, 6], rows[at, 7], rows[at, 8:10]
         change = (rows[at + 1, 7] - wanted + np.pi) % (2.0 * np.pi) - np.pi
-        reference = np.stack([twist + u * (rows[at + 1, 6] - twist), wanted + u * change], axis=1)
+        reference = np.column_stack([twist + u * (rows[at + 1, 6] - twist), wanted + u * change, wrist + u[:, None] * (rows[at + 1, 8:10] - wrist)])
         return swivel, reference
 
 
@@ -182,6 +186,24 @@ def twist_track(wanted: np.ndarray, certainty: np.ndarray, previous: float | Non
         here += sure * (-TWIST_STEP if step < -TWIST_STEP else TWIST_STEP if step > TWIST_STEP else step)
         twists.append(here)
     return np.array(twists)
+
+
+def wrist_track(targets: np.ndarray, certainty: np.ndarray, previous: tuple[float, float] | None) -> np.ndarray:
+    """The wrist's flexion and deviation along grid points ``(m, 2)``: each moves toward
+    its target (within the limits, from the hand rotation) by at most
+    :data:`WRIST_STEP`, and only as far as the hand's way is defined (``certainty``); so
+    where the hand points so far off the forearm that the nearest wrist jumps from one
+    limit to the other, the wrist stays where it was. Without a previous grid point the
+    first takes its target."""
+    values = targets.tolist()
+    here = list(values[0]) if previous is None else list(previous)
+    track = []
+    for (flexion, deviation), sure in zip(values, certainty.tolist()):
+        for i, target in enumerate((flexion, deviation)):
+            step = target - here[i]
+            here[i] += sure * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
+        track.append(tuple(here))
+    return np.array(track)
 
 
 def _catmull_rom(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, u: np.ndarray) -> np.ndarray:
