@@ -39,6 +39,7 @@ import math
 import numpy as np
 
 from motor.arm.ik import solve_arm, swivel_of, swivel_zeros
+from motor.arm.reach_turn import TURN_JOINTS, trunk_turn, turned
 from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH, SwivelGrid
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso, separate_hands
@@ -100,6 +101,7 @@ class MotorControl:
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
         self._hand_joints = {arm: avatar.hand_joints(AVATAR_SIDE[arm]) for arm in ARMS}
+        self._trunk_joints = np.array([avatar.joint_index(name) for name in TURN_JOINTS])
         rest = np.zeros((avatar.joint_count, 4))
         rest[:, 3] = 1.0
         self._rest_rotations = rest
@@ -276,6 +278,9 @@ class MotorControl:
             sampled = self._arm_inputs(merged[order])
             inputs = {arm: tuple(v[back[: times.size]] for v in values) for arm, values in sampled.items()}
             self._grid.solve(*plan, {arm: tuple(v[back[times.size :]] for v in values) for arm, values in sampled.items()})
+        turn = turned(self.avatar, inputs["trunk"][0][:, 0])
+        if turn is not None:
+            rotations[:, self._trunk_joints] = turn.local_rotations()
         for arm in ARMS:
             wrists, hands = inputs[arm]
             side = AVATAR_SIDE[arm]
@@ -294,22 +299,29 @@ class MotorControl:
         return rotations
 
     def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
-        """Per arm, the wrist positions ``(n, 3)`` the IK is given at sorted ``times``: the
-        wrist channel's, kept out of the torso and the hands a palm thickness apart."""
-        return {arm: values[0] for arm, values in self._arm_inputs(np.asarray(times, dtype=float)).items()}
+        """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
+        ``times``: the wrist channel's, kept out of the torso and the hands a palm
+        thickness apart."""
+        inputs = self._arm_inputs(np.asarray(times, dtype=float))
+        turn = turned(self.avatar, inputs["trunk"][0][:, 0])
+        return {arm: inputs[arm][0] if turn is None else turn.from_trunk(inputs[arm][0]) for arm in ARMS}
 
-    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, ...]]:
         """Per arm, the wrist positions and hand rotations the IK is given at sorted
-        ``times``: the channels' values, the wrists kept out of the torso (a path between
+        ``times``, in the trunk's frame: the channels' values, carried into the frame of
+        the trunk turned where a hand reaches across the body (:mod:`motor.arm.reach_turn`;
+        ``"trunk"``: its yaw ``(n, 1)``), the wrists kept out of the torso (a path between
         targets may cut through it) and the hands a palm thickness apart
         (:mod:`motor.body.collision`)."""
-        values = {}
-        for arm in ARMS:
-            wrists = outside_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
-            values[arm] = (wrists, _sample(self.timeline((arm, "hand_rotation")), times))
+        values = {arm: (_sample(self.timeline((arm, "wrist_position")), times), _sample(self.timeline((arm, "hand_rotation")), times)) for arm in ARMS}
+        turn = trunk_turn(self.avatar, values["left"][0], values["right"][0])
+        if turn is not None:
+            values = {arm: (turn.to_trunk(wrists), turn.hands_to_trunk(hands)) for arm, (wrists, hands) in values.items()}
+        values = {arm: (outside_torso(self.avatar, wrists), hands) for arm, (wrists, hands) in values.items()}
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
-        return {"left": (left, left_hands), "right": (right, right_hands)}
+        yaw = np.zeros((times.size, 1)) if turn is None else turn.yaw[:, None]
+        return {"left": (left, left_hands), "right": (right, right_hands), "trunk": (yaw,)}
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""

@@ -36,6 +36,11 @@ _MODEL_ARM_CM = 60.0
 #: (the blend is degenerate only for a hand raised behind the head).
 _DOWN_BACK = np.array([0.0, -1.0, -0.5]) / np.sqrt(1.25)
 RAISED = (0.2, 0.7)
+#: Within twice this (m) of the straight arm's reach the wrist eases toward a point this
+#: much short of it: at full stretch the elbow's bend, and with it the elbow's speed,
+#: changes without bound as the wrist comes back (a pop), and a clamped reach is a step in
+#: the wrist's speed.
+REACH_EASE = 0.015
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,7 +140,8 @@ class ElbowCircle:
     @staticmethod
     def of(chain: ArmChain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray | None) -> ElbowCircle:
         """The circles for wrist ``targets (n, 3)``; a target out of reach is replaced by
-        the nearest reachable point on the line from the shoulder."""
+        the nearest reachable point on the line from the shoulder — eased in within
+        :data:`REACH_EASE` of the arm's length, which it never quite reaches (:func:`_short_of`)."""
         upper, fore = chain.upper, chain.fore
         reach = targets - shoulder
         distance = quat.norm(reach)
@@ -144,7 +150,7 @@ class ElbowCircle:
         low, high = chain.flexion_range
         nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(high))
         farthest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(low))
-        reached = np.minimum(np.maximum(distance, nearest), farthest)
+        reached = np.maximum(_short_of(distance, farthest), nearest)
         cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
         flexion = np.arccos(np.minimum(np.maximum(cos_flexion, -1.0), 1.0))
         cos_shoulder = np.minimum(np.maximum((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0), 1.0)
@@ -185,6 +191,15 @@ class ElbowCircle:
         cos, sin = np.cos(psi)[..., None], np.sin(psi)[..., None]
         shape = (slice(None),) + (None,) * (psi.ndim - 1)
         return self.down[shape] * cos + self.out[shape] * sin
+
+
+def _short_of(distance: np.ndarray, farthest: float) -> np.ndarray:
+    """Shoulder-to-wrist distances kept short of ``farthest``: unchanged up to
+    ``farthest - 2 REACH_EASE``, beyond it rising with a C¹ exponential ease toward
+    ``farthest - REACH_EASE``."""
+    knee = farthest - 2.0 * REACH_EASE
+    beyond = np.maximum(distance - knee, 0.0)
+    return np.where(distance > knee, knee + REACH_EASE * (1.0 - np.exp(-beyond / REACH_EASE)), distance)
 
 
 def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, torso_q: np.ndarray | None) -> np.ndarray:

@@ -39,6 +39,10 @@ SHOULDER_SHARE = 0.25
 #: thick for 31 cm, the forearm about 6.5 cm for 27 cm).
 UPPER_ARM_RADIUS = 0.13
 FOREARM_RADIUS = 0.12
+#: Share of the forearm, from the elbow, that its default capsule covers: toward the
+#: wrist the forearm narrows to the hand's thickness, and the hand's capsule takes over
+#: (so two hands can touch palm to palm without their forearms overlapping).
+FOREARM_SHARE = 0.85
 #: Default palm thickness as a fraction of the hand's length (wrist to middle knuckle)
 #: when the avatar has no palm and back-of-hand locations to measure it from.
 PALM_THICKNESS = 0.31
@@ -129,9 +133,11 @@ def derived_volumes(
     The torso is the legacy cylinder; the pelvis an ellipsoid under it as wide and deep;
     the neck a capsule from ``vc7`` to ``skullbase`` as thick as the ``neck`` location lies
     in front of its bone; the head an ellipsoid through the ears, the top of the head, the
-    chin and the nose; the arms capsules along their bones, the upper arm kept clear of
-    the torso at rest; the hands capsules from the wrist to the middle finger's base, as
-    thick as the palm (the distance between the ``palm`` and ``handback`` locations).
+    chin and the nose; the arms capsules along their bones (the upper arm from a quarter
+    of the way down, kept clear of the torso at rest; the forearm to :data:`FOREARM_SHARE`
+    of the way to the wrist); the hands capsules from the wrist to the middle finger's
+    base, as thick as the palm (the distance between the ``palm`` and ``handback``
+    locations).
     """
     at = {name: rest_positions[i] for i, name in enumerate(joint_names)}
     site = lambda name: rest_positions[sites[name][0]] + sites[name][1]
@@ -154,7 +160,8 @@ def derived_volumes(
         clear = abs(shoulder[0] - center[0]) - torso.half_width
         radius = min(UPPER_ARM_RADIUS * upper, clear) if clear > 0 else UPPER_ARM_RADIUS * upper
         volumes.append(Capsule(f"{side}_upper_arm", f"{side}_shoulder", shoulder + SHOULDER_SHARE * (elbow - shoulder), elbow.copy(), radius))
-        volumes.append(Capsule(f"{side}_forearm", f"{side}_elbow", elbow.copy(), wrist.copy(), FOREARM_RADIUS * float(np.linalg.norm(wrist - elbow))))
+        fore = FOREARM_RADIUS * float(np.linalg.norm(wrist - elbow))
+        volumes.append(Capsule(f"{side}_forearm", f"{side}_elbow", elbow.copy(), elbow + FOREARM_SHARE * (wrist - elbow), fore))
         volumes.append(Capsule(f"{side}_hand", f"{side}_wrist", wrist.copy(), knuckle.copy(), 0.5 * palm))
     return CollisionVolumes(tuple(volumes), palm)
 

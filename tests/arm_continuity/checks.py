@@ -14,7 +14,7 @@ Figures per motion (60 fps unless the motion says otherwise):
   elbow, wrist) between two frames, degrees; ``turns_over_limit``: frames above
   :data:`TURN_LIMIT_DEG`;
 * ``torso_depth``: deepest point of an arm segment's surface (upper arm past its first
-  quarter, forearm) inside the torso cylinder, metres;
+  quarter, forearm) inside the torso cylinder, carried with the chest (``vt6``), metres;
 * ``arm_depth``: deepest overlap of one arm's segments (upper arm, forearm) with the
   other's, metres;
 * ``palm_gap``: smallest distance between the two palms' midlines (wrist → middle
@@ -43,8 +43,12 @@ WRAP_DEG = 90.0
 #: scaled by arm length for other avatars.
 UPPER_ARM_RADIUS = 0.04
 FOREARM_RADIUS = 0.032
-#: Fraction of the upper arm next to the shoulder that belongs to the shoulder's flesh.
+#: Fraction of the upper arm next to the shoulder that belongs to the shoulder's flesh,
+#: and of the forearm from the elbow that is as thick as the forearm (toward the wrist it
+#: narrows to the hand's thickness: hands touching palm to palm bring the wrists closer
+#: than two forearm radii).
 SHOULDER_PART = 0.25
+FOREARM_PART = 0.85
 #: Palm thickness of a 1.80 m avatar, metres (scaled like the radii).
 PALM_THICKNESS = 0.03
 _SAMPLES = np.linspace(0.0, 1.0, 9)
@@ -71,6 +75,11 @@ def figures(avatar: Avatar, motion: Motion) -> ArmFigures:
     joints = {side: {name: avatar.joint_index(f"{side}_{name}") for name in _ARM + ("middle1",)} for side in "lr"}
     at = {side: {name: pose.positions[:, index] for name, index in joints[side].items()} for side in "lr"}
     pops, elbow_speed = _pops(at, motion.fps)
+    # the torso turns with the chest (the trunk may turn where a hand reaches across)
+    chest = avatar.joint_index("vt6")
+    rotation, position = pose.orientations[:, chest], pose.positions[:, chest]
+    inverse = rotation * np.array([-1.0, -1.0, -1.0, 1.0])
+    in_chest = {side: {name: _rotate(inverse, p - position) + avatar.rest_positions[chest] for name, p in at[side].items()} for side in "lr"}
     turns = _turns(avatar, motion)
     wraps = sum(int(np.sum(np.abs(np.diff(_twist(avatar, motion, side))) > np.radians(WRAP_DEG))) for side in "lr")
     return ArmFigures(
@@ -79,11 +88,18 @@ def figures(avatar: Avatar, motion: Motion) -> ArmFigures:
         max_elbow_speed=elbow_speed,
         max_turn_deg=float(np.degrees(turns.max(initial=0.0))),
         turns_over_limit=int(np.sum(turns.max(axis=1, initial=0.0) > np.radians(TURN_LIMIT_DEG))) if turns.size else 0,
-        torso_depth=_torso_depth(avatar, at, scale),
+        torso_depth=_torso_depth(avatar, in_chest, scale),
         arm_depth=_arm_depth(at, scale),
         palm_gap=_palm_gap(at, scale),
         twist_wraps=wraps,
     )
+
+
+def _rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Vectors ``(n, 3)`` rotated by unit quaternions ``(n, 4)`` (scalar last)."""
+    u, w = q[:, :3], q[:, 3:4]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
 
 
 def _arm_length(avatar: Avatar) -> float:
@@ -135,7 +151,7 @@ def _torso_depth(avatar: Avatar, at: dict, scale: float) -> float:
     for side in "lr":
         s, e, w = at[side]["shoulder"], at[side]["elbow"], at[side]["wrist"]
         upper = s[:, None] + (SHOULDER_PART + (1 - SHOULDER_PART) * _SAMPLES)[None, :, None] * (e - s)[:, None]
-        fore = e[:, None] + _SAMPLES[None, :, None] * (w - e)[:, None]
+        fore = e[:, None] + (FOREARM_PART * _SAMPLES)[None, :, None] * (w - e)[:, None]
         # a point whose axis is outside but within a radius of the surface also counts
         for points, radius in ((upper, UPPER_ARM_RADIUS * scale), (fore, FOREARM_RADIUS * scale)):
             grown = _grown_cylinder_depth(avatar, points, radius)
@@ -173,7 +189,7 @@ def _arm_depth(at: dict, scale: float) -> float:
     segments = {
         side: (
             (at[side]["shoulder"] + SHOULDER_PART * (at[side]["elbow"] - at[side]["shoulder"]), at[side]["elbow"], UPPER_ARM_RADIUS * scale),
-            (at[side]["elbow"], at[side]["wrist"], FOREARM_RADIUS * scale),
+            (at[side]["elbow"], at[side]["elbow"] + FOREARM_PART * (at[side]["wrist"] - at[side]["elbow"]), FOREARM_RADIUS * scale),
         )
         for side in "lr"
     }

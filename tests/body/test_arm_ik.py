@@ -9,6 +9,7 @@ import pytest
 
 from motor import quaternion as quat
 from motor.arm.hand_orientation import hand_rotation
+from motor.arm.chain import REACH_EASE
 from motor.arm.ik import ArmSolution, solve_arm
 from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
@@ -49,7 +50,7 @@ def test_reachable_targets_are_met_within_a_millimetre(avatar, side):
     pose = _pose(avatar, side, solution)
     shoulder, elbow, wrist = (pose.positions[:, j] for j in avatar.arm_joints(side)[1:])
     reachable = solution.shortfall == 0.0
-    assert reachable.sum() > 0.6 * len(targets)
+    assert reachable.sum() > 0.5 * len(targets)  # the last 3 cm before full stretch are eased
     assert np.linalg.norm(wrist - targets, axis=1)[reachable].max() < 1e-3
     assert np.allclose(elbow, solution.elbow) and np.allclose(wrist, solution.wrist)
     low, high = avatar.limit(f"{side}_elbow", "flexion")
@@ -68,11 +69,12 @@ def test_unreachable_targets_land_on_the_reach_sphere(avatar, side):
     targets = np.array([[sign * 2.0, 0.5, 0.0], [0.0, 2.5, 0.3], [-sign * 1.5, 0.3, 1.5], [0.0, -1.0, 1.0]])
     solution = solve_arm(avatar, side, targets)
     reach = solution.wrist - solution.shoulder
-    assert np.allclose(np.linalg.norm(reach, axis=1), avatar.arm_length(side))
+    # the wrist stops short of full stretch by the reach's ease (the elbow never locks)
+    assert np.allclose(np.linalg.norm(reach, axis=1), avatar.arm_length(side) - REACH_EASE)
     wanted = targets - solution.shoulder
     cosine = np.sum(reach * wanted, axis=1) / np.linalg.norm(reach, axis=1) / np.linalg.norm(wanted, axis=1)
     assert np.allclose(cosine, 1.0)
-    assert np.allclose(solution.shortfall, np.linalg.norm(wanted, axis=1) - avatar.arm_length(side))
+    assert np.allclose(solution.shortfall, np.linalg.norm(wanted, axis=1) - avatar.arm_length(side) + REACH_EASE)
     assert np.all(solution.shortfall > 0.3)
 
 
