@@ -38,11 +38,12 @@ import math
 
 import numpy as np
 
+from motor import quaternion as quat
 from motor.arm.ik import solve_arm, swivel_of, swivel_zeros
 from motor.arm.reach_turn import TURN_JOINTS, trunk_turn, turned
 from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH, SwivelGrid
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso, separate_hands
+from motor.body.collision import HAND_BAND, hands_may_meet, outside_torso, separate_hands
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
 from motor.program.fragment import first_location
@@ -72,6 +73,10 @@ HISTORY = 1.0
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
+#: How much nearer (m) than the palm thickness the hands as the arms turned them may come
+#: before the wrists move apart again (:meth:`MotorControl._hands_apart`): they may
+#: overlap at most 4 mm, past the band in which they were eased apart as asked.
+REACHED_ALLOWANCE = HAND_BAND + 0.004
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 
@@ -262,6 +267,11 @@ class MotorControl:
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
         """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
+        return self._solve_frames(times)[0]
+
+    def _solve_frames(self, times: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
+        """Joint rotations ``(n, J, 4)`` at ``times``, the wrist positions each arm was
+        given ``(n, 3)`` (the trunk's frame) and the trunk's yaw ``(n,)``."""
         rotations = np.empty((times.size, self.avatar.joint_count, 4))
         rotations[:] = self._rest_rotations
         first, last = self._grid_span(times)
@@ -281,30 +291,48 @@ class MotorControl:
         turn = turned(self.avatar, inputs["trunk"][0][:, 0])
         if turn is not None:
             rotations[:, self._trunk_joints] = turn.local_rotations()
+        rows = {}
         for arm in ARMS:
             wrists, hands = inputs[arm]
             side = AVATAR_SIDE[arm]
             swivel, twist = self._grid.sample(arm, times, first, last)
-            rows = np.concatenate([wrists, hands, swivel, twist], axis=1)
-            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
-                lambda rows, side=side: solve_arm(
-                    self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]
-                ).rotations,
-                rows,
-            )
+            rows[arm] = np.concatenate([wrists, hands, swivel, twist], axis=1)
+            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm])
             params = _sample(self.timeline((arm, "handshape")), times)
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
-        return rotations
+        self._hands_apart(rotations, rows)
+        return rotations, {arm: rows[arm][:, :3] for arm in ARMS}, inputs["trunk"][0][:, 0]
+
+    def _hands_apart(self, rotations: np.ndarray, rows: dict[str, np.ndarray]) -> None:
+        """Where the hands as the arms turned them (not quite as asked, where the joint
+        limits fall short) would still come into each other, the wrists move apart
+        (:func:`motor.body.collision.separate_hands`, with the hands' reached rotations)
+        and those frames' arms are solved again (runs of identical frames once)."""
+        near = np.flatnonzero(hands_may_meet(self.avatar, rows["left"][:, :3], rows["right"][:, :3]))
+        if near.size == 0:
+            return
+        reached = {arm: _chain_rotation(rotations[near][:, self._arm_joints[arm]]) for arm in ARMS}
+        wrists = {arm: rows[arm][near, :3] for arm in ARMS}
+        left, right = separate_hands(self.avatar, wrists["left"], wrists["right"], reached["left"], reached["right"], REACHED_ALLOWANCE)
+        left, right = outside_torso(self.avatar, left), outside_torso(self.avatar, right)
+        moved = np.any(left != wrists["left"], axis=1) | np.any(right != wrists["right"], axis=1)
+        if not np.any(moved):
+            return
+        frames = near[moved]
+        for arm, apart in (("left", left), ("right", right)):
+            rows[arm][frames, :3] = apart[moved]
+            side = AVATAR_SIDE[arm]
+            rotations[frames[:, None], self._arm_joints[arm][None, :]] = _LastRun().apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm][frames])
 
     def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
         """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
         ``times``: the wrist channel's, kept out of the torso and the hands a palm
-        thickness apart."""
-        inputs = self._arm_inputs(np.asarray(times, dtype=float))
-        turn = turned(self.avatar, inputs["trunk"][0][:, 0])
-        return {arm: inputs[arm][0] if turn is None else turn.from_trunk(inputs[arm][0]) for arm in ARMS}
+        thickness apart (as asked, and as the arms turn them)."""
+        _, wrists, yaw = self._solve_frames(np.asarray(times, dtype=float))
+        turn = turned(self.avatar, yaw)
+        return wrists if turn is None else {arm: turn.from_trunk(points) for arm, points in wrists.items()}
 
     def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, ...]]:
         """Per arm, the wrist positions and hand rotations the IK is given at sorted
@@ -366,6 +394,21 @@ class MotorControl:
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
         return {channel: tuple(lmps) for channel, lmps in self._lmps.items()}
+
+
+def _solve_rows(avatar: Avatar, side: str, rows: np.ndarray) -> np.ndarray:
+    """Arm joint rotations ``(n, 4, 4)`` from rows of wrist, hand rotation, swivel, the
+    swivel's zero and the twist's reference (:meth:`MotorControl._rotations`)."""
+    return solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]).rotations
+
+
+def _chain_rotation(local: np.ndarray) -> np.ndarray:
+    """Global rotations ``(n, 4)`` of the last of a chain's local rotations ``(n, k, 4)``
+    below an unturned parent (the trunk's frame)."""
+    total = local[:, 0]
+    for index in range(1, local.shape[1]):
+        total = quat.multiply(total, local[:, index])
+    return total
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:

@@ -40,7 +40,7 @@ class SwivelLMP(VectorKeyframeLMP):
 #: steps, and how many grid points ahead each choice looks.
 SMOOTHNESS = 2.0
 MAX_STEP = 2
-HORIZON = 3
+HORIZON = 2
 
 
 @dataclass(frozen=True)

@@ -4,11 +4,12 @@ Every :data:`SWIVEL_PERIOD` seconds each candidate swivel of each arm gets the I
 (natural swivel, wrist comfort, clearance from the body: :func:`motor.arm.ik.track_costs`)
 and a swivel track walks through the candidates, a bounded step from one grid point to
 the next, toward what costs least now and :data:`motor.arm.swivel.HORIZON` grid points
-ahead (:func:`motor.arm.swivel.smooth_swivels`). The candidates turn with the swivel's
-zero from grid point to grid point, so that a track that stays on its candidate keeps
-the elbow where it was whatever the arm's elevation. The right arm's track is found
-first; the left arm's keeps clear of the right arm where that track puts it at the same
-grid point (a cost of the point itself, not of the look ahead). The forearm twist is
+ahead (:func:`motor.arm.swivel.smooth_swivels`). The track's steps follow the turn of
+the swivel's zero from grid point to grid point, so that a track that stays put keeps
+the elbow where it was whatever the arm's elevation. Each arm's track is found first on
+its own; where it comes near where the other arm's own track puts that arm, it is found
+again keeping clear of it at each grid point (a cost of the point itself, not of the look
+ahead) — both arms alike, so mirrored arms stay mirrored. The forearm twist is
 carried along the grid too (:func:`twist_track`): it never wraps from one limit to the
 other.
 
@@ -29,7 +30,7 @@ from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 
 #: Period of the grid, seconds.
-SWIVEL_PERIOD = 0.1
+SWIVEL_PERIOD = 0.125
 #: How many grid points a batch solves at least: short windows then share one batch.
 SWIVEL_LOOKAHEAD = 20
 #: How many grid points ahead a grid state depends on channel values.
@@ -103,20 +104,33 @@ class SwivelGrid:
             for arm in ARMS:
                 self._arms[arm].rows = self._arms[arm].rows[:0]
         count = end - start + 1
-        other = None
+        before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
+        costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm]) for arm in ARMS}
+        tracks, poses = {}, {}
+        for arm in ARMS:
+            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], None)
+        # each arm keeps clear of where the other's own track puts it (both alike: mirrored
+        # arms stay mirrored), at each grid point
+        segments = {arm: costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0]) for arm in ARMS}
+        for arm, other in zip(ARMS, ARMS[::-1]):
+            now = costs[arm].near_other(self.avatar, segments[other])
+            if np.any(now):
+                tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now)
         for arm in ARMS:
             side = AVATAR_SIDE[arm]
-            before = None if fresh else self._arms[arm].state(-1)
-            costs = track_costs(self.avatar, side, *inputs[arm])
-            now = None if other is None else costs.near_other(self.avatar, other)
-            cells, swivels = smooth_swivels(costs.costs, CANDIDATES, None if before is None else before[0], HORIZON, now, costs.turns)
-            elbows, wanted, certainty, flexion, deviation = costs.pose(swivels)
-            other = costs.segments(self.avatar, side, elbows)
+            cells, swivels = tracks[arm]
+            _, wanted, certainty, flexion, deviation = poses[arm]
             limits = self.avatar.limit(f"{side}_elbow", "twist")
-            twists = twist_track(wanted, certainty, None if before is None else before[1][0], limits)
-            wrist = wrist_track(np.stack([flexion, deviation], axis=1), certainty, None if before is None else before[1][1:])
-            rows = np.column_stack([cells, swivels, costs.turns[:count], costs.zeros[:count], twists, wanted, wrist])
+            twists = twist_track(wanted, certainty, None if before[arm] is None else before[arm][1][0], limits)
+            wrist = wrist_track(np.stack([flexion, deviation], axis=1), certainty, None if before[arm] is None else before[arm][1][1:])
+            rows = np.column_stack([cells, swivels, costs[arm].turns[:count], costs[arm].zeros[:count], twists, wanted, wrist])
             self._arms[arm].rows = np.concatenate([self._arms[arm].rows, rows])
+
+    @staticmethod
+    def _track(costs, before, now: np.ndarray | None) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, ...]]:
+        """One arm's track (candidates, swivels) and its pose there (:meth:`TrackCosts.pose`)."""
+        track = smooth_swivels(costs.costs, CANDIDATES, None if before is None else before[0], HORIZON, now, costs.turns)
+        return track, costs.pose(track[1])
 
     def forget_from(self, index: int) -> None:
         """Drop the states of grid indices ``index`` and later."""

@@ -229,7 +229,7 @@ def hand_segments(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarr
 
 
 def separate_hands(
-    avatar: Avatar, left: np.ndarray, right: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray
+    avatar: Avatar, left: np.ndarray, right: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray, allowance: float = 0.0
 ) -> tuple[np.ndarray, np.ndarray]:
     """Wrist positions ``(n, 3)`` of both arms moved apart where their hands would come
     closer than the palm thickness (the distance of the hands' midlines when palm meets
@@ -239,9 +239,7 @@ def separate_hands(
     from :data:`HAND_BAND` above the thickness, so hands meet without a speed step;
     hands farther apart are unchanged."""
     thickness = avatar.collision.palm_thickness
-    reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
-    # only hands whose wrists are within two hand lengths can meet
-    near = np.flatnonzero(quat.norm(left - right) < 2.0 * reach + thickness + HAND_BAND)
+    near = np.flatnonzero(hands_may_meet(avatar, left, right))
     if near.size == 0:
         return left, right
     l0, l1 = hand_segments(avatar, "l", left[near], left_hands[near])
@@ -252,13 +250,23 @@ def separate_hands(
     if not np.any(gap < HAND_BAND):
         return left, right
     eased = np.where(gap >= HAND_BAND, gap, HAND_BAND * np.exp(np.minimum(gap, HAND_BAND) / HAND_BAND - 1.0))
-    direction = between + 0.25 * thickness * _parting(l1 - l0, r1 - r0)
+    # where the hands (nearly) pass through each other, the line between them means little:
+    # tilt it toward the way they part
+    meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * thickness), 0.0)[:, None]
+    direction = between + 0.25 * thickness * meeting * _parting(l1 - l0, r1 - r0)
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
     half = (0.5 * (eased - gap))[:, None] * direction
     left, right = np.array(left, dtype=float), np.array(right, dtype=float)
     left[near] += half
     right[near] -= half
     return left, right
+
+
+def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.ndarray:
+    """Which wrist positions ``(n, 3)`` are near enough for the hands to come within the
+    palm thickness (and :data:`HAND_BAND`), whichever way the hands turn."""
+    reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
+    return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness + HAND_BAND
 
 
 def _parting(left: np.ndarray, right: np.ndarray) -> np.ndarray:
