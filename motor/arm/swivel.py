@@ -109,13 +109,8 @@ def smooth_swivels(
         cell += moves[row * count + cell % count]
         cells[row] = cell
     chosen = np.array(cells)
-    # where the elbow would stay: the candidate before, turned with the zero
-    expected = np.concatenate([[chosen[0] if previous is None else previous.cell], chosen[:-1]]) + turn[:rows]
-    if previous is None:
-        expected[0] = chosen[0]
     near = chosen[:, None] + np.array([-1, 0, 1])
-    quadratic = SMOOTHNESS * ((near - expected[:, None]) * step) ** 2
-    around = np.take_along_axis(value, near % count, axis=1) + quadratic
+    around = np.take_along_axis(value, near % count, axis=1)
     offsets = parabola_offset(around[:, 0], around[:, 1], around[:, 2])
     return chosen, candidates[0] + (chosen + offsets) * step
 

@@ -449,9 +449,9 @@ class _Reader:
         return Torso(_frozen(center), **values)
 
     def collision(self, data: Any, names: tuple[str, ...]) -> CollisionVolumes:
-        """The ``collision`` entry: ``palm_thickness`` and a list of volumes (format in
-        :mod:`motor.body.volumes`), every standard name present with an allowed shape."""
-        thickness = self.positive(self.field(data, "palm_thickness", "collision"), "collision.palm_thickness")
+        """The ``collision`` entry: a list of volumes (format in :mod:`motor.body.volumes`),
+        every standard name present with an allowed shape, and optionally
+        ``palm_thickness`` (else the hands' capsules' thickness)."""
         entries = self.field(data, "volumes", "collision")
         if not isinstance(entries, list):
             raise self.fail("collision.volumes", "expected a list of volumes")
@@ -468,6 +468,10 @@ class _Reader:
             if not isinstance(found, shapes):
                 allowed = " or ".join(_SHAPE_NAMES[s] for s in shapes)
                 raise self.fail(f"collision.volumes[{volumes.index(found)}].shape", f"volume {name!r} must be a {allowed}")
+        if "palm_thickness" in data:
+            thickness = self.positive(data["palm_thickness"], "collision.palm_thickness")
+        else:  # as thick as the hands' capsules
+            thickness = sum(v.radius for v in volumes if v.name in ("l_hand", "r_hand"))
         return CollisionVolumes(tuple(volumes), thickness)
 
     def volume(self, data: Any, where: str, names: tuple[str, ...]) -> Volume:

@@ -5,8 +5,8 @@
 * :func:`segment_distance` and :func:`capsule_distance` give signed distances between a
   capsule and any volume, vectorized over any leading axes (frames, candidates): exact
   for capsules, along the radial direction for ellipsoids and elliptic cylinders (exact
-  for spheres and circular cylinders; within a few millimetres for the body's mildly
-  elliptic shapes);
+  for spheres and circular cylinders; for the body's mildly elliptic shapes the sign is
+  exact and the depth within a few millimetres near the surface, within 10 % deep inside);
 * :func:`outside_torso` keeps wrist targets out of the torso, smoothly (C¹): a path that
   crosses the torso's front, top or bottom bends around it without a speed step;
 * :func:`separate_hands` keeps the two hands a palm thickness apart (hands touch, never
