@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
-from motor.arm.clearance import CLEARANCE, ArmSegments, clearance
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance
 from motor.body.avatar import Avatar
 from motor.body.collision import Components
 
@@ -84,7 +84,8 @@ def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
     count = len(CANDIDATES)
     costs = np.zeros((len(natural), count))
     circle = placement.circle
-    reach = circle.radius[:, None] + max(other.radii) + 0.05 + CLEARANCE
+    own = arm_capsules(avatar, placement.chain.side)
+    reach = circle.radius[:, None] + max(other.radii) + max(own.upper_radius, own.fore_radius) + CLEARANCE
     low = np.minimum(np.minimum(circle.shoulder, circle.wrist), circle.center - reach)
     high = np.maximum(np.maximum(circle.shoulder, circle.wrist), circle.center + reach)
     near = np.zeros(len(natural), dtype=bool)

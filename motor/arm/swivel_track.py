@@ -6,10 +6,9 @@ and a swivel track walks through the candidates, a bounded step from one grid po
 the next, toward what costs least now and :data:`motor.arm.swivel.HORIZON` grid points
 ahead (:func:`motor.arm.swivel.smooth_swivels`). The track's steps follow the turn of
 the swivel's zero from grid point to grid point, so that a track that stays put keeps
-the elbow where it was whatever the arm's elevation. Each arm's track is found first on
-its own; where it comes near where the other arm's own track puts that arm, it is found
-again keeping clear of it at each grid point (a cost of the point itself, not of the look
-ahead) — both arms alike, so mirrored arms stay mirrored. The forearm twist is
+the elbow where it was whatever the arm's elevation. The right arm's track is found
+first; the left arm's keeps clear of the right arm where that track puts it at the same
+grid point (a cost of the point itself, not of the look ahead). The forearm twist is
 carried along the grid too (:func:`twist_track`): it never wraps from one limit to the
 other.
 
@@ -107,15 +106,11 @@ class SwivelGrid:
         before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
         costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm]) for arm in ARMS}
         tracks, poses = {}, {}
+        other = None
         for arm in ARMS:
-            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], None)
-        # each arm keeps clear of where the other's own track puts it (both alike: mirrored
-        # arms stay mirrored), at each grid point
-        segments = {arm: costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0]) for arm in ARMS}
-        for arm, other in zip(ARMS, ARMS[::-1]):
-            now = costs[arm].near_other(self.avatar, segments[other])
-            if np.any(now):
-                tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now)
+            now = None if other is None else costs[arm].near_other(self.avatar, other)
+            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now if now is not None and np.any(now) else None)
+            other = costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0])
         for arm in ARMS:
             side = AVATAR_SIDE[arm]
             cells, swivels = tracks[arm]
