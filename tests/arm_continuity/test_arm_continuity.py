@@ -49,7 +49,6 @@ INFEASIBLE: dict[tuple[str, str], str] = {
     ("murml_05_bati_besen", "torso"): "one hand reaches across the chest while the other reaches far forward: the trunk cannot turn",
     ("sign_Ind_5", "arms"): "go-with-you: the hands cross the midline, so the forearms cross; which passes in front is not chosen",
     ("sign_Ind_5", "palms"): "go-with-you: the hands cross the midline into each other",
-    ("sign_Ger_8", "arms"): "TO-ACCOMPANY1B: parallel fists side by side, the forearms 0.2 mm past the limit",
 }
 _TIMING = re.compile(r'<timing onset="([0-9.]+)" end="([0-9.]+)"')
 _SIGN = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.DOTALL)
