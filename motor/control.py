@@ -4,11 +4,13 @@
 arm — wrist position, hand rotation, hand shape — holding every LMP activated so far.
 Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
 all frames of the window at once: first the externally formulated LMPs (wrist position,
-wrist rotation) are sampled and the wrists kept out of the torso and a palm thickness
-apart (:mod:`motor.body.collision`), then both arms' IK is solved (analytic, with the
-swivel track below), then the joint-space LMPs (hand shape → finger joint rotations) are
-applied; every other joint keeps its rest rotation and the root stands still at
-``(0, root_height, 0)``.
+wrist rotation) are sampled; where a hand reaches across the body the trunk turns toward
+it (:mod:`motor.arm.reach_turn`) and the arms are solved in the trunk's frame; the wrists
+are kept out of the torso and the hands a palm thickness apart (:mod:`motor.body.collision`);
+then both arms' IK is solved (analytic, with the swivel track below) — and solved again
+where the hands as the arms turned them would still meet; then the joint-space LMPs (hand
+shape → finger joint rotations) are applied; every other joint keeps its rest rotation
+and the root stands still at ``(0, root_height, 0)``.
 
 The elbow's swivel is a smooth function of time by construction: both arms' swivel
 tracks and forearm twists live on a fixed grid of the utterance clock, every
@@ -27,7 +29,7 @@ grid point asked for. Activating an LMP forgets the grid states that could see i
 where it was shown.
 
 Frames and grid states are computed ahead of the window asked for
-(:data:`FRAME_LOOKAHEAD`, :data:`SWIVEL_LOOKAHEAD`), so that short windows share the
+(:data:`FRAME_LOOKAHEAD`, :data:`motor.arm.swivel_track.SWIVEL_LOOKAHEAD`), so that short windows share the
 fixed cost of one computation; activating an LMP forgets what was computed ahead from
 where it can change things.
 """
