@@ -4,8 +4,8 @@ Given wrist targets (and optionally global hand rotations), for every frame at o
 
 1. the clavicle turns the shoulder toward far reaches (seed 000, rule 3);
 2. the elbow flexion follows from the law of cosines; a target out of reach is replaced
-   by the nearest reachable point on the line from the shoulder, and the distance it
-   fell short is reported (:mod:`motor.arm.chain`);
+   by the nearest reachable point on the line from the shoulder (eased short of full
+   stretch), and the distance it fell short is reported (:mod:`motor.arm.chain`);
 3. the elbow's swivel is either given (the motor control's smooth swivel track,
    :mod:`motor.arm.swivel`) or, for a single posture, the cheapest of
    :data:`CANDIDATES` refined by a parabola. The cost (:func:`swivel_costs`, the same
