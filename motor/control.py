@@ -63,7 +63,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import HAND_BAND, hands_may_meet, outside_torso, separate_hands
+from motor.body.collision import hands_may_meet, outside_torso, separate_hands
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
 from motor.program.fragment import first_location
@@ -97,9 +97,9 @@ HISTORY = 1.0
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
-#: before the wrists move apart again (:meth:`MotorControl._hands_apart`): they may
-#: overlap at most 4 mm, past the band in which they were eased apart as asked.
-REACHED_ALLOWANCE = HAND_BAND + 0.004
+#: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
+#: ``REACHED_ALLOWANCE - HAND_BAND`` and never overlap more than ``REACHED_ALLOWANCE``.
+REACHED_ALLOWANCE = 0.004
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 #: Module of a channel that is not an arm's: its LMPs go to the neck or the face.

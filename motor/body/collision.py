@@ -27,8 +27,10 @@ TORSO_MARGIN = 0.04
 #: and of the bands beyond its top, bottom and sides over which the push fades.
 SOFT_BAND = 0.02
 EDGE_BAND = 0.025
-#: Width (m) of the band above the palm thickness in which two hands are eased apart.
-HAND_BAND = 0.004
+#: Width (m) of the band above the palm thickness in which two hands are eased apart: a
+#: contact the planner places exactly at the palm thickness (:mod:`motor.program.fragment`)
+#: is left at most ``HAND_BAND / e`` (0.7 mm) wider.
+HAND_BAND = 0.002
 #: Sine of the angle between the hands' long axes from which they count as crossing.
 CROSSING_SINE = 0.3
 #: Side the left hand takes where the hands cross: up, a little to the left and forward.
@@ -237,8 +239,10 @@ def separate_hands(
     points. Where the hands cross or coincide that line is tilted toward
     :func:`_parting`, which it becomes where they meet. The distance kept eases in C¹
     from :data:`HAND_BAND` above the thickness, so hands meet without a speed step;
-    hands farther apart are unchanged."""
-    thickness = avatar.collision.palm_thickness
+    hands farther apart are unchanged. With an ``allowance`` (m) the hands may come that
+    much nearer than the palm thickness before they are moved (a second look at hands
+    already eased apart as asked)."""
+    thickness = avatar.collision.palm_thickness - allowance
     near = np.flatnonzero(hands_may_meet(avatar, left, right))
     if near.size == 0:
         return left, right

@@ -183,7 +183,7 @@ def derive_definition(body: Body) -> Definition:
         "grid": _grid(measure, reference, scales, face),
         "torso": _torso(measure, scales),
         "postures": _postures(measure, reference, scales),
-        "collision": {"volumes": _volumes(measure, scales, face)},
+        "collision": {"volumes": _volumes(measure, scales, face), "palm_thickness": _palm_thickness(locations)},
     }
     measure.guessed.append("joint limits, finger calibration and thumb postures: the reference avatar max's")
     if body.skin is None:
@@ -558,6 +558,14 @@ def _postures(m: _Measure, reference: dict, s: dict) -> dict:
         scaled = interim * np.array([s["width_ratio"], s["height_ratio"], s["arm_ratio"]])
         postures["interim_rest"][side] = {"wrist": scaled, "hand_rotation": reference["postures"]["interim_rest"][side]["hand_rotation"]}
     return postures
+
+
+def _palm_thickness(locations: dict) -> float:
+    """How far apart the hands' midlines are when palm touches palm: the right hand's
+    thickness from its palm to its back, as measured on the skin (both sites ride on the
+    wrist)."""
+    palm, back = locations["r_palm"], locations["r_handback"]
+    return float(np.linalg.norm(np.asarray(palm["offset"]) - np.asarray(back["offset"])))
 
 
 def _volumes(m: _Measure, s: dict, f: dict) -> list[dict]:
