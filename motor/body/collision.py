@@ -31,6 +31,9 @@ EDGE_BAND = 0.025
 #: contact the planner places exactly at the palm thickness (:mod:`motor.program.fragment`)
 #: is left at most ``HAND_BAND / e`` (0.7 mm) wider.
 HAND_BAND = 0.002
+#: Share of a hand's midline, from either end, within which the nearest point to the other
+#: hand counts as at that end (hands meeting end to end, :func:`separate_hands`).
+END_SHARE = 0.1
 #: Sine of the angle between the hands' long axes from which they count as crossing.
 CROSSING_SINE = 0.3
 #: Side the left hand takes where the hands cross: up, a little to the left and forward.
@@ -242,7 +245,8 @@ def separate_hands(
     hands farther apart are unchanged. With an ``allowance`` (m) the hands may come that
     much nearer than the palm thickness before they are moved (a second look at hands
     already eased apart as asked)."""
-    thickness = avatar.collision.palm_thickness - allowance
+    palm = avatar.collision.palm_thickness
+    thickness = palm - allowance
     near = np.flatnonzero(hands_may_meet(avatar, left, right))
     if near.size == 0:
         return left, right
@@ -255,9 +259,15 @@ def separate_hands(
         return left, right
     eased = np.where(gap >= HAND_BAND, gap, HAND_BAND * np.exp(np.minimum(gap, HAND_BAND) / HAND_BAND - 1.0))
     # where the hands (nearly) pass through each other, the line between them means little:
-    # tilt it toward the way they part
-    meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * thickness), 0.0)[:, None]
-    direction = between + 0.25 * thickness * meeting * _parting(l1 - l0, r1 - r0)
+    # tilt it toward the way they part — not where they meet end to end (fingertips or
+    # wrists touching: both nearest points at an end), which part along that line, as
+    # mirrored hands do symmetrically, unless the ends (nearly) coincide
+    distance = quat.norm(between)
+    meeting = np.maximum(1.0 - distance / (0.5 * palm), 0.0)
+    through = np.minimum(np.maximum(np.minimum(s, 1.0 - s), np.minimum(t, 1.0 - t)) / END_SHARE, 1.0)
+    coinciding = np.maximum(1.0 - distance / (END_SHARE * palm), 0.0)
+    tilt = (meeting * np.maximum(through, coinciding))[:, None]
+    direction = between + 0.25 * palm * tilt * _parting(l1 - l0, r1 - r0)
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
     half = (0.5 * (eased - gap))[:, None] * direction
     left, right = np.array(left, dtype=float), np.array(right, dtype=float)
