@@ -63,7 +63,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import hands_may_meet, outside_torso, separate_hands
+from motor.body.collision import hands_may_meet, kept_out_of_torso, separate_hands
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
 from motor.program.fragment import first_location
@@ -98,8 +98,12 @@ HISTORY = 1.0
 FRAME_LOOKAHEAD = 2.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
-#: ``REACHED_ALLOWANCE - HAND_BAND`` and never overlap more than ``REACHED_ALLOWANCE``.
-REACHED_ALLOWANCE = 0.004
+#: that (skin gives; moving the wrists for it would cost a movement that starts from a
+#: contact its minimum-jerk start) and never overlap more than that and
+#: :data:`motor.body.collision.HAND_BAND` together (5 mm).
+REACHED_ALLOWANCE = 0.003
+#: Most times the hands as the arms turned them are moved apart and the arms solved again.
+HANDS_APART_ROUNDS = 3
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 #: Module of a channel that is not an arm's: its LMPs go to the neck or the face.
@@ -250,7 +254,7 @@ class MotorControl:
         channel, kept out of the torso, moved by the hand rotation to the palm's centre
         (what gaze follows: the trunk's turn and the hands' separation, a few
         centimetres at most, are left out)."""
-        wrists = outside_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
+        wrists = kept_out_of_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
         hands = quat.normalize(_sample(self.timeline((arm, "hand_rotation")), times))
         return wrists + quat.rotate(hands, self._palm_offset[arm])
 
@@ -421,29 +425,32 @@ class MotorControl:
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
-        self._hands_apart(rotations, rows)
+        self._hands_apart(rotations, rows, inputs["apart"])
         return rotations, {arm: rows[arm][:, :3] for arm in ARMS}, inputs["trunk"][0][:, 0]
 
-    def _hands_apart(self, rotations: np.ndarray, rows: dict[str, np.ndarray]) -> None:
+    def _hands_apart(self, rotations: np.ndarray, rows: dict[str, np.ndarray], apart: tuple[np.ndarray, np.ndarray]) -> None:
         """Where the hands as the arms turned them (not quite as asked, where the joint
         limits fall short) would still come into each other, the wrists move apart
-        (:func:`motor.body.collision.separate_hands`, with the hands' reached rotations)
-        and those frames' arms are solved again (runs of identical frames once)."""
+        (:func:`motor.body.collision.separate_hands`, with the hands' reached rotations,
+        from where they were moved apart as asked: ``apart``, left and right, before the
+        torso), are kept out of the torso and those frames' arms are solved again; up to
+        :data:`HANDS_APART_ROUNDS` times, as solving again turns the hands anew."""
         near = np.flatnonzero(hands_may_meet(self.avatar, rows["left"][:, :3], rows["right"][:, :3]))
         if near.size == 0:
             return
-        reached = {arm: _chain_rotation(rotations[near][:, self._arm_joints[arm]]) for arm in ARMS}
-        wrists = {arm: rows[arm][near, :3] for arm in ARMS}
-        left, right = separate_hands(self.avatar, wrists["left"], wrists["right"], reached["left"], reached["right"], REACHED_ALLOWANCE)
-        left, right = outside_torso(self.avatar, left), outside_torso(self.avatar, right)
-        moved = np.any(left != wrists["left"], axis=1) | np.any(right != wrists["right"], axis=1)
-        if not np.any(moved):
-            return
-        frames = near[moved]
-        for arm, apart in (("left", left), ("right", right)):
-            rows[arm][frames, :3] = apart[moved]
-            side = AVATAR_SIDE[arm]
-            rotations[frames[:, None], self._arm_joints[arm][None, :]] = _LastRun().apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm][frames])
+        placed = {"left": apart[0][near], "right": apart[1][near]}
+        for _ in range(HANDS_APART_ROUNDS):
+            reached = {arm: _chain_rotation(rotations[near][:, self._arm_joints[arm]]) for arm in ARMS}
+            left, right = separate_hands(self.avatar, placed["left"], placed["right"], reached["left"], reached["right"], REACHED_ALLOWANCE)
+            moved = np.any(left != placed["left"], axis=1) | np.any(right != placed["right"], axis=1)
+            if not np.any(moved):
+                return
+            frames = near[moved]
+            for arm, wrists in (("left", left), ("right", right)):
+                placed[arm] = wrists
+                rows[arm][frames, :3] = kept_out_of_torso(self.avatar, wrists[moved])
+                side = AVATAR_SIDE[arm]
+                rotations[frames[:, None], self._arm_joints[arm][None, :]] = _LastRun().apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm][frames])
 
     def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
         """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
@@ -457,18 +464,24 @@ class MotorControl:
         """Per arm, the wrist positions and hand rotations the IK is given at sorted
         ``times``, in the trunk's frame: the channels' values, carried into the frame of
         the trunk turned where a hand reaches across the body (:mod:`motor.arm.reach_turn`;
-        ``"trunk"``: its yaw ``(n, 1)``), the wrists kept out of the torso (a path between
-        targets may cut through it) and the hands a palm thickness apart
-        (:mod:`motor.body.collision`)."""
+        ``"trunk"``: its yaw ``(n, 1)``), the hands a palm thickness apart and the wrists
+        kept out of the torso (a path between targets may cut through it;
+        :mod:`motor.body.collision`); ``"apart"``: the left and right wrists before the
+        torso (:meth:`_hands_apart` moves them on from there, so that the torso's ease is
+        taken once)."""
         values = {arm: (_sample(self.timeline((arm, "wrist_position")), times), _sample(self.timeline((arm, "hand_rotation")), times)) for arm in ARMS}
         turn = trunk_turn(self.avatar, values["left"][0], values["right"][0])
         if turn is not None:
             values = {arm: (turn.to_trunk(wrists), turn.hands_to_trunk(hands)) for arm, (wrists, hands) in values.items()}
-        values = {arm: (outside_torso(self.avatar, wrists), hands) for arm, (wrists, hands) in values.items()}
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
         yaw = np.zeros((times.size, 1)) if turn is None else turn.yaw[:, None]
-        return {"left": (left, left_hands), "right": (right, right_hands), "trunk": (yaw,)}
+        return {
+            "left": (kept_out_of_torso(self.avatar, left), left_hands),
+            "right": (kept_out_of_torso(self.avatar, right), right_hands),
+            "trunk": (yaw,),
+            "apart": (left, right),
+        }
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""

@@ -7,10 +7,19 @@
   for capsules, along the radial direction for ellipsoids and elliptic cylinders (exact
   for spheres and circular cylinders; for the body's mildly elliptic shapes the sign is
   exact and the depth within a few millimetres near the surface, within 10 % deep inside);
-* :func:`outside_torso` keeps wrist targets out of the torso, smoothly (C¹): a path that
-  crosses the torso's front, top or bottom bends around it without a speed step;
-* :func:`separate_hands` keeps the two hands a palm thickness apart (hands touch, never
-  overlap), smoothly too; hands whose paths cross pass one over the other.
+* :func:`outside_torso` places wrist targets out of the torso (what the planners place
+  their targets and paths with); :func:`kept_out_of_torso` keeps every frame's wrist
+  targets out of it, smoothly (what the motor control does to whatever it is given): a
+  path that crosses the torso's front, top or bottom bends around it;
+* :func:`separate_hands` keeps the two hands a palm thickness apart, smoothly too: hands
+  placed in contact stay as placed, hands asked to overlap are bent apart (to within
+  :data:`HAND_BAND`); hands whose paths cross pass one over the other.
+
+Both eases are C² (:func:`_eased`): a path that enters their band changes neither speed
+nor acceleration with a step. The torso's band lies in front of its margin (a clearance:
+nothing is left inside it), the hands' band below the palm thickness (a contact: the
+planners place hands that touch exactly there, and a movement that starts from the
+contact keeps its planned minimum-jerk profile).
 """
 
 from __future__ import annotations
@@ -23,17 +32,18 @@ from motor.body.volumes import Capsule, Ellipsoid, EllipticCylinder, Volume
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
-#: Width (m) of the band above the torso's front in which a wrist target is eased out,
-#: and of the bands beyond its top, bottom and sides over which the push fades.
+#: Width (m) of the band in front of the torso's margin in which a wrist target is eased
+#: out (:func:`kept_out_of_torso`), and of the bands beyond its top, bottom and sides over
+#: which that push fades.
 SOFT_BAND = 0.02
 EDGE_BAND = 0.025
-#: Width (m) of the band above the palm thickness in which two hands are eased apart: a
-#: contact the planner places exactly at the palm thickness (:mod:`motor.program.fragment`)
-#: is left at most ``HAND_BAND / e`` (0.7 mm) wider.
+#: Depth (m) of the band below the palm thickness into which hands asked to come nearer
+#: are eased (:func:`separate_hands`): they overlap at most that much, while a contact
+#: placed at the palm thickness (:mod:`motor.program.fragment`) stays exactly as placed.
 HAND_BAND = 0.002
-#: Share of a hand's midline, from either end, within which the nearest point to the other
-#: hand counts as at that end (hands meeting end to end, :func:`separate_hands`).
-END_SHARE = 0.1
+#: Fractions of a hand's midline (from the wrist to the knuckles) over which hands whose
+#: nearest points both lie past them count as meeting at their ends (:func:`_parting`).
+END_SHARE = (0.6, 0.8)
 #: Sine of the angle between the hands' long axes from which they count as crossing.
 CROSSING_SINE = 0.3
 #: Side the left hand takes where the hands cross: up, a little to the left and forward.
@@ -181,20 +191,41 @@ def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components)
 
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
-    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) kept out of the torso.
+    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) placed out of the torso:
+    a point inside its elliptic cylinder grown by :data:`TORSO_MARGIN`, or behind it
+    within its width, moved forward onto the grown cylinder's front surface; the others
+    unchanged. What planners place their targets and path samples with (gestures
+    :mod:`motor.arm.wrist_path`, signs, verbs): idempotent, and :func:`kept_out_of_torso`
+    leaves what it returns where it is."""
+    torso = avatar.torso
+    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
+    dx = (points[:, 0] - torso.center[0]) / a
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
+    inside = inside_torso(avatar, points)
+    if not np.any(inside):
+        return points
+    out = np.array(points, dtype=float)
+    out[:, 2] = np.where(inside, front, out[:, 2])
+    return out
+
+
+def kept_out_of_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
+    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) kept out of the torso,
+    smoothly (C¹): what the motor control does to every frame's wrist targets, whoever
+    made them.
 
     The torso's elliptic cylinder grown by :data:`TORSO_MARGIN`: a point inside it, or
-    behind it within its width, is moved forward to its front surface; a point in front
-    of the surface by less than :data:`SOFT_BAND` is eased out with a C¹ curve (so a path
-    meeting the surface bends instead of stopping dead), and beyond the torso's top,
-    bottom and sides the push fades out over :data:`EDGE_BAND`. Points farther away are
-    unchanged; no moved point is left inside."""
+    behind it within its width, is moved forward out of it; a point in front of its
+    surface by less than :data:`SOFT_BAND` is eased out with a C² curve (:func:`_eased`:
+    a path meeting the surface bends instead of stopping dead), and beyond the torso's
+    top, bottom and sides the push fades out over :data:`EDGE_BAND`. Points farther away
+    are unchanged; no moved point is left inside."""
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
     dx = np.abs(points[:, 0] - torso.center[0]) / a
     front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
     gap = points[:, 2] - front
-    eased = np.where(gap >= SOFT_BAND, gap, SOFT_BAND * np.exp(np.minimum(gap, SOFT_BAND) / SOFT_BAND - 1.0))
+    eased = _eased(gap, SOFT_BAND)
     fade = (
         _fade(torso.bottom - points[:, 1])
         * _fade(points[:, 1] - torso.top)
@@ -204,19 +235,28 @@ def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     if not np.any(push > 0.0):
         return points
     out = np.array(points, dtype=float)
-    out[:, 2] += push
+    # measured from the surface, so that a point pushed whole lands on or past it exactly
+    out[:, 2] = np.where(push > 0.0, front + eased + (1.0 - fade) * (gap - eased), out[:, 2])
     return out
 
 
-def inside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
-    """Which wrist positions ``(n, 3)`` lie inside the torso grown by :data:`TORSO_MARGIN`,
-    or behind it within its width: those :func:`outside_torso` moves out (it never leaves
-    one there)."""
+def inside_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGIN) -> np.ndarray:
+    """Which wrist positions ``(n, 3)`` lie inside the torso grown by ``margin`` (m), or
+    behind it within its width: with :data:`TORSO_MARGIN`, those :func:`outside_torso`
+    places (and :func:`kept_out_of_torso` moves out: neither leaves one there)."""
     torso = avatar.torso
-    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
+    a, b = torso.half_width + margin, torso.half_depth + margin
     dx = (points[:, 0] - torso.center[0]) / a
     front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
     return (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+
+
+def _eased(gap: np.ndarray, band: float) -> np.ndarray:
+    """Distances (m) past a limit kept positive, smoothly: unchanged from ``band`` on,
+    below it ``band (1 + tanh(gap / band - 1))`` — equal in value, slope and curvature at
+    ``band`` (C²), rising monotonically from 0 (however deep the point was) to ``band``."""
+    rise = np.exp(2.0 * (np.minimum(gap, band) / band - 1.0))  # 1 + tanh(x) = 2 e^2x / (1 + e^2x), > 0
+    return np.where(gap >= band, gap, 2.0 * band * rise / (1.0 + rise))
 
 
 def _fade(beyond: np.ndarray) -> np.ndarray:
@@ -240,11 +280,12 @@ def separate_hands(
     closer than the palm thickness (the distance of the hands' midlines when palm meets
     palm): each wrist moves half the deficit along the line between the hands' nearest
     points. Where the hands cross or coincide that line is tilted toward
-    :func:`_parting`, which it becomes where they meet. The distance kept eases in C¹
-    from :data:`HAND_BAND` above the thickness, so hands meet without a speed step;
-    hands farther apart are unchanged. With an ``allowance`` (m) the hands may come that
-    much nearer than the palm thickness before they are moved (a second look at hands
-    already eased apart as asked)."""
+    :func:`_parting`, which it becomes where they meet. Hands at least the thickness
+    apart are unchanged (a contact placed at the thickness stays as placed); nearer ones
+    are eased apart in C² (:func:`_eased`, shifted) into :data:`HAND_BAND` below it, so
+    hands asked through each other bend apart without a speed or acceleration step and
+    overlap at most that much. With an ``allowance`` (m) the thickness is taken that much
+    smaller (a second look at hands already eased apart as asked)."""
     palm = avatar.collision.palm_thickness
     thickness = palm - allowance
     near = np.flatnonzero(hands_may_meet(avatar, left, right))
@@ -255,19 +296,13 @@ def separate_hands(
     s, t = closest_parameters(l0, l1, r0, r1)
     between = (l0 + s[:, None] * (l1 - l0)) - (r0 + t[:, None] * (r1 - r0))
     gap = quat.norm(between) - thickness
-    if not np.any(gap < HAND_BAND):
+    if not np.any(gap < 0.0):
         return left, right
-    eased = np.where(gap >= HAND_BAND, gap, HAND_BAND * np.exp(np.minimum(gap, HAND_BAND) / HAND_BAND - 1.0))
+    eased = _eased(gap + HAND_BAND, HAND_BAND) - HAND_BAND
     # where the hands (nearly) pass through each other, the line between them means little:
-    # tilt it toward the way they part — not where they meet end to end (fingertips or
-    # wrists touching: both nearest points at an end), which part along that line, as
-    # mirrored hands do symmetrically, unless the ends (nearly) coincide
-    distance = quat.norm(between)
-    meeting = np.maximum(1.0 - distance / (0.5 * palm), 0.0)
-    through = np.minimum(np.maximum(np.minimum(s, 1.0 - s), np.minimum(t, 1.0 - t)) / END_SHARE, 1.0)
-    coinciding = np.maximum(1.0 - distance / (END_SHARE * palm), 0.0)
-    tilt = (meeting * np.maximum(through, coinciding))[:, None]
-    direction = between + 0.25 * palm * tilt * _parting(l1 - l0, r1 - r0)
+    # tilt it toward the way they part
+    meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * palm), 0.0)[:, None]
+    direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, palm)
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
     half = (0.5 * (eased - gap))[:, None] * direction
     left, right = np.array(left, dtype=float), np.array(right, dtype=float)
@@ -278,20 +313,34 @@ def separate_hands(
 
 def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.ndarray:
     """Which wrist positions ``(n, 3)`` are near enough for the hands to come within the
-    palm thickness (and :data:`HAND_BAND`), whichever way the hands turn."""
+    palm thickness, whichever way the hands turn."""
     reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
-    return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness + HAND_BAND
+    return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness
 
 
-def _parting(left: np.ndarray, right: np.ndarray) -> np.ndarray:
-    """The way the left hand leaves the right where they touch: across both hands
-    (perpendicular to their long axes ``left``, ``right`` (n, 3)) where they cross —
-    the side toward the avatar's top and left — and toward the avatar's left where they
-    lie side by side (palm against palm), blended between."""
+def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarray, t: np.ndarray, palm: float) -> np.ndarray:
+    """The way the left hand leaves the right where they touch, for hands with long axes
+    ``left``, ``right`` (n, 3), wrists ``apart`` (left less right, (n, 3)) and nearest
+    points at the fractions ``s``, ``t`` of their midlines: where the hands meet near
+    their ends (fingers into fingers, or wrist against wrist) they are drawn apart along
+    the line between the wrists (mirrored hands stay mirrored); where they cross
+    elsewhere, across both hands (perpendicular to their long axes) — the side toward the
+    avatar's top and left — and toward the avatar's left where they lie side by side
+    (palm against palm); blended between."""
     across = quat.cross(left, right)
     sine = quat.norm(across) / np.maximum(quat.norm(left) * quat.norm(right), _TINY)
     across = across * np.where(across @ _PREFERRED >= 0.0, 1.0, -1.0)[:, None]
     across = across / np.maximum(quat.norm(across), _TINY)[:, None]
     weight = np.minimum(np.maximum(sine / CROSSING_SINE, 0.0), 1.0)[:, None]
     parting = weight * across + (1.0 - weight) * np.array([1.0, 0.0, 0.0])
+    spread = quat.norm(apart)
+    ends = np.maximum(_smooth_ramp(np.minimum(s, t), END_SHARE), _smooth_ramp(1.0 - np.maximum(s, t), END_SHARE))
+    drawn = (ends * np.minimum(spread / palm, 1.0))[:, None]
+    parting = drawn * apart / np.maximum(spread, _TINY)[:, None] + (1.0 - drawn) * parting
     return parting / np.maximum(quat.norm(parting), _TINY)[:, None]
+
+
+def _smooth_ramp(value: np.ndarray, edges: tuple[float, float]) -> np.ndarray:
+    """0 below ``edges[0]``, 1 above ``edges[1]``, smoothstep between."""
+    u = np.minimum(np.maximum((value - edges[0]) / (edges[1] - edges[0]), 0.0), 1.0)
+    return u * u * (3.0 - 2.0 * u)

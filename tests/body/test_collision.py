@@ -11,7 +11,16 @@ import pytest
 
 from motor import quaternion as quat
 from motor.body.avatar import AVATAR_DIR, AvatarError, load_avatar
-from motor.body.collision import HAND_BAND, SOFT_BAND, capsule_distance, inside_torso, outside_torso, segment_distance, separate_hands
+from motor.body.collision import (
+    HAND_BAND,
+    SOFT_BAND,
+    capsule_distance,
+    inside_torso,
+    kept_out_of_torso,
+    outside_torso,
+    segment_distance,
+    separate_hands,
+)
 from motor.body.volumes import BODY_NAMES, Capsule, Ellipsoid, EllipticCylinder, derived_volumes, required_volumes
 
 RNG = np.random.default_rng(11)
@@ -135,31 +144,38 @@ def test_cylinder_distance_sign_matches_brute_force(trial):
 
 def test_wrists_are_kept_out_of_the_torso_smoothly(avatar):
     """Along a path straight through the torso the pushed wrist never ends inside, and
-    its position changes continuously with a continuous first derivative (no speed step)."""
+    its position changes continuously with a continuous first derivative (no speed step);
+    points the planners placed out of the torso stay out of it."""
     front = avatar.torso.center[2] + avatar.torso.half_depth
     z = np.linspace(front + 0.2, -0.2, 4001)
     path = np.stack([np.full_like(z, 0.05), np.full_like(z, 0.3), z], axis=1)
-    pushed = outside_torso(avatar, path)
+    pushed = kept_out_of_torso(avatar, path)
     assert not np.any(inside_torso(avatar, pushed))
     velocity = np.diff(pushed[:, 2]) / np.diff(z)
     # a continuous derivative: from sample to sample it changes by at most its curvature
-    # (the ease's, 1 / SOFT_BAND) times the step
+    # (the ease's, below 1 / SOFT_BAND) times the step
     assert np.max(np.abs(np.diff(velocity))) < 2.0 * abs(z[1] - z[0]) / SOFT_BAND
     far = path[:10]
-    assert np.array_equal(outside_torso(avatar, far), far)
+    assert np.array_equal(kept_out_of_torso(avatar, far), far)
+    placed = outside_torso(avatar, path)
+    assert not np.any(inside_torso(avatar, placed))
+    assert np.array_equal(outside_torso(avatar, placed), placed)
+    assert not np.any(inside_torso(avatar, kept_out_of_torso(avatar, placed)))
 
 
 def test_hands_are_kept_a_palm_thickness_apart_symmetrically(avatar):
-    """Both wrists at one point (the join_hands case) end a palm thickness apart, mirrored
-    about the midline; hands far apart are left alone."""
+    """Both wrists at one point (the join_hands case) end a palm thickness apart (less the
+    band into which hands asked to overlap are eased), mirrored about the midline; hands
+    in contact and hands far apart are left alone."""
     wrist = np.array([[0.0, 0.3, 0.3]])
     facing = quat.from_axis_angle(np.array([[1.0, 0.0, 0.0]]), np.array([-np.pi / 2]))
     left, right = separate_hands(avatar, wrist, wrist.copy(), facing, facing)
-    assert np.linalg.norm(left - right) == pytest.approx(avatar.collision.palm_thickness, abs=0.002)
+    assert np.linalg.norm(left - right) == pytest.approx(avatar.collision.palm_thickness - HAND_BAND, abs=1e-4)
     np.testing.assert_allclose(left * [-1, 1, 1], right, atol=1e-12)
-    apart = np.array([[0.3, 0.3, 0.3]]), np.array([[-0.3, 0.3, 0.3]])
-    kept = separate_hands(avatar, *apart, facing, facing)
-    assert all(np.array_equal(k, a) for k, a in zip(kept, apart))
+    half = np.array([0.5 * avatar.collision.palm_thickness, 0.0, 0.0])
+    for pair in ((wrist + half, wrist - half), (np.array([[0.3, 0.3, 0.3]]), np.array([[-0.3, 0.3, 0.3]]))):
+        kept = separate_hands(avatar, *pair, facing, facing)
+        assert all(np.array_equal(k, a) for k, a in zip(kept, pair))
 
 
 def test_hands_meet_without_a_speed_step(avatar):
