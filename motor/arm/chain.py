@@ -147,10 +147,8 @@ class ElbowCircle:
         distance = quat.norm(reach)
         fallback = _turned(torso_q, np.array([0.0, -1.0, 0.0]))
         axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
-        low, high = chain.flexion_range
-        nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(high))
-        farthest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(low))
-        reached = np.maximum(_short_of(distance, farthest), nearest)
+        nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(chain.flexion_range[1]))
+        reached = np.maximum(_short_of(distance, _farthest(chain)), nearest)
         cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
         flexion = np.arccos(np.minimum(np.maximum(cos_flexion, -1.0), 1.0))
         cos_shoulder = np.minimum(np.maximum((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0), 1.0)
@@ -193,13 +191,26 @@ class ElbowCircle:
         return self.down[shape] * cos + self.out[shape] * sin
 
 
+def _farthest(chain: ArmChain) -> float:
+    """Shoulder-to-wrist distance (m) of the arm stretched as far as its elbow goes."""
+    upper, fore = chain.upper, chain.fore
+    return float(np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(chain.flexion_range[0])))
+
+
+def exact_reach(chain: ArmChain) -> float:
+    """The farthest shoulder-to-wrist distance (m) the arm reaches exactly, where its reach
+    starts to ease (:func:`_short_of`): what planners place their paths within, so that
+    the arm follows them as planned."""
+    return _farthest(chain) - 2.0 * REACH_EASE
+
+
 def _short_of(distance: np.ndarray, farthest: float) -> np.ndarray:
     """Shoulder-to-wrist distances kept short of ``farthest``: unchanged up to
-    ``farthest - 2 REACH_EASE``, beyond it rising with a C¹ exponential ease toward
-    ``farthest - REACH_EASE``."""
+    ``farthest - 2 REACH_EASE``, beyond it rising with a C² ease (tanh: equal in value,
+    slope and curvature at the knee) toward ``farthest - REACH_EASE``."""
     knee = farthest - 2.0 * REACH_EASE
     beyond = np.maximum(distance - knee, 0.0)
-    return np.where(distance > knee, knee + REACH_EASE * (1.0 - np.exp(-beyond / REACH_EASE)), distance)
+    return np.where(distance > knee, knee + REACH_EASE * np.tanh(beyond / REACH_EASE), distance)
 
 
 def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, torso_q: np.ndarray | None) -> np.ndarray:
