@@ -42,7 +42,8 @@ EDGE_BAND = 0.025
 #: placed at the palm thickness (:mod:`motor.program.fragment`) stays exactly as placed.
 HAND_BAND = 0.002
 #: Fractions of a hand's midline (from the wrist to the knuckles) over which hands whose
-#: nearest points both lie past them count as meeting at their ends (:func:`_parting`).
+#: nearest points both lie past them, and whose wrists lie as far apart, count as meeting
+#: fingers into fingers (:func:`_parting`).
 END_SHARE = (0.6, 0.8)
 #: Sine of the angle between the hands' long axes from which they count as crossing.
 CROSSING_SINE = 0.3
@@ -302,7 +303,8 @@ def separate_hands(
     # where the hands (nearly) pass through each other, the line between them means little:
     # tilt it toward the way they part
     meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * palm), 0.0)[:, None]
-    direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, palm)
+    length = float(np.linalg.norm(avatar.collision.arm("r", "hand").b - avatar.collision.arm("r", "hand").a))
+    direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, length)
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
     half = (0.5 * (eased - gap))[:, None] * direction
     left, right = np.array(left, dtype=float), np.array(right, dtype=float)
@@ -318,15 +320,16 @@ def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.nd
     return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness
 
 
-def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarray, t: np.ndarray, palm: float) -> np.ndarray:
+def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarray, t: np.ndarray, length: float) -> np.ndarray:
     """The way the left hand leaves the right where they touch, for hands with long axes
-    ``left``, ``right`` (n, 3), wrists ``apart`` (left less right, (n, 3)) and nearest
-    points at the fractions ``s``, ``t`` of their midlines: where the hands meet near
-    their ends (fingers into fingers, or wrist against wrist) they are drawn apart along
-    the line between the wrists (mirrored hands stay mirrored); where they cross
-    elsewhere, across both hands (perpendicular to their long axes) — the side toward the
-    avatar's top and left — and toward the avatar's left where they lie side by side
-    (palm against palm); blended between."""
+    ``left``, ``right`` (n, 3), wrists ``apart`` (left less right, (n, 3)), nearest
+    points at the fractions ``s``, ``t`` of their midlines and midlines ``length`` (m)
+    long: where the fingers of hands whose wrists are most of a hand apart run into each
+    other, they are drawn apart along the line between the wrists (mirrored hands stay
+    mirrored); where they cross otherwise (one hand over the other, wrists near), across
+    both hands (perpendicular to their long axes) — the side toward the avatar's top and
+    left — and toward the avatar's left where they lie side by side (palm against palm);
+    blended between."""
     across = quat.cross(left, right)
     sine = quat.norm(across) / np.maximum(quat.norm(left) * quat.norm(right), _TINY)
     across = across * np.where(across @ _PREFERRED >= 0.0, 1.0, -1.0)[:, None]
@@ -334,8 +337,7 @@ def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarr
     weight = np.minimum(np.maximum(sine / CROSSING_SINE, 0.0), 1.0)[:, None]
     parting = weight * across + (1.0 - weight) * np.array([1.0, 0.0, 0.0])
     spread = quat.norm(apart)
-    ends = np.maximum(_smooth_ramp(np.minimum(s, t), END_SHARE), _smooth_ramp(1.0 - np.maximum(s, t), END_SHARE))
-    drawn = (ends * np.minimum(spread / palm, 1.0))[:, None]
+    drawn = (_smooth_ramp(np.minimum(s, t), END_SHARE) * _smooth_ramp(spread / length, END_SHARE))[:, None]
     parting = drawn * apart / np.maximum(spread, _TINY)[:, None] + (1.0 - drawn) * parting
     return parting / np.maximum(quat.norm(parting), _TINY)[:, None]
 
