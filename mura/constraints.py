@@ -43,11 +43,13 @@ class Symmetry:
 
     ``planes`` holds the mirror planes: ``S`` sagittal (left–right), ``T`` transversal
     (up–down), ``F`` frontal (front–back). Plain ``Sym`` names no plane; mura reads it as
-    the sagittal mirror, the symmetry of almost every two-handed gesture.
+    the sagittal mirror, the symmetry of almost every two-handed gesture. ``alternating``
+    makes the hands take turns (HamNoSys ``hamalternatingmotion`` after the operator).
     """
 
     planes: frozenset[str]
     name: str
+    alternating: bool = False
 
     @property
     def mirrors_sagittal(self) -> bool:
@@ -152,6 +154,9 @@ class Repetition:
     ``mode`` says where each repetition starts (HamNoSys): ``fromstart`` (back to the
     initial posture), ``continue`` (on from where the last one ended) or ``reverse``
     (back along the same path); ``alternating`` makes the two hands take turns.
+    ``displacement`` is a straight movement that shifts every pass after the first by
+    its direction and size once more (HamNoSys ``( move repeat move )``: a repetition
+    with displacement, such as shelves stacked downwards), None for repetition in place.
     """
 
     child: Constraint
@@ -159,6 +164,7 @@ class Repetition:
     where: SourceLocation | None = field(default=None, compare=False)
     mode: str = "fromstart"
     alternating: bool = False
+    displacement: Segment | None = None
 
 
 Constraint = Union[Static, Dynamic, Parallel, Sequence, Symmetrical, Repetition]
