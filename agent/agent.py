@@ -32,6 +32,7 @@ from blackboard.scheduler import (
 )
 from motor.body.avatar import Avatar, load_avatar
 from motor.control import MotorControl
+from mura.lexicon import GestureLexicon
 from tts import SpeechSynthesizer, make_synthesizer
 from tts.playback import PlaybackUnavailable, make_player
 
@@ -44,6 +45,8 @@ class Agent:
         tts: ``"fake"``, ``"espeak"``, ``"pyttsx3"``, ``"default"`` or a synthesizer.
         fps: frame rate of the motion, frames per second.
         voice, rate: passed to the speech backend.
+        lexicon: the gesture lexicon functions are looked up in (the bundled one when None;
+            see :func:`mura.lexicon.load_lexicons`).
     """
 
     def __init__(
@@ -53,7 +56,9 @@ class Agent:
         fps: float = 60.0,
         voice: str | None = None,
         rate: float = 1.0,
+        lexicon: GestureLexicon | None = None,
     ) -> None:
+        self.lexicon = lexicon
         self.avatar = load_avatar(avatar) if isinstance(avatar, str) else avatar
         self.tts = make_synthesizer(tts) if isinstance(tts, str) else tts
         self.fps = float(fps)
@@ -65,7 +70,7 @@ class Agent:
     def render(self, utterance: UtteranceSource, name: str | None = None) -> Performance:
         """Perform ``utterance`` offline; raises :class:`SpecError` for a bad spec and
         :class:`PerformanceError` (with the part performed) when a chunk fails."""
-        model, default_name = read_utterance(utterance)
+        model, default_name = read_utterance(utterance, self.lexicon)
         scheduler = Scheduler(self.tts, MotorControl(self.avatar, self.fps), VirtualClock(), self.config)
         try:
             result = scheduler.run(model, name or default_name)
@@ -80,7 +85,8 @@ class Agent:
         (and NAME.glb with ``glb``) in ``directory``, in memory that does not grow with its
         length; the files equal ``render(...).save(directory)``'s. Raises as :meth:`render`
         does (``partial`` None)."""
-        return render_to_files(utterance, directory, self.tts, self.avatar, self.fps, self.config, name, glb=glb)
+        model, default_name = read_utterance(utterance, self.lexicon)
+        return render_to_files(model, directory, self.tts, self.avatar, self.fps, self.config, name or default_name, glb=glb)
 
     def subscribe(self, observer: Callable[[Event], None]) -> None:
         """Receive every event of live utterances (chunk states, feedback, frames)."""
@@ -90,7 +96,7 @@ class Agent:
 
     def say(self, utterance: UtteranceSource, name: str | None = None, audio: bool = True) -> LiveUtterance:
         """Perform ``utterance`` live; returns at once with a handle to wait on or interrupt."""
-        model, default_name = read_utterance(utterance)
+        model, default_name = read_utterance(utterance, self.lexicon)
         scheduler = self._live_scheduler(audio)
         handle = scheduler.start(model, name or default_name)
         return LiveUtterance(handle, name or default_name, self.avatar, self.fps)

@@ -1,8 +1,10 @@
 """Checking spec files of any of mura's languages, for ``mura check``.
 
 The document's root element says which language a file is in: ``<definition>`` or
-``<utterance>`` (MURML), ``<lexicon>`` (a gesture lexicon), ``<sigml>`` or
-``<sigml_collection>`` (signs). Every problem found comes back as a :class:`SpecError`
+``<utterance>`` (MURML), ``<lexicon>`` or ``<gestures>`` (a gesture lexicon: mura's or the
+published format), ``<hns>`` (a published symbol table), ``<sigml>`` or
+``<sigml_collection>`` (signs). Utterances are read with the given lexicon (the bundled one
+with any ``--lexicon`` files layered over it). Every problem found comes back as a :class:`SpecError`
 (for SiGML, one per broken sign); a file with none is valid.
 """
 
@@ -12,7 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mura.errors import SpecError, SpecErrors
-from mura.lexicon import load_lexicon
+from mura.gesture_functions import check_entry
+from mura.lexicon import LEXICON_ROOTS, GestureLexicon, combine_lexicons, load_lexicon, read_lexicon
 from mura.murml import read_utterances
 from mura.sigml import ROOTS as SIGML_ROOTS
 from mura.sigml import read_sigml
@@ -32,12 +35,12 @@ class CheckResult:
         return not self.errors
 
 
-def check_file(path: str | Path) -> CheckResult:
-    """Parse and validate one spec file."""
+def check_file(path: str | Path, lexicon: GestureLexicon | None = None) -> CheckResult:
+    """Parse and validate one spec file (utterances with ``lexicon``, else the bundled one)."""
     name = str(path)
     try:
         source = XmlSource.from_path(path)
-        summary = _check_source(source)
+        summary = _check_source(source, lexicon)
     except SpecErrors as many:
         return CheckResult(name, "", many.errors)
     except SpecError as error:
@@ -45,10 +48,10 @@ def check_file(path: str | Path) -> CheckResult:
     return CheckResult(name, summary)
 
 
-def _check_source(source: XmlSource) -> str:
+def _check_source(source: XmlSource, lexicon: GestureLexicon | None) -> str:
     root = source.root.tag
     if root in ("definition", "utterance"):
-        utterances = read_utterances(source)
+        utterances = read_utterances(source, lexicon)
         chunks = sum(len(u.chunks) for u in utterances)
         behaviors = sum(len(u.behaviors) for u in utterances)
         return f"{len(utterances)} utterance(s), {chunks} chunk(s), {behaviors} behaviour(s)"
@@ -57,7 +60,16 @@ def _check_source(source: XmlSource) -> str:
         if result.failures:
             raise SpecErrors([failure.error for failure in result.failures])
         return f"{len(result.signs)} sign(s)"
-    if root == "lexicon":
-        lexicon = load_lexicon(source.file)
-        return f"lexicon of {len(lexicon.entries)} function(s), {len(lexicon.scene)} place(s)"
-    raise source.error(f"unknown document type <{root}> (expected <definition>, <utterance>, <lexicon>, <sigml> or <sigml_collection>)", source.root)
+    if root in LEXICON_ROOTS:
+        own = read_lexicon(source)
+        combined = combine_lexicons([lexicon or load_lexicon(), own])
+        errors = [error for entry in own.entries.values() for error in check_entry(combined, entry)]
+        if errors:
+            raise SpecErrors(errors)
+        symbols = own.symbols
+        named = len(symbols.heights) + len(symbols.laterals) + len(symbols.distances) + len(symbols.movement_distances) + len(symbols.palm_angles)
+        return f"lexicon of {len(own.entries)} function(s), {len(own.scene)} place(s), {named} symbol(s)"
+    raise source.error(
+        f"unknown document type <{root}> (expected <definition>, <utterance>, <lexicon>, <gestures>, <hns>, <sigml> or <sigml_collection>)",
+        source.root,
+    )

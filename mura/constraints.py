@@ -108,13 +108,46 @@ class Static:
 
 
 @dataclass(frozen=True)
+class KeyFrame:
+    """One frame of a keyframed movement (published MURML ``<frame ftime>``).
+
+    ``time`` is seconds from the start of the keyframing (phases laid end to end);
+    ``joints`` holds ``(name, values)`` as written in the ``<posture>``: a joint or morph
+    name (H-Anim joints such as ``vc4``, ``r_shoulder``; morph targets such as
+    ``dB_Smile``) and its degrees of freedom — three are roll, pitch and yaw in degrees
+    for a joint, as the published realizer reads them.
+    """
+
+    time: float
+    joints: tuple[tuple[str, tuple[float, ...]], ...]
+
+
+@dataclass(frozen=True)
+class Keyframing:
+    """A keyframed movement of named joints (published MURML ``<keyframing>``).
+
+    ``mode`` is the interpolation (``spline``, ``linear``, ``squad``, ``quaternion``,
+    ``raw``); ``easescale`` and ``easeturningpoint`` shape the ease in and out;
+    ``start_frame`` says whether the current posture is inserted as a first frame.
+    """
+
+    frames: tuple[KeyFrame, ...]
+    mode: str = "spline"
+    easescale: float = 1.0
+    easeturningpoint: float = 0.5
+    start_frame: bool = True
+
+
+@dataclass(frozen=True)
 class Dynamic:
-    """A feature performing a significant submovement: ``slot`` follows ``segments``."""
+    """A feature performing a significant submovement: ``slot`` follows ``segments``
+    (and, for keyframed movements, ``keyframes``)."""
 
     slot: str
     segments: tuple[Segment, ...]
     scope: Arm | str | None = None
     where: SourceLocation | None = field(default=None, compare=False)
+    keyframes: Keyframing | None = None
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import argparse
 
+from agent.commands.render import add_lexicon_option, lexicon_of
 from mura.check import check_file
+from mura.errors import SpecError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -15,13 +17,19 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "Prints 'FILE: OK' or each error as 'FILE:LINE:COL: message'; exits 0 only if every file is valid.",
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="spec files to check")
+    add_lexicon_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    try:
+        lexicon = lexicon_of(args)
+    except SpecError as error:
+        print(str(error))
+        return 1
     status = 0
     for path in args.files:
-        result = check_file(path)
+        result = check_file(path, lexicon)
         if result.ok:
             print(f"{path}: OK ({result.summary})")
             continue

@@ -40,7 +40,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     try:
         agent = make_agent(args)
-    except (AvatarError, SpeechError) as error:
+    except (AvatarError, SpeechError, SpecError) as error:
         print(f"mura play: {error}", file=sys.stderr)
         return 2
     server = LiveServer(rest_motion(agent.avatar, agent.fps), name=args.file, port=args.port)

@@ -11,6 +11,7 @@ from tqdm import tqdm
 from agent.agent import Agent, PerformanceError
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.errors import SpecError
+from mura.lexicon import GestureLexicon, load_lexicons
 from tts import SpeechError
 
 
@@ -24,10 +25,23 @@ def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake"
     parser.add_argument("--fps", type=float, default=60.0, help="frames per second of the motion (default: 60)")
     parser.add_argument("--voice", default=None, help="voice of the speech backend")
     parser.add_argument("--rate", type=float, default=1.0, help="relative speaking rate (default: 1.0)")
+    add_lexicon_option(parser)
+
+
+def add_lexicon_option(parser: argparse.ArgumentParser) -> None:
+    """``--lexicon FILE`` (repeatable): gesture lexicons or symbol tables layered over the bundled lexicon."""
+    parser.add_argument("--lexicon", action="append", default=[], metavar="FILE",
+                        help="a gesture lexicon (<lexicon> or the published <gestures>) or symbol table (<hns>) whose "
+                        "functions and names utterances may use; repeatable, later files win")  # fmt: skip
+
+
+def lexicon_of(args: argparse.Namespace) -> GestureLexicon | None:
+    """The lexicon the command's ``--lexicon`` files make (None: the bundled one); raises SpecError."""
+    return load_lexicons(args.lexicon) if args.lexicon else None
 
 
 def make_agent(args: argparse.Namespace) -> Agent:
-    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate)
+    return Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, lexicon=lexicon_of(args))
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -47,7 +61,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     try:
         agent = make_agent(args)
-    except (AvatarError, SpeechError) as error:
+    except (AvatarError, SpeechError, SpecError) as error:
         print(f"mura render: {error}", file=sys.stderr)
         return 2
     status = 0

@@ -386,6 +386,8 @@ class Compiler:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
             return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+        if leaf.keyframes is not None and not leaf.segments:
+            return Fragment(0.0, {}, (f"{self.behavior}: keyframed {leaf.slot} ({len(leaf.keyframes.frames)} frames of named joints) is not realized by the arm motor programs",))
         if not leaf.segments:
             raise self.error(f"dynamic {leaf.slot} has no segments", leaf.where)
         arm = self.arm_of(leaf)
