@@ -18,6 +18,7 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { buildAvatar } from './avatar.js';
 import { Clock } from './clock.js';
+import { corpusSpec, startCorpus } from './corpus.js';
 import { loadModel, modelSpec } from './model.js';
 import { PLACE_COLOUR, addPlaces } from './places.js';
 import { applyFrame, connectLive } from './live.js';
@@ -374,7 +375,8 @@ function boot() {
   const timelineView = new TimelineView(ui.strip, ui.list, () => {});
   try {
     const view = buildScene(ui.stage);
-    if (params.get('live') === '1') startLive(ui, view, timelineView);
+    if (corpusSpec()) startCorpus(ui, view, params, { measurePoses, frameView, addFloor });
+    else if (params.get('live') === '1') startLive(ui, view, timelineView);
     else startFile(ui, view, timelineView, params);
   } catch (error) {
     ui.status.textContent = `viewer error: ${error.message}`;
