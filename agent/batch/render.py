@@ -130,11 +130,11 @@ def render_chunk(items: Sequence[CorpusItem], options: RenderOptions, output: st
     for item in items:
         if item.index in done:
             continue
-        results.append(_guarded(item, options, lambda item=item: _render_one(item, options, folder, plans.get(item.index))))
+        results.append(guarded(item, options, lambda item=item: _render_one(item, options, folder, plans.get(item.index))))
     return results
 
 
-def _guarded(item: CorpusItem, options: RenderOptions, render: Callable[[], ItemResult]) -> ItemResult:
+def guarded(item: CorpusItem, options: RenderOptions, render: Callable[[], ItemResult]) -> ItemResult:
     """``render()``, with every way it can fail turned into a failed result."""
     if item.error is not None:
         return ItemResult(item.index, item.name, FAILED, item.error)

@@ -44,6 +44,14 @@ from agent.batch.render import FAILED, ItemResult, RenderOptions, render_chunk
 CHUNK_ITEMS = 16
 #: Seconds a local cluster may take to start its workers.
 STARTUP_TIMEOUT = 120.0
+#: Dask settings of the local cluster (give a scheduler of your own the same): a task
+#: whose worker died is not retried (its items are, one by one), and a worker runs one
+#: task per thread, so a death takes no bystander with it.
+CLUSTER_SETTINGS = {
+    "distributed.scheduler.allowed-failures": 0,
+    "distributed.scheduler.worker-saturation": 1.0,
+    "distributed.worker.daemon": False,
+}
 
 Renderer = Callable[[Sequence[CorpusItem], RenderOptions, str, frozenset[int]], list[ItemResult]]
 
@@ -177,12 +185,12 @@ class _client:
         self.client: Client | None = None
 
     def __enter__(self) -> Client:
-        with dask.config.set({"distributed.scheduler.allowed-failures": 0, "distributed.worker.daemon": False}):
+        with dask.config.set(CLUSTER_SETTINGS):
             if self.scheduler is not None:
                 self.client = Client(self.scheduler, timeout=STARTUP_TIMEOUT)
                 return self.client
             self.cluster = LocalCluster(
-                n_workers=self.workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                n_workers=self.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                 silence_logs=50, memory_limit="auto",
             )  # fmt: skip
             self.client = Client(self.cluster, timeout=STARTUP_TIMEOUT)

@@ -1,23 +1,34 @@
-"""``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and avatar pages.
+"""``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and the corpus viewer.
 
-Every sign is rendered on its own (``<gloss>.bvh`` and ``<gloss>.html``), or with
-``--sequence`` all signs of all files in order as one performance (``sequence.bvh``,
-``sequence.html``) with transitions between them. A sign that cannot be read or realized
-fails alone with its reason; the others still render. ``--report`` writes a JSON record
-of every sign: whether it rendered, its duration, and why not when it did not.
+Every sign is rendered on its own — ``NAME.bvh``, ``NAME.motion.js`` for ``DIR/index.html``
+(one viewer for all the signs: search by gloss, play, step through), ``NAME.glb`` unless
+``--no-glb``, ``NAME.html`` with ``--pages`` — or with ``--sequence`` all signs of all
+files in order as one performance (``sequence.bvh``, ``sequence.html``) with transitions
+between them. ``NAME`` is the gloss with its letters of any script kept
+(:mod:`agent.batch.naming`); ``--gloss`` picks signs by gloss. A sign that cannot be read
+or realized fails alone with its reason; the others still render. ``--report`` writes a
+JSON record of every sign (whether it rendered, its duration, its warnings said once, why
+not when it did not) and the failures and warnings grouped by kind. For a corpus on many
+cores, resumably, see ``mura batch``.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 from tqdm import tqdm
 
+from agent.batch.items import SIGN, Corpus, CorpusItem, read_corpus
+from agent.batch.manifest import Entry, entry_of
+from agent.batch.naming import unique_stem
+from agent.batch.outputs import report_of, write_corpus_pages
+from agent.batch.report import summarize_warnings
+from agent.batch.render import RenderOptions, render_chunk, timeline_of
+from agent.batch.run import chunks_of, corpus_title
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
@@ -29,12 +40,6 @@ from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
-from mura.sigml import parse_sigml
-from mura.signs import Sign
-
-#: Longest file name stem derived from a gloss.
-MAX_STEM = 80
-
 
 @dataclass
 class SignRecord:
@@ -58,19 +63,22 @@ class SignRecord:
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "sign",
-        help="render SiGML/HamNoSys signs to BVH and avatar pages",
-        description="Render every sign of SiGML files (or a HamNoSys string) to BVH and an avatar page; "
-        "each sign fails alone with its reason.",
+        help="render SiGML/HamNoSys signs to BVH and the corpus viewer",
+        description="Render every sign of SiGML files (or a HamNoSys string) to BVH and DIR/index.html, the viewer "
+        "of all the signs; each sign fails alone with its reason.",
     )
     parser.add_argument("files", nargs="*", metavar="FILE.sigml", help="SiGML documents")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
     parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file, or your own .vrm/.glb/.gltf (default: {DEFAULT_AVATAR})")
     parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write <gloss>.glb")
+    parser.add_argument("--pages", action="store_true", help="also write a stand-alone page <gloss>.html per sign")
     parser.add_argument("--fps", type=float, default=25.0, help="frames per second (default: 25)")
     parser.add_argument("--sequence", action="store_true", help="render all signs in order as one performance")
-    parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign")
+    parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign, failures and warnings by kind")
     parser.add_argument("--hamnosys", metavar="TEXT", help="a HamNoSys 4 Unicode string to render as a sign")
-    parser.add_argument("--gloss", default="sign", help="the gloss of the --hamnosys sign (default: sign)")
+    parser.add_argument("--gloss", action="append", default=[], metavar="NAME",
+                        help="render only the signs with this gloss (wildcards * ? allowed); repeatable. "
+                        "With --hamnosys, the first names that sign (default: sign)")  # fmt: skip
     parser.set_defaults(func=run)
 
 
@@ -88,74 +96,81 @@ def run(args: argparse.Namespace) -> int:
         return 2
     output = Path(args.output)
     output.mkdir(parents=True, exist_ok=True)
-    records: list[SignRecord] = []
-    signs = _read_signs(args, records)
-    plans: list[tuple[SignRecord, SignPlan]] = []
-    for source, sign in tqdm(signs, desc="planning", unit="sign", file=sys.stderr, disable=len(signs) < 20):
-        record = SignRecord(source, sign.gloss)
-        records.append(record)
-        try:
-            plans.append((record, plan_sign(avatar, sign)))
-        except SignPlanningError as error:
-            record.reason = str(error)
+    corpus, records = _read_signs(args)
     if args.sequence:
+        plans: list[tuple[SignRecord, SignPlan]] = []
+        for item in corpus.items:
+            record = SignRecord(item.source, item.label, reason=item.error)
+            records.append(record)
+            try:
+                if item.sign is not None:
+                    plans.append((record, plan_sign(avatar, item.sign)))
+            except SignPlanningError as error:
+                record.reason = str(error)
         _render_sequence(avatar, plans, output, args.fps, args.glb)
     else:
-        names: set[str] = set()
-        for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
-            _render_one(avatar, record, plan, output, args.fps, names, args.glb)
+        records.extend(_render_signs(corpus, output, RenderOptions(args.avatar, args.fps, args.glb, args.pages)))
+    report = _report(records)
     if args.report:
-        _write_json(Path(args.report), _report(records))
+        _write_json(Path(args.report), report)
     rendered = sum(record.rendered for record in records)
-    print(f"{rendered} of {len(records)} signs rendered to {output}")
+    print(f"{rendered} of {len(records)} signs rendered to {output}" + ("" if args.sequence else f" (viewer: {output / 'index.html'})"))
     for record in records:
         if not record.rendered:
             print(f"{record.source}: {record.gloss}: {record.reason}")
+    for kind, group in report["failures_by_kind"].items():
+        print(f"{group['count']:5d} × {kind}")
     return 0 if rendered == len(records) else 1
 
 
-def _read_signs(args: argparse.Namespace, records: list[SignRecord]) -> list[tuple[str, Sign]]:
-    """Signs of every file (failures go straight into the records) and the HamNoSys sign."""
-    signs: list[tuple[str, Sign]] = []
-    for path in args.files:
-        try:
-            result = parse_sigml(Path(path).read_bytes(), file=path)
-        except (OSError, SpecError) as error:
-            records.append(SignRecord(path, "*", reason=f"cannot read the document: {error}"))
-            continue
-        signs.extend((path, sign) for sign in result.signs)
-        records.extend(SignRecord(path, failure.gloss, reason=str(failure.error)) for failure in result.failures)
+def _read_signs(args: argparse.Namespace) -> tuple[Corpus, list[SignRecord]]:
+    """The signs of every file (a file that is no SiGML, or that cannot be read, is a
+    failed record) and the HamNoSys sign."""
+    glosses = args.gloss if args.files else ()
+    corpus = read_corpus(args.files, [] if args.hamnosys is not None and not args.files else glosses)
+    records = [SignRecord(source, "*", reason=f"cannot read the document: {reason}") for source, reason in corpus.unreadable]
+    items = []
+    for item in corpus.items:
+        if item.kind == SIGN:
+            items.append(item)
+        else:
+            records.append(SignRecord(item.source, "*", reason="cannot read the document: not a SiGML document (<sigml> or <sigml_collection>)"))
     if args.hamnosys is not None:
+        gloss = args.gloss[0] if args.gloss and not args.files else "sign"
+        taken = {item.name.casefold() for item in items}
+        name = unique_stem(gloss, taken)
         try:
-            signs.append(("--hamnosys", parse_hamnosys(args.hamnosys, gloss=args.gloss)))
+            sign = parse_hamnosys(args.hamnosys, gloss=gloss, file="--hamnosys")
+            items.append(CorpusItem(len(corpus.items), name, SIGN, gloss, "--hamnosys", "", sign))
         except SpecError as error:
-            records.append(SignRecord("--hamnosys", args.gloss, reason=str(error)))
-    return signs
+            records.append(SignRecord("--hamnosys", gloss, reason=str(error)))
+    return Corpus(tuple(items), corpus.unreadable), records
+
+
+def _render_signs(corpus: Corpus, output: Path, options: RenderOptions) -> list[SignRecord]:
+    """Every sign rendered on its own (chunk by chunk, as ``mura batch`` renders them),
+    then the corpus viewer for all of them."""
+    records, entries = [], []
+    items = list(corpus.items)
+    bar = tqdm(total=len(items), desc="rendering", unit="sign", file=sys.stderr, disable=len(items) < 20)
+    for chunk in chunks_of(items):
+        by_index = {item.index: item for item in chunk}
+        for result in render_chunk(chunk, options, output):
+            item = by_index[result.index]
+            files = tuple(str(output / f.name) for f in result.files)
+            records.append(SignRecord(item.source, item.label, result.rendered, result.duration, files, result.reason, result.warnings))
+            entries.append(entry_of(item, result, options.key()))
+        bar.update(len(chunk))
+    bar.close()
+    if entries:
+        write_corpus_pages(output, entries, options, corpus_title(corpus))
+    return records
 
 
 def safe_stem(gloss: str, taken: set[str]) -> str:
-    """A file name stem from a gloss: letters, digits, ``-`` and ``_`` only, unique in
-    ``taken`` (which it joins)."""
-    stem = re.sub(r"[^A-Za-z0-9_-]+", "_", gloss).strip("_")[:MAX_STEM] or "sign"
-    candidate, number = stem, 2
-    while candidate.lower() in taken:
-        candidate = f"{stem}_{number}"
-        number += 1
-    taken.add(candidate.lower())
-    return candidate
-
-
-def _render_one(avatar, record: SignRecord, plan: SignPlan, output: Path, fps: float, names: set[str], glb: bool = True) -> None:
-    try:
-        signed = realize_signs(avatar, [plan], fps)
-        stem = safe_stem(plan.gloss, names)
-        record.files = _write_performance(signed, output, stem, plan.gloss, avatar if glb else None, avatar)
-    except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
-        record.reason = f"{type(error).__name__}: {error}"
-        return
-    record.rendered = True
-    record.duration = round(signed.duration, 4)
-    record.warnings = signed.warnings
+    """A file name stem from a gloss (letters of every script kept), unique in ``taken``
+    (which it joins; see :mod:`agent.batch.naming`)."""
+    return unique_stem(gloss, taken)
 
 
 def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: Path, fps: float, glb: bool = True) -> None:
@@ -172,26 +187,7 @@ def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: P
         record.rendered = True
         record.duration = round(timing.end - timing.ready, 4)
         record.files = files
-        record.warnings = plan.warnings
-
-
-def timeline_of(signed: SignedMotion, name: str) -> dict:
-    """The avatar page's timeline: one behaviour per sign with its phases."""
-    arms = ["right_arm", "left_arm"]
-    behaviors = [
-        {
-            "id": timing.gloss, "chunk": 0, "arms": arms,
-            "phases": {
-                "start": timing.start, "ready": timing.ready, "stroke_start": timing.ready,
-                "stroke": 0.5 * (timing.ready + timing.end), "stroke_end": timing.end, "relax": timing.end, "end": timing.end,
-            },
-        }
-        for timing in signed.timings
-    ]  # fmt: skip
-    return {
-        "version": 1, "name": name, "duration": signed.duration, "fps": signed.motion.fps, "chunks": [],
-        "behaviors": behaviors, "words": [], "phonemes": [], "time_tags": {},
-    }  # fmt: skip
+        record.warnings = summarize_warnings(plan.warnings)
 
 
 def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str, glb_avatar=None, page_avatar=None) -> tuple[str, ...]:
@@ -214,15 +210,17 @@ def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str,
 
 
 def _report(records: list[SignRecord]) -> dict:
-    failures: dict[str, int] = {}
-    for record in records:
-        if not record.rendered:
-            key = (record.reason or "unknown").split(":")[-1].strip()[:80]
-            failures[key] = failures.get(key, 0) + 1
+    """Totals, the failures and warnings grouped by kind, and every sign's record."""
+    entries = [
+        Entry({"label": r.gloss, "source": r.source, "status": "rendered" if r.rendered else "failed", "reason": r.reason or "unknown", "warnings": list(r.warnings)})
+        for r in records
+    ]  # fmt: skip
+    grouped = report_of(entries)
     return {
         "total": len(records),
         "rendered": sum(r.rendered for r in records),
-        "failures_by_reason": failures,
+        "failures_by_kind": grouped["failures_by_kind"],
+        "warnings_by_kind": grouped["warnings_by_kind"],
         "signs": [record.as_json() for record in records],
     }
 
