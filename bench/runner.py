@@ -30,6 +30,7 @@ MODULES: tuple[str, ...] = (
     "bench.motion_speed",
     "bench.scheduler_speed",
     "bench.signing_speed",
+    "bench.corpus_throughput",
     "bench.motion_quality",
     "bench.memory",
 )
@@ -77,7 +78,7 @@ TARGETS: tuple[Target, ...] = (
     Target("torso penetrations", "0", ("bench.motion_quality", "torso_penetrations"), "max", 0.0, "frames"),
     Target("NaN in motions", "0", ("bench.motion_quality", "nan"), "max", 0.0),
     Target("memory for one hour of speech", "< 500 MB", ("bench.memory", "one_hour_peak_rss_mb"), "below", 500.0, "MB"),
-    Target("real SiGML signs rendered", "≥ 99.5%", ("bench.signing_speed", "rendered_percent"), "min", 99.5, "%"),
+    Target("real SiGML signs rendered (of valid signs)", "≥ 99.5%", ("bench.corpus_throughput", "rendered_percent_of_valid"), "min", 99.5, "%"),
 )
 
 

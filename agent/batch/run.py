@@ -59,7 +59,9 @@ Renderer = Callable[[Sequence[CorpusItem], RenderOptions, str, frozenset[int]], 
 @dataclass(frozen=True)
 class BatchSummary:
     """What a run did: items in the corpus, skipped as already done, rendered and failed
-    now, seconds it took and the workers it had."""
+    now, the seconds the run took (``seconds``) and those from the first item sent to the
+    last one back (``render_seconds``, without starting the cluster and writing the
+    pages), and the workers it had."""
 
     items: int
     skipped: int
@@ -67,11 +69,13 @@ class BatchSummary:
     failed: int
     seconds: float
     workers: int
+    render_seconds: float = 0.0
 
     @property
     def items_per_second(self) -> float:
+        """Items rendered or failed now per second of rendering."""
         done = self.rendered + self.failed
-        return done / self.seconds if self.seconds > 0 else 0.0
+        return done / self.render_seconds if self.render_seconds > 0 else 0.0
 
 
 def chunks_of(items: Sequence[CorpusItem]) -> list[list[CorpusItem]]:
@@ -103,12 +107,14 @@ def run_batch(
     todo = [chunk for chunk in chunks_of(corpus.items) if any(item.index not in done for item in chunk)]
     remaining = sum(1 for item in corpus.items if item.index not in done)
     journal = Journal(folder)
-    count = 0
+    count, rendering = 0, 0.0
     try:
         if todo:
             with _client(workers, scheduler) as client:
                 count = len(client.scheduler_info().get("workers", {}))
+                sent = time.perf_counter()
                 _render_all(client, todo, done, options, options_key, folder, renderer, journal, entries, progress, remaining)
+                rendering = time.perf_counter() - sent
     finally:
         journal.close()
     kept = {name: entry for name, entry in recorded.items() if name not in entries}
@@ -117,7 +123,7 @@ def run_batch(
     write_report(folder / "report.json", current, corpus.unreadable)
     write_corpus_pages(folder, current, options, corpus_title(corpus))
     rendered_now = sum(entries[item.name].rendered for item in corpus.items if item.index not in done)
-    return BatchSummary(len(corpus.items), len(done), rendered_now, remaining - rendered_now, time.perf_counter() - started, count)
+    return BatchSummary(len(corpus.items), len(done), rendered_now, remaining - rendered_now, time.perf_counter() - started, count, rendering)
 
 
 def _render_all(
@@ -188,12 +194,14 @@ class _client:
         with dask.config.set(CLUSTER_SETTINGS):
             if self.scheduler is not None:
                 self.client = Client(self.scheduler, timeout=STARTUP_TIMEOUT)
+                self.client.wait_for_workers(1, timeout=STARTUP_TIMEOUT)
                 return self.client
             self.cluster = LocalCluster(
                 n_workers=self.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                 silence_logs=50, memory_limit="auto",
             )  # fmt: skip
             self.client = Client(self.cluster, timeout=STARTUP_TIMEOUT)
+            self.client.wait_for_workers(self.workers, timeout=STARTUP_TIMEOUT)
         return self.client
 
     def __exit__(self, *exc: object) -> None:
