@@ -9,6 +9,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.agent import Agent, PerformanceError
+from agent.batch.report import summarize_warnings
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.errors import SpecError
 from mura.lexicon import GestureLexicon, load_lexicons
@@ -83,6 +84,6 @@ def render_one(agent: Agent, path: Path, output: Path, glb: bool = True) -> int:
         print(f"{path}: {error}", file=sys.stderr)
         return 1
     print(f"{path}: {files.duration:.2f} s -> {files.html}")
-    for warning in files.warnings:
+    for warning in summarize_warnings(files.warnings):  # each said once, with its subjects and count
         print(f"{path}: warning: {warning}", file=sys.stderr)
     return 0

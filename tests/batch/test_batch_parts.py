@@ -18,6 +18,7 @@ from agent.batch.naming import MAX_STEM_BYTES, safe_stem, unique_stems
 from agent.batch.render import FAILED, RenderOptions, render_item
 from agent.batch.report import EXAMPLES_PER_KIND, Example, group_by_kind, reason_kind, summarize_warnings
 from agent.batch.run import CHUNK_ITEMS, chunks_of
+from agent.cli import main
 from agent.export.corpus_index import QUATERNION_SCALE, motion_payload
 from motor.motion import Motion
 
@@ -159,3 +160,17 @@ def test_motion_file_payload_round_trips() -> None:
     assert np.allclose(np.frombuffer(base64.b64decode(payload["root"]), dtype="<f4").reshape(5, 3), roots, atol=1e-6)
     assert (payload["frames"], payload["start"], payload["duration"]) == (5, 0.5, 0.2)
     assert motion_payload(motion) == payload  # the same motion, the same bytes
+
+
+def test_render_says_each_warning_once(tmp_path: Path, capsys) -> None:
+    gaze = '<static slot="GazeDirection" value="0 0 1" scope="head"/>'
+    behaviours = "".join(
+        f'<behaviorspec id="{gid}"><gesture><timing onset="{onset}" end="{onset + 1}"/><constraints><parallel>'
+        f'<static slot="HandLocation" value="LocChest LocCenterRight LocNorm"/>{gaze}{gaze}</parallel></constraints></gesture></behaviorspec>'
+        for gid, onset in (("g1", 1), ("g2", 4))
+    )
+    path = tmp_path / "gaze.xml"
+    path.write_text(f"<definition><utterance>{behaviours}</utterance></definition>")
+    assert main(["render", str(path), "-o", str(tmp_path / "out"), "--no-glb", "--avatar", "max"]) == 0
+    lines = [line for line in capsys.readouterr().err.splitlines() if "GazeDirection" in line]
+    assert lines == [f"{path}: warning: g1, g2: slot GazeDirection is not realized by the arm motor programs (×4)"]
