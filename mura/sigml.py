@@ -158,12 +158,14 @@ _HANDCONFIG_ATTRS = frozenset(
     {"handshape", "thumbpos", "mainbend", "second_handshape", "second_thumbpos", "second_mainbend", "ceeopening",
      "extfidir", "second_extfidir", "palmor", "second_palmor", "rel_palmor", "specialfingers",
      "bend1", "bend2", "bend3", "bend4", "bend5"}
+    # written by public tools, read and not realized: approximations and relative forms
+    | {"second_ceeopening", "approx_shape", "approx_extfidir", "approx_palmor", "rel_extfidir"}
 )
 _MOTION_TAGS = frozenset(
     {"directedmotion", "circularmotion", "wristmotion", "fingerplay", "nomotion", "tgt_motion", "rpt_motion",
      "seq_motion", "par_motion", "split_motion", "nonman_motion", "changeposture"}
 )
-_LOCATION_ATTRS = frozenset({"location", "second_location", "side", "second_side", "contact", "digits", "second_digits"})
+_LOCATION_ATTRS = frozenset({"location", "second_location", "side", "second_side", "contact", "second_contact", "digits", "second_digits", "approx_location"})
 #: Hand shapes as gestural SiGML writes them, where the name differs from the HamNoSys tag.
 _HANDSHAPE_NAMES = {"flat": "flathand", "cee12open": "ceeopen", "pinchopen": "pinch12open"}
 #: Thumb positions as gestural SiGML writes them: ``opposed`` is HamNoSys's open thumb.
