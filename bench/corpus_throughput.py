@@ -10,7 +10,9 @@ avatar and options, once on one worker and once on every core of the machine (a
 * **throughput**: items per second from the first item sent to the last one back (the
   cluster's start and the index page apart, given separately), on one worker and on all;
   per-worker efficiency is the many-worker rate over the number of workers times the
-  one-worker rate.
+  one-worker rate. On a machine shared with other work these rates fall with its load, so
+  items per processor-second of the workers (their user and system time) is given too:
+  the rate of one worker with a core to itself.
 * **bytes per sign**: the per-sign files (BVH and the index's motion file) on average,
   and with the index page and the avatar model's sidecar shared out over the signs.
 """
@@ -44,9 +46,12 @@ def run(quick: bool) -> dict:
         with tempfile.TemporaryDirectory(prefix="mura-bench-batch-") as folder:
             summary = run_batch(sample, folder, RenderOptions(), workers=workers, progress=False)
             rates[workers] = summary.items_per_second
+            done = summary.rendered + summary.failed
             figures[f"workers_{workers}"] = {
                 "items_per_s": round(summary.items_per_second, 3),
+                "items_per_cpu_s": round(done / summary.worker_cpu_seconds, 3) if summary.worker_cpu_seconds else 0.0,
                 "render_seconds": round(summary.render_seconds, 2),
+                "worker_cpu_seconds": round(summary.worker_cpu_seconds, 2),
                 "startup_and_pages_seconds": round(summary.seconds - summary.render_seconds, 2),
             }
             if workers == 1:

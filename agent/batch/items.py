@@ -36,6 +36,8 @@ CORPUS_SUFFIXES: tuple[str, ...] = (".sigml", ".xml", ".us", ".bml")
 
 SIGN = "sign"
 UTTERANCE = "utterance"
+#: Consecutive items rendered as one task (a chunk's signs are planned together).
+CHUNK_ITEMS = 16
 
 
 @dataclass(frozen=True)
@@ -124,3 +126,18 @@ def _signs_of(source: XmlSource) -> list[tuple[str, str, str, str, Sign | None, 
 
 def _digest(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
+
+
+def chunks_of(items: Sequence[CorpusItem]) -> list[list[CorpusItem]]:
+    """Items grouped by ``index // CHUNK_ITEMS``, in order."""
+    groups: dict[int, list[CorpusItem]] = {}
+    for item in items:
+        groups.setdefault(item.index // CHUNK_ITEMS, []).append(item)
+    return [groups[key] for key in sorted(groups)]
+
+
+def corpus_title(corpus: Corpus) -> str:
+    """The index page's title: the names of the corpus's files."""
+    stems = list(dict.fromkeys(Path(item.source).stem for item in corpus.items))
+    title = ", ".join(stems[:4]) + (f" and {len(stems) - 4} more" if len(stems) > 4 else "")
+    return title or "corpus"

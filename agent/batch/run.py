@@ -1,6 +1,6 @@
 """Rendering a corpus on Dask: a local cluster of processes, or a running scheduler.
 
-:func:`run_batch` splits the items into chunks of :data:`CHUNK_ITEMS` consecutive items
+:func:`run_batch` splits the items into chunks of :data:`~agent.batch.items.CHUNK_ITEMS` consecutive items
 (fixed by corpus position, so a chunk is the same whatever the number of workers), sends
 every chunk with an item still to do to the cluster, and records each finished item in the
 manifest's journal as it comes back, under a progress bar. By default the cluster is a
@@ -35,13 +35,11 @@ import dask
 from distributed import Client, LocalCluster, as_completed
 from tqdm import tqdm
 
-from agent.batch.items import Corpus, CorpusItem
+from agent.batch.items import Corpus, CorpusItem, chunks_of, corpus_title
 from agent.batch.manifest import Entry, Journal, entry_of, is_done, read_manifest, write_manifest
 from agent.batch.outputs import write_corpus_pages, write_report
 from agent.batch.render import FAILED, ItemResult, RenderOptions, render_chunk
 
-#: Consecutive items sent to a worker as one task.
-CHUNK_ITEMS = 16
 #: Seconds a local cluster may take to start its workers.
 STARTUP_TIMEOUT = 120.0
 #: Dask settings of the local cluster (give a scheduler of your own the same): a task
@@ -61,7 +59,8 @@ class BatchSummary:
     """What a run did: items in the corpus, skipped as already done, rendered and failed
     now, the seconds the run took (``seconds``) and those from the first item sent to the
     last one back (``render_seconds``, without starting the cluster and writing the
-    pages), and the workers it had."""
+    pages), the processor seconds the workers spent meanwhile (``worker_cpu_seconds``)
+    and the workers it had."""
 
     items: int
     skipped: int
@@ -70,20 +69,13 @@ class BatchSummary:
     seconds: float
     workers: int
     render_seconds: float = 0.0
+    worker_cpu_seconds: float = 0.0
 
     @property
     def items_per_second(self) -> float:
         """Items rendered or failed now per second of rendering."""
         done = self.rendered + self.failed
         return done / self.render_seconds if self.render_seconds > 0 else 0.0
-
-
-def chunks_of(items: Sequence[CorpusItem]) -> list[list[CorpusItem]]:
-    """Items grouped by ``index // CHUNK_ITEMS``, in order."""
-    groups: dict[int, list[CorpusItem]] = {}
-    for item in items:
-        groups.setdefault(item.index // CHUNK_ITEMS, []).append(item)
-    return [groups[key] for key in sorted(groups)]
 
 
 def run_batch(
@@ -107,14 +99,14 @@ def run_batch(
     todo = [chunk for chunk in chunks_of(corpus.items) if any(item.index not in done for item in chunk)]
     remaining = sum(1 for item in corpus.items if item.index not in done)
     journal = Journal(folder)
-    count, rendering = 0, 0.0
+    count, rendering, cpu = 0, 0.0, 0.0
     try:
         if todo:
             with _client(workers, scheduler) as client:
                 count = len(client.scheduler_info().get("workers", {}))
-                sent = time.perf_counter()
+                sent, cpu_before = time.perf_counter(), _workers_cpu(client)
                 _render_all(client, todo, done, options, options_key, folder, renderer, journal, entries, progress, remaining)
-                rendering = time.perf_counter() - sent
+                rendering, cpu = time.perf_counter() - sent, _workers_cpu(client) - cpu_before
     finally:
         journal.close()
     kept = {name: entry for name, entry in recorded.items() if name not in entries}
@@ -123,7 +115,7 @@ def run_batch(
     write_report(folder / "report.json", current, corpus.unreadable)
     write_corpus_pages(folder, current, options, corpus_title(corpus))
     rendered_now = sum(entries[item.name].rendered for item in corpus.items if item.index not in done)
-    return BatchSummary(len(corpus.items), len(done), rendered_now, remaining - rendered_now, time.perf_counter() - started, count, rendering)
+    return BatchSummary(len(corpus.items), len(done), rendered_now, remaining - rendered_now, time.perf_counter() - started, count, rendering, cpu)
 
 
 def _render_all(
@@ -211,11 +203,14 @@ class _client:
             self.cluster.close()
 
 
-def corpus_title(corpus: Corpus) -> str:
-    """The index page's title: the names of the corpus's files."""
-    stems = list(dict.fromkeys(Path(item.source).stem for item in corpus.items))
-    title = ", ".join(stems[:4]) + (f" and {len(stems) - 4} more" if len(stems) > 4 else "")
-    return title or "corpus"
+def _workers_cpu(client: Client) -> float:
+    """Processor seconds (user and system) the workers' processes have spent so far."""
+    return float(sum(client.run(_process_cpu_seconds).values()))
+
+
+def _process_cpu_seconds() -> float:
+    times = os.times()
+    return times.user + times.system
 
 
 def _remove_stale_parts(folder: Path) -> None:

@@ -28,7 +28,7 @@ from agent.batch.naming import unique_stem
 from agent.batch.outputs import report_of, write_corpus_pages
 from agent.batch.report import summarize_warnings
 from agent.batch.render import RenderOptions, render_chunk, timeline_of
-from agent.batch.run import chunks_of, corpus_title
+from agent.batch.items import chunks_of, corpus_title
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html

@@ -17,7 +17,7 @@ from agent.batch.manifest import Journal, entry_of, is_done, read_manifest, writ
 from agent.batch.naming import MAX_STEM_BYTES, safe_stem, unique_stems
 from agent.batch.render import FAILED, RenderOptions, render_item
 from agent.batch.report import EXAMPLES_PER_KIND, Example, group_by_kind, reason_kind, summarize_warnings
-from agent.batch.run import CHUNK_ITEMS, chunks_of
+from agent.batch.items import CHUNK_ITEMS, chunks_of
 from agent.cli import main
 from agent.export.corpus_index import QUATERNION_SCALE, motion_payload
 from motor.motion import Motion
