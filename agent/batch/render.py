@@ -44,6 +44,7 @@ from motor.signing.planning import plan_signs
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.lexicon import load_lexicons
+from mura.signs import Sign
 from tts.wav import write_wav
 
 RENDERED = "rendered"
@@ -222,8 +223,7 @@ def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: S
     assert item.sign is not None
     avatar = _avatar(options.avatar)
     if isinstance(plan, SignPlanningError):
-        where = item.sign.where
-        return ItemResult(item.index, item.name, FAILED, f"{where}: {_without_unknown_place(str(plan))}" if where else str(plan))
+        return ItemResult(item.index, item.name, FAILED, planning_reason(item.sign, plan))
     signed = realize_signs(avatar, [plan], options.fps or SIGN_FPS)
     timeline = timeline_of(signed, item.label)
     writers: dict[str, Callable[[Path], None]] = {
@@ -279,10 +279,11 @@ def _write_together(folder: Path, writers: dict[str, Callable[[Path], None]]) ->
     return tuple(written)
 
 
-def _without_unknown_place(message: str) -> str:
-    """A planning message without the placeless ``<input>:0:0:`` of an error the motor
-    raised without knowing the file (the sign's own place is put in front)."""
-    return message.replace("<input>:0:0: ", "")
+def planning_reason(sign: Sign, error: SignPlanningError) -> str:
+    """Why a sign could not be planned, at the sign's place (an error the motor raised
+    without knowing the file says ``<input>:0:0:``, which is dropped)."""
+    message = str(error).replace("<input>:0:0: ", "")
+    return f"{sign.where}: {message}" if sign.where is not None else message
 
 
 def timeline_of(signed: SignedMotion, name: str) -> dict:

@@ -27,7 +27,7 @@ from agent.batch.manifest import Entry, entry_of
 from agent.batch.naming import unique_stem
 from agent.batch.outputs import report_of, write_corpus_pages
 from agent.batch.report import summarize_warnings
-from agent.batch.render import RenderOptions, render_chunk, timeline_of
+from agent.batch.render import RenderOptions, planning_reason, render_chunk, timeline_of
 from agent.batch.items import chunks_of, corpus_title
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.gltf import motion_model, write_motion_glb
@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
                 if item.sign is not None:
                     plans.append((record, plan_sign(avatar, item.sign)))
             except SignPlanningError as error:
-                record.reason = str(error)
+                record.reason = planning_reason(item.sign, error)
         _render_sequence(avatar, plans, output, args.fps, args.glb)
     else:
         records.extend(_render_signs(corpus, output, RenderOptions(args.avatar, args.fps, args.glb, args.pages)))

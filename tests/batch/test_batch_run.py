@@ -124,3 +124,18 @@ def test_bad_arguments_are_refused_before_any_work(corpus_file: Path, tmp_path: 
     assert main(["batch", str(corpus_file), "-o", str(tmp_path / "out"), *arguments]) == 2
     assert message in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_folders_of_utterances_render_with_their_speech(cluster: str, tmp_path: Path) -> None:
+    talk = tmp_path / "talk"
+    talk.mkdir()
+    for name in ("sign_here.xml", "present_and_negate.xml"):
+        (talk / name).write_bytes((REPO / "specs" / "utterances" / name).read_bytes())
+    (talk / "broken.xml").write_text("<utterance><behaviorspec/></utterance>")
+    summary = run_batch(read_corpus([talk]), tmp_path / "out", OPTIONS, scheduler=cluster, progress=False)
+    assert (summary.rendered, summary.failed) == (2, 1)
+    items = {entry["label"]: entry for entry in _manifest(tmp_path / "out")["items"]}
+    assert set(items["sign_here"]["files"]) == {f"sign_here.{suffix}" for suffix in ("wav", "bvh", "timeline.json", "motion.js")}
+    assert "broken.xml:1:" in items["broken"]["reason"]
+    index = (tmp_path / "out" / "index.html").read_text(encoding="utf-8")
+    assert '"audio":"sign_here.wav"' in index
