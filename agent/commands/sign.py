@@ -97,6 +97,9 @@ def run(args: argparse.Namespace) -> int:
     output = Path(args.output)
     output.mkdir(parents=True, exist_ok=True)
     corpus, records = _read_signs(args)
+    if not corpus.items and not records:
+        print(f"mura sign: no sign with gloss {', '.join(args.gloss)}", file=sys.stderr)
+        return 1
     if args.sequence:
         plans: list[tuple[SignRecord, SignPlan]] = []
         for item in corpus.items:
