@@ -10,15 +10,18 @@ write it (``[…]`` optional, ``{…}`` any number, ``|`` choice)::
                   | nonipsi | fingerplay}
     posture     = group {group}
     group       = hand | parbegin hand plus (hand | nomotion) parend [contact] [location]
-    hand        = [nondominant] [etc] [shape] [etc] [extfinger] [palm] [etc] [location]
+    hand        = [nondominant] [etc] [shape] [etc] [extfinger] [palm] [etc]
+                  [location [bending | thumbmod | fingers bending]]
     shape       = handshape {thumbmod | bending | fingers bending | fingers
                   | fingers (handsite | between) fingers} [between shape]
     extfinger   = extfinger [orirelative] [extfinger] [between extfinger] [orirelative]
     palm        = palm [between palm] [orirelative]
-    location    = [contact] place [between place] [contact]
+    location    = {contact} place [between place] {contact}
+                  [seqbegin contact handpart seqend]
     place       = [side] (site | finger) {site | finger} [side]
-    action      = unit {repeat [alternatingmotion] | alternatingmotion | size | manner}
-                | (size | manner) unit
+    action      = unit {repeat [alternatingmotion] [move] | alternatingmotion | size | manner
+                        | (seqbegin | parbegin | fusionbegin) repeat [move] end}
+                | (size | manner) unit | repeat
     unit        = move {modifier} | circle {modifier} | local {modifier}
                 | replace {size | manner} posture | posture
                 | seqbegin {action} seqend | fusionbegin {action} fusionend
@@ -42,6 +45,25 @@ Decisions the real corpora force (documented because they change meaning):
 - A manner after a posture with no movement (``… hampalmd hamtense``) is the sign's
   :attr:`~mura.signs.Sign.manner`; ``hamnondominant`` before a one-hand posture makes the
   whole sign with the non-dominant arm.
+- Each part of a compound may write its own symmetry operator (``… hamplus hamsymmpar …``):
+  a part whose operator differs from the sign's is a :class:`~mura.constraints.Symmetrical`
+  node of the movement, both hands taking part in it.
+- A straight movement right after a repetition inside a bracket is the repetition's
+  *displacement* (``( move repeat move )``: each pass shifted, as shelves stacked
+  downwards); so is a bracket that opens with a repetition after a movement
+  (``move [ repeat move ]``). Outside brackets a movement after a repetition follows it.
+- A repetition with no movement before it, when the hand touches its location
+  (``shouldertop hambehind hamtouch hamrepeatfromstart``), repeats the contact: the hand
+  leaves the site (``close``) and touches it again.
+- A contact bracket after a location, ``seqbegin contact hand-part… seqend``
+  (``hamnose [hamtouch hamthumb hamfingertip]``), names the part of the moving hand that
+  makes the contact (:attr:`~mura.values.BodySite.hand_part`), in a one-handed location or
+  either hand's in a split one; a bracket holding anything else is a movement.
+- A finger bending (or thumb modifier) written after a location is the shape the hand
+  holds there (HamNoSys 4's qualifiers after the location); a run of contact symbols is
+  one contact, the last that is not ``hambehind`` (``hambehind hamtouch`` touches).
+- ``hamneutralspace`` is a location like any other (the motor reads it as neutral space),
+  for either hand.
 - ``hamfusionbegin … hamfusionend`` (movements fused into one) is read as a sequence; a
   location after a movement is its end, after a bracket a ``Static`` target.
 - Of alternatives ``hamaltbegin a hammetaalt b hamaltend`` the first is read.
