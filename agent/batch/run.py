@@ -25,6 +25,7 @@ many.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -188,12 +189,18 @@ class _client:
                 self.client = Client(self.scheduler, timeout=STARTUP_TIMEOUT)
                 self.client.wait_for_workers(1, timeout=STARTUP_TIMEOUT)
                 return self.client
-            self.cluster = LocalCluster(
-                n_workers=self.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                silence_logs=50, memory_limit="auto",
-            )  # fmt: skip
-            self.client = Client(self.cluster, timeout=STARTUP_TIMEOUT)
-            self.client.wait_for_workers(self.workers, timeout=STARTUP_TIMEOUT)
+            # Workers start with Ctrl-C ignored (they inherit it): the driver alone answers it,
+            # by stopping them; a worker interrupted on its own would leave the driver waiting.
+            previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+            try:
+                self.cluster = LocalCluster(
+                    n_workers=self.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                    silence_logs=50, memory_limit="auto",
+                )  # fmt: skip
+                self.client = Client(self.cluster, timeout=STARTUP_TIMEOUT)
+                self.client.wait_for_workers(self.workers, timeout=STARTUP_TIMEOUT)
+            finally:
+                signal.signal(signal.SIGINT, previous)
         return self.client
 
     def __exit__(self, *exc: object) -> None:

@@ -139,3 +139,47 @@ def test_folders_of_utterances_render_with_their_speech(cluster: str, tmp_path: 
     assert "broken.xml:1:" in items["broken"]["reason"]
     index = (tmp_path / "out" / "index.html").read_text(encoding="utf-8")
     assert '"audio":"sign_here.wav"' in index
+
+
+def test_interrupted_run_stops_its_workers_and_resumes(cluster: str, tmp_path: Path) -> None:
+    signs = {f"{gloss} {copy}": symbols for copy in range(5) for gloss, symbols in SIGNS.items() if gloss != "broken"}
+    corpus = tmp_path / "many.sigml"
+    corpus.write_text(sigml(signs), encoding="utf-8")
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "agent.cli", "batch", str(corpus), "-o", str(out), "--workers", "2", "--avatar", "max", "--no-progress"]
+    process = subprocess.Popen(
+        command, cwd=REPO, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as a terminal's Ctrl-C finds it
+    )  # fmt: skip
+    journal = out / JOURNAL
+    deadline = time.monotonic() + 240
+    while time.monotonic() < deadline and process.poll() is None:
+        if journal.is_file() and len(journal.read_text(encoding="utf-8").splitlines()) >= 4:
+            break
+        time.sleep(0.05)
+    os.killpg(process.pid, signal.SIGINT)
+    try:
+        _, err = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+    assert process.returncode == 130 and "interrupted" in err
+    ended = _group_ends(process.pid, within=20.0)
+    if not ended:
+        os.killpg(process.pid, signal.SIGKILL)
+    assert ended, "worker processes outlived the interrupted driver"
+    assert not (out / MANIFEST).exists() and not list(out.glob(".*.part"))
+    summary = run_batch(read_corpus([corpus]), out, OPTIONS, scheduler=cluster, progress=False)
+    assert summary.skipped >= 4 and summary.skipped + summary.rendered == len(signs)
+
+
+def _group_ends(group: int, within: float) -> bool:
+    """Whether every process of ``group`` has ended within ``within`` seconds."""
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(group, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.1)
+    return False
