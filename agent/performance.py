@@ -1,10 +1,11 @@
-"""A rendered utterance and the four files it is saved as.
+"""A rendered utterance and the files it is saved as.
 
 ``Performance.save(directory)`` writes ``NAME.wav`` (the whole utterance's speech,
 pauses included, as long as the timeline), ``NAME.bvh`` (the full skeleton),
-``NAME.timeline.json`` (the scheduler's timeline) and ``NAME.html`` (the avatar page).
+``NAME.timeline.json`` (the scheduler's timeline), ``NAME.face.json`` (the face's ARKit
+morph weights per frame, :mod:`agent.export.face`) and ``NAME.html`` (the avatar page).
 (``agent.streaming.render_to_files`` writes the same files without holding the whole
-performance in memory.) Every file is first written under a temporary name; only when all four are complete are
+performance in memory.) Every file is first written under a temporary name; only when all are complete are
 they renamed into place, so a failure never leaves files that look finished.
 """
 
@@ -19,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.face import face_json, page_face_json
 from agent.export.html import write_html
 from agent.export.page_model import page_model
 from agent.export.staging import Staging
@@ -41,6 +43,7 @@ class SavedFiles:
     duration: float = 0.0
     warnings: tuple[str, ...] = ()
     glb: Path | None = None
+    face: Path | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,7 +84,7 @@ class Performance:
         return track, rate
 
     def save(self, directory: str | os.PathLike[str]) -> SavedFiles:
-        """Write the four files into ``directory`` (created if missing), all or nothing."""
+        """Write the files into ``directory`` (created if missing), all or nothing."""
         folder = Path(directory)
         folder.mkdir(parents=True, exist_ok=True)
         final = SavedFiles(
@@ -91,6 +94,7 @@ class Performance:
             folder / f"{self.name}.html",
             self.duration,
             self.warnings,
+            face=folder / f"{self.name}.face.json",
         )
         track, rate = self.soundtrack()
         timeline = dict(self.timeline, motion_start_time=self.motion.start_time)
@@ -98,10 +102,12 @@ class Performance:
             (final.wav, lambda path: write_wav(path, track, rate)),
             (final.bvh, lambda path: write_bvh(self.motion, path)),
             (final.timeline, lambda path: path.write_text(json.dumps(timeline, indent=1), encoding="utf-8")),
+            (final.face, lambda path: path.write_text(face_json(self.motion), encoding="ascii")),
             (
                 final.html,
                 lambda path: write_html(path, name=self.name, bvh_text=bvh_text(self.motion), timeline=timeline, wav_filename=final.wav.name,
-                                        model=page_model(self.avatar) if self.avatar is not None else None),  # fmt: skip
+                                        model=page_model(self.avatar) if self.avatar is not None else None,
+                                        face_json=page_face_json(self.motion)),  # fmt: skip
             ),
         ]
         _write_all(folder, writers)

@@ -3,11 +3,12 @@
 :func:`render_to_files` runs the scheduler without collecting its output
 (``SchedulerConfig.keep_output=False``) and writes what its events carry as they come:
 each chunk's speech into the WAV (silence up to its onset first), each window of frames
-into BVH lines in a scratch file. When the utterance is over it writes the timeline, puts
-the BVH header (``Frames: N``) before the frame lines, and streams the avatar page with
-the BVH embedded piece by piece. The four files are byte for byte what
-:meth:`Performance.save` writes for the same utterance; like it, they are written under
-temporary names and renamed only when all four are complete, and removed on failure.
+into BVH lines and face weights in scratch files. When the utterance is over it writes
+the timeline and ``NAME.face.json``, puts the BVH header (``Frames: N``) before the frame
+lines, and streams the avatar page with the BVH and the face embedded piece by piece. The
+files are byte for byte what :meth:`Performance.save` writes for the same utterance; like
+it, they are written under temporary names and renamed only when all are complete, and
+removed on failure.
 
 Memory holds one chunk's audio, at most ``FRAMES_PER_BLOCK`` frames and the timeline
 (words and phonemes: a few hundred bytes per second of speech).
@@ -27,6 +28,7 @@ from typing import TextIO
 import numpy as np
 
 from agent.export.bvh import StreamingBvh
+from agent.export.face import FaceWriter
 from agent.export.gltf import GlbAnimation, motion_model
 from agent.export.html import write_html_stream
 from agent.export.page_model import page_model, write_sidecar
@@ -129,10 +131,11 @@ class StreamingWav:
 class _Recorder:
     """The observer that hands one utterance's speech and frames to the file writers."""
 
-    def __init__(self, name: str, wav: StreamingWav, bvh: StreamingBvh, glb: GlbAnimation | None = None) -> None:
+    def __init__(self, name: str, wav: StreamingWav, bvh: StreamingBvh, face: FaceWriter, glb: GlbAnimation | None = None) -> None:
         self.name = name
         self.wav = wav
         self.bvh = bvh
+        self.face = face
         self.glb = glb
         self.first_frame_time: float | None = None  # session clock
 
@@ -143,6 +146,7 @@ class _Recorder:
             if self.first_frame_time is None:
                 self.first_frame_time = event.motion.start_time
             self.bvh.add(event.motion)
+            self.face.add(event.motion)
             if self.glb is not None:
                 self.glb.add(event.motion)
         elif isinstance(event, SpeechStarted) and event.audio is not None:
@@ -161,7 +165,7 @@ def render_to_files(
 ) -> SavedFiles:
     """Perform ``utterance`` offline (speech from ``tts``, motion for ``avatar`` at ``fps``
     frames/s, scheduled with ``config``) and write NAME.wav, NAME.bvh,
-    NAME.timeline.json and NAME.html into ``directory`` (created if missing) as the
+    NAME.timeline.json, NAME.face.json and NAME.html into ``directory`` (created if missing) as the
     performance runs, in bounded memory; the files equal :meth:`Performance.save`'s.
 
     With ``glb`` it also writes NAME.glb: the avatar with the animation
@@ -169,21 +173,23 @@ def render_to_files(
     :class:`PerformanceError` (``partial`` is None) when a chunk fails; on any failure no
     file is left under the final names.
     """
-    model, default_name = read_utterance(utterance)
+    model, default_name = read_utterance(utterance, config.limits)
     name = name or default_name
     folder = Path(directory)
     folder.mkdir(parents=True, exist_ok=True)
-    paths = SavedFiles(folder / f"{name}.wav", folder / f"{name}.bvh", folder / f"{name}.timeline.json", folder / f"{name}.html")
+    paths = SavedFiles(folder / f"{name}.wav", folder / f"{name}.bvh", folder / f"{name}.timeline.json", folder / f"{name}.html",
+                       face=folder / f"{name}.face.json")  # fmt: skip
     if glb:
         paths = dataclasses.replace(paths, glb=folder / f"{name}.glb")
     staging = Staging(folder)
-    wav = bvh = animation = None
+    wav = bvh = face = animation = None
     try:
         wav = StreamingWav(staging.temporary(paths.wav))
         bvh = StreamingBvh(staging.scratch(paths.bvh, ".frames.part"))
+        face = FaceWriter(staging.scratch(paths.face, ".weights.part"))
         if glb:
             animation = GlbAnimation(staging.scratch(paths.glb, ".frames.part"), motion_model(avatar), avatar.root_height)
-        recorder = _Recorder(name, wav, bvh, animation)
+        recorder = _Recorder(name, wav, bvh, face, animation)
         config = dataclasses.replace(config, keep_output=False)
         scheduler = Scheduler(tts, MotorControl(avatar, fps), VirtualClock(), config)
         scheduler.subscribe(recorder)
@@ -192,12 +198,13 @@ def render_to_files(
         finally:
             scheduler.close()
         if result.error is not None:
-            raise PerformanceError(f"chunk {result.failed_chunk} failed: {result.error}", None)
+            raise PerformanceError(f"chunk {result.failed_chunk + 1} failed: {result.error}", None)
         timeline = result.timeline.to_json()
         wav.finish(float(timeline["duration"]))
         motion_start = 0.0
         if recorder.first_frame_time is None:
             bvh.add(rest_motion(avatar, fps))
+            face.add(rest_motion(avatar, fps))
             if animation is not None:
                 animation.add(rest_motion(avatar, fps))
         else:
@@ -205,11 +212,12 @@ def render_to_files(
         timeline = dict(timeline, motion_start_time=motion_start)
         _write_text(staging.temporary(paths.bvh), bvh.write)
         _write_text(staging.temporary(paths.timeline), lambda stream: json.dump(timeline, stream, indent=1), "utf-8")
+        _write_text(staging.temporary(paths.face), lambda stream: stream.writelines(face.json_blocks()))
         model = page_model(avatar)
         _write_text(
             staging.temporary(paths.html),
             lambda stream: write_html_stream(stream, name=name, bvh_blocks=bvh.text_blocks(), timeline=timeline,
-                                             wav_filename=paths.wav.name, model=model),  # fmt: skip
+                                             wav_filename=paths.wav.name, model=model, face_blocks=face.page_blocks()),  # fmt: skip
             "utf-8",
         )
         if model is not None:
@@ -218,7 +226,7 @@ def render_to_files(
             with open(staging.temporary(paths.glb), "wb") as stream:
                 animation.write(stream)
     except BaseException:
-        for writer in (wav, bvh, animation):
+        for writer in (wav, bvh, face, animation):
             if writer is not None:
                 with contextlib.suppress(Exception):  # the failure being raised is the one to report
                     writer.close()

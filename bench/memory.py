@@ -51,6 +51,13 @@ FLAT_MB_PER_HOUR = 100.0
 _MARKER = "bench-memory-result:"
 
 
+def _long_job_limits():
+    """Limits raised for the hour-long renders (the defaults stop at 10 minutes)."""
+    from mura.limits import Limits
+
+    return Limits(max_duration=2 * HOUR_SECONDS, max_frames=int(2 * HOUR_SECONDS * 60))
+
+
 class MeasurementError(RuntimeError):
     """The measured callable failed; the message carries the child's last error line."""
 
@@ -140,7 +147,7 @@ def render_with_agent(seconds: str) -> dict[str, float]:
     ``max`` avatar, fake speech, 60 fps); returns the performed duration and frame count."""
     from agent.agent import Agent
 
-    performance = Agent().render(long_utterance(float(seconds)), name="long")
+    performance = Agent(limits=_long_job_limits()).render(long_utterance(float(seconds)), name="long")
     return {"duration_s": performance.duration, "frames": performance.motion.frame_count}
 
 
@@ -153,7 +160,7 @@ def render_streaming(seconds: str) -> dict[str, float]:
     from agent.agent import Agent
 
     with tempfile.TemporaryDirectory(prefix="mura-bench-memory-") as folder:
-        files = Agent().render_files(long_utterance(float(seconds)), folder, name="long")
+        files = Agent(limits=_long_job_limits()).render_files(long_utterance(float(seconds)), folder, name="long")
         size = sum(path.stat().st_size for path in (files.wav, files.bvh, files.timeline, files.html))
     return {"duration_s": files.duration, "files_mb": size / 2**20}
 

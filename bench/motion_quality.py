@@ -8,7 +8,8 @@ the fake speech, then measures the motion it produced (:mod:`bench.synchrony`,
 * per utterance: stroke onset and end errors (mean, max; seconds and frames);
 * per dynamic stroke (between its detected onset and end): speed-profile symmetry,
   jerk ratio and, on curved strokes (median radius of curvature below
-  :data:`CURVED_RADIUS`), the power-law exponent;
+  :data:`CURVED_RADIUS`) whose radius varies (:data:`MIN_LOG_SPREAD`), the power-law
+  exponent;
 * the power-law exponent of a wrist trajectory planned directly through an ellipse's
   breakpoints (the law the trajectory former is built on, without IK or scheduling);
 * over every motion: the largest velocity jump relative to the peak speed, joint-limit
@@ -38,6 +39,9 @@ QUICK_UTTERANCES = ("fig2_take_this_bar", "circle_wheel")
 FPS = 60.0
 #: A stroke whose median radius of curvature is below this (metres) counts as curved.
 CURVED_RADIUS = 0.3
+#: Least spread (standard deviation of log R) for the power law to be fitted: on a circle
+#: the radius is constant and the exponent undefined.
+MIN_LOG_SPREAD = 0.15
 
 
 def _median(values: list[float]) -> float | None:
@@ -67,7 +71,9 @@ def _strokes(positions: dict[str, np.ndarray], errors: list[synchrony.StrokeErro
         bend = np.linalg.norm(np.cross(velocity, np.gradient(velocity, 1.0 / FPS, axis=0)), axis=1)
         with np.errstate(divide="ignore", invalid="ignore"):
             radius = np.linalg.norm(velocity, axis=1) ** 3 / bend
-        if np.nanmedian(radius) < CURVED_RADIUS:
+        moving = np.linalg.norm(velocity, axis=1) > quality.MIN_SPEED_FRACTION * np.linalg.norm(velocity, axis=1).max()
+        bent = moving & np.isfinite(radius) & (radius > 0) & (radius < quality.MAX_RADIUS)
+        if np.nanmedian(radius) < CURVED_RADIUS and np.count_nonzero(bent) > 2 and np.std(np.log(radius[bent])) >= MIN_LOG_SPREAD:
             entry["power_law_exponent"] = quality.power_law_exponent(path, FPS).exponent
         measured.append(entry)
     return measured

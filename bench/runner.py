@@ -32,8 +32,14 @@ MODULES: tuple[str, ...] = (
     "bench.signing_speed",
     "bench.corpus_throughput",
     "bench.motion_quality",
+    "bench.head_face",
+    "bench.motion_audit",
     "bench.memory",
+    "bench.verbs",
 )
+
+#: Keys of a module's figures too detailed for the terminal table (they stay in --json).
+DETAIL_KEYS = frozenset({"utterances", "corpus"})
 
 README_START = "<!-- bench:start -->"
 README_END = "<!-- bench:end -->"
@@ -77,8 +83,23 @@ TARGETS: tuple[Target, ...] = (
     Target("joint-limit violations", "0", ("bench.motion_quality", "joint_limit_violations"), "max", 0.0, "frames"),
     Target("torso penetrations", "0", ("bench.motion_quality", "torso_penetrations"), "max", 0.0, "frames"),
     Target("NaN in motions", "0", ("bench.motion_quality", "nan"), "max", 0.0),
+    # The independent audit of rendered motion (bench/motion_audit): examples, published MURML, 200 signs.
+    Target("motion audit: elbow pops (events)", "0", ("bench.motion_audit", "elbow_pop_events"), "max", 0.0),
+    Target("motion audit: wrist speed steps (events)", "0", ("bench.motion_audit", "wrist_step_events"), "max", 0.0),
+    Target("motion audit: largest joint rotation per frame", "≤ 25°", ("bench.motion_audit", "largest_joint_turn_deg"), "max", 25.0, "°"),
+    Target("motion audit: deepest arm segment in the torso", "≤ 1 cm", ("bench.motion_audit", "torso_penetration_cm"), "max", 1.0, "cm"),
+    Target("motion audit: deepest forearm in forearm", "≤ 1 cm", ("bench.motion_audit", "forearm_penetration_cm"), "max", 1.0, "cm"),
+    Target("motion audit: deepest hand in hand (palm thickness)", "≤ 1 cm", ("bench.motion_audit", "hand_penetration_cm"), "max", 1.0, "cm"),
+    Target("motion audit: peak wrist speed", "≤ 3 m/s", ("bench.motion_audit", "peak_wrist_speed"), "max", 3.0, "m/s"),
+    Target("motion audit: power-law β, rendered curved strokes (median)", "1/3 ± 0.05", ("bench.motion_audit", "power_law_beta_median"), "within", 1 / 3, tolerance=0.05),
+    Target("motion audit: jerk / minimum jerk, strokes (median)", "≤ 1.5", ("bench.motion_audit", "jerk_ratio_stroke_median"), "max", 1.5),
+    Target("motion audit: jerk / minimum jerk, starts from rest (median)", "≤ 1.5", ("bench.motion_audit", "jerk_ratio_start_median"), "max", 1.5),
+    Target("motion audit: strokes with a visible onset landmark", "100 %", ("bench.motion_audit", "stroke_landmark_percent"), "min", 100.0, "%"),
+    Target("motion audit: stroke onset lead vs acoustic onset (max error, espeak)", "200 ms ± 1 frame", ("bench.motion_audit", "stroke_onset_error_max_frames"), "max", 1.0, "frames"),
     Target("memory for one hour of speech", "< 500 MB", ("bench.memory", "one_hour_peak_rss_mb"), "below", 500.0, "MB"),
     Target("real SiGML signs rendered (of valid signs)", "≥ 99.5%", ("bench.corpus_throughput", "rendered_percent_of_valid"), "min", 99.5, "%"),
+    Target("mouth opening vs audio energy, espeak (lowest example)", "r ≥ 0.5", ("bench.head_face", "lipsync_r_min"), "min", 0.5),
+    Target("gaze direction error at the stroke (largest)", "< 5°", ("bench.head_face", "gaze_error_max_deg"), "below", 5.0, "°"),
 )
 
 
@@ -180,7 +201,7 @@ def format_table(report: Mapping, targets: Sequence[Target] = TARGETS) -> str:
     lines.append("")
     for name, figures in report["results"].items():
         lines.append(f"{name}:")
-        lines.extend(f"  {key}: {_short(value)}" for key, value in figures.items() if key != "utterances")
+        lines.extend(f"  {key}: {_short(value)}" for key, value in figures.items() if key not in DETAIL_KEYS)
     return "\n".join(lines)
 
 

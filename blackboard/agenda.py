@@ -22,6 +22,7 @@ class Agenda:
         self._counter = itertools.count()
 
     def __bool__(self) -> bool:
+        self._drop_cancelled()
         return bool(self._heap)
 
     def at(self, time: float, action: Callable[[], None]) -> int:
@@ -35,8 +36,14 @@ class Agenda:
         self._cancelled.add(key)
 
     def next_time(self) -> float:
-        """When the earliest entry is due (``inf`` when there is none)."""
+        """When the earliest entry not cancelled is due (``inf`` when there is none)."""
+        self._drop_cancelled()
         return self._heap[0][0] if self._heap else math.inf
+
+    def _drop_cancelled(self) -> None:
+        """Forget cancelled entries at the front, so that nobody waits for them."""
+        while self._heap and self._heap[0][1] in self._cancelled:
+            self._cancelled.discard(heapq.heappop(self._heap)[1])
 
     def pop_due(self, time: float) -> Callable[[], None] | None:
         """The earliest entry not cancelled that is due by ``time``, removed; None when there is none."""

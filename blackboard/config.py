@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from blackboard.chunk_timing import TimingConfig
+from mura.limits import DEFAULT_LIMITS, Limits
 
 
 @dataclass(frozen=True)
@@ -18,7 +19,8 @@ class SchedulerConfig:
     time planning may take). ``voice``/``rate``/``with_audio`` go to the speech requests.
     ``keep_output``: collect the frames and audio into the result; when False they reach
     observers only (``FramesReady``, ``SpeechStarted``), each chunk's audio is dropped once
-    published, and memory stays flat however long the utterance.
+    published, and memory stays flat however long the utterance. ``limits``: a chunk that
+    would make the utterance last past ``max_duration`` (or ``max_frames``) fails.
     """
 
     timing: TimingConfig = TimingConfig()
@@ -29,6 +31,7 @@ class SchedulerConfig:
     with_audio: bool = True
     keep_output: bool = True
     offline_frame_window: float = 1.0
+    limits: Limits = DEFAULT_LIMITS
 
     def __post_init__(self) -> None:
         for name in ("frame_window", "offline_frame_window"):

@@ -8,7 +8,7 @@ planning worker, so they must be quick and thread-safe.
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Union
 
@@ -72,7 +72,39 @@ class FramesReady:
     motion: Motion
 
 
-Event = Union[ChunkStateChanged, BehaviorFeedback, SpeechStarted, SpeechEnded, FramesReady]
+@dataclass(frozen=True)
+class ChunkPlanned:
+    """Chunk ``chunk`` is planned (it enters Pending): the times its behaviours' pegs
+    (``phases``, by behaviour id) and its time tags will have, before any of it runs.
+
+    Times are on the utterance clock; ``origin`` is the session-clock time of the utterance
+    start; ``warnings`` are the utterance's warnings so far.
+    """
+
+    utterance: str
+    chunk: int
+    origin: float
+    speech_onset: float | None
+    speech_end: float | None
+    phases: Mapping[str, Mapping[str, float]]
+    time_tags: Mapping[str, float]
+    warnings: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class UtteranceEnded:
+    """The utterance is over at ``time`` (utterance clock): ``status`` is ``done``,
+    ``interrupted`` or ``failed`` (``error`` says why); ``warnings`` are all of its warnings."""
+
+    utterance: str
+    time: float
+    origin: float
+    status: str
+    warnings: tuple[str, ...] = ()
+    error: str | None = None
+
+
+Event = Union[ChunkStateChanged, BehaviorFeedback, SpeechStarted, SpeechEnded, FramesReady, ChunkPlanned, UtteranceEnded]
 Observer = Callable[[Event], None]
 
 

@@ -8,14 +8,18 @@ timeline. Knowing that a chunk follows sets ``final=False`` for the speech and
 ``next_gesture_follows`` for gestures followed by another on the same arm.
 
 Absolutely timed behaviours of an utterance with speech are planned with the first chunk
-whose speech ends after their onset (the last chunk takes the rest).
+whose speech ends after their onset (the last chunk takes the rest). Behaviours of a BML
+block are timed by the block's constraints (:mod:`blackboard.synced`); those no motor
+module performs are timed and listed, not planned.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Mapping
 from concurrent.futures import Future
 
+from blackboard import synced
 from blackboard.anchors import TagAnchor, acoustic_anchors
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
@@ -28,6 +32,7 @@ from blackboard.timeline import BehaviorEntry
 from motor.trajectory.spline import fitts_duration
 from mura.model import Affiliate, BehaviorSpec
 from tts import SpeechError, SpeechRequest, SpeechSynthesizer, SpeechTiming, TextMark
+from tts.speech import frozen_marks
 
 #: Preparation distances (m) that differ by less than this between two estimates are the same.
 _SAME_DISTANCE = 1e-6
@@ -60,9 +65,10 @@ class ChunkPlanner:
         last_word = board.speech.words[-1].end if board.has_speech else 0.0
         pause = self.config.timing.min_pause
         if previous is not None and previous.state is not ChunkState.FAILED:
-            earliest = max(previous.speech_end + (pause if previous.has_speech else 0.0), now + margin)
+            # never before the utterance's own start (a queued utterance after an interrupted one)
+            earliest = max(previous.speech_end + (pause if previous.has_speech else 0.0), now + margin, job.origin)
             onset_reason = f"speech onset of chunk {board.index + 1} at least {pause:.3f} s after the previous speech end"
-            arm_free = max(previous.strokes_done, now + margin)
+            arm_free = max(previous.strokes_done, now + margin, job.origin)
             arm_reason = "arm free once the previous chunk's strokes are done"
             board.lurk_allowed = previous.strokes_done
         else:
@@ -74,11 +80,21 @@ class ChunkPlanner:
         board.behaviors = board.behaviors + tuple(absolute)
         for b in absolute:
             board.demands[b.id] = self.motor.demands(b)
-        timing = self._solve(board, job, anchors, earliest, onset_reason, arm_free, arm_reason)
+        unperformed = synced.unperformed(job.utterance, board.index)
+        board.demands.update({b.id: synced.nominal_demands(b) for b in unperformed})
+        retractions: dict[str, float] = {}
+        timing = self._solve(board, job, anchors, earliest, onset_reason, arm_free, arm_reason, unperformed, retractions)
         board.timing = timing
         board.speech_end = timing.speech_onset + last_word
         board.gestures = self._program(board, job, timing, follows)
-        _record(board, job, timing, anchors)
+        if _retime_ends(board, timing, retractions):  # a named end: time it with the motor's own retraction
+            timing = self._solve(board, job, anchors, earliest, onset_reason, arm_free, arm_reason, unperformed, retractions)
+            board.timing = timing
+            board.speech_end = timing.speech_onset + last_word
+            board.gestures = self._program(board, job, timing, follows)
+        end = max([board.speech_end] + [g.program.pegs.end for g in board.gestures])
+        self.config.limits.check_performance(end - job.origin, self.motor.fps, f"the utterance, up to chunk {board.index + 1},")
+        _record(board, job, timing, anchors, unperformed)
 
     def _speak(self, board: Blackboard, follows) -> SpeechTiming | None:
         spec = board.spec
@@ -87,9 +103,10 @@ class ChunkPlanner:
         tags = {t.id: t for t in spec.time_tags}
         emphasis = [(tags[b.timing.onset].offset, tags[b.timing.end].offset) for b in board.behaviors
                     if isinstance(b.timing, Affiliate) and b.timing.onset in tags and b.timing.end in tags]
+        names = {f"mark{n}" if ":" in t.id else t.id: t.id for n, t in enumerate(spec.time_tags)}  # SSML names have no colon
         request = SpeechRequest(
             text=spec.text,
-            marks=tuple(TextMark(t.id, t.offset) for t in spec.time_tags),
+            marks=tuple(TextMark(name, t.offset) for name, t in zip(names, spec.time_tags)),
             emphasis=tuple(sorted(emphasis)),
             final=follows is None,
             voice=self.config.voice,
@@ -97,18 +114,27 @@ class ChunkPlanner:
             with_audio=self.config.with_audio,
         )
         try:
-            return self.tts.synthesize(request)
+            speech = self.tts.synthesize(request)
         except SpeechError as error:
             raise SpeechError(f"speech of chunk {spec.index + 1} ({spec.text!r}) failed: {error}") from error
+        if all(name == tag for name, tag in names.items()):
+            return speech
+        return dataclasses.replace(speech, marks=frozen_marks({names[name]: t for name, t in speech.marks.items()}))
 
     def _solve(self, board: Blackboard, job: Job, anchors: Mapping[str, TagAnchor], earliest: float,
-               onset_reason: str, arm_free: float, arm_reason: str) -> ChunkTiming:
+               onset_reason: str, arm_free: float, arm_reason: str, unperformed: tuple[BehaviorSpec, ...] = (),
+               retractions: dict[str, float] | None = None) -> ChunkTiming:
         """Two passes: preparation distances from where the arms are at a first guess of
         each preparation start, then at the solved starts when they differ."""
         lead = self.config.timing.stroke_lead
         fewer = {b.id: tuple(self.motor.demands(x) for x in with_fewer_repetitions(b)) for b in board.behaviors}
+        links, foreign = synced.links(job.utterance, board.index)
+        fixed = synced.fixed_times(foreign, job.utterance, job.timeline, job.origin)
         guesses = {}
         for b in board.behaviors:
+            if synced.is_synced(b):
+                guesses[b.id] = arm_free  # not known before solving: prepare from where the arm is when free
+                continue
             if isinstance(b.timing, Affiliate):
                 stroke = earliest + anchors[b.timing.onset].onset - lead
             else:
@@ -117,9 +143,11 @@ class ChunkPlanner:
 
         def solve(starts: Mapping[str, float]) -> tuple[ChunkTiming, dict[str, Mapping[str, float]]]:
             distances = {b.id: self.motor.preparation_distances(b, starts[b.id]) for b in board.behaviors}
-            requests = [_request(b, board.demands[b.id], distances[b.id], fewer[b.id], job) for b in board.behaviors]
+            requests = [_request(b, board.demands[b.id], distances[b.id], fewer[b.id], job, self.config, retractions)
+                        for b in board.behaviors]
+            requests += [_request(b, board.demands[b.id], {}, (), job, self.config) for b in unperformed]
             timing = time_chunk(board.index, earliest, onset_reason, arm_free, arm_reason, anchors, requests,
-                                self.config.timing, job.absolute_delay)
+                                self.config.timing, job.absolute_delay, links, fixed)
             return timing, distances
 
         timing, distances = solve(guesses)
@@ -138,7 +166,9 @@ class ChunkPlanner:
                 board.demands[b.id] = self.motor.demands(b)
             d = board.demands[b.id]
             retraction = float(fitts_duration(d.preparation_distance))
-            pegs = TimePegs(g.prep_start, g.stroke_start, g.stroke_start, g.stroke, g.stroke_end, g.relax, g.relax + retraction)
+            ready = g.ready if g.ready is not None else g.stroke_start
+            end = g.end if g.end is not None else g.relax + retraction
+            pegs = TimePegs(g.prep_start, ready, g.stroke_start, g.stroke, g.stroke_end, g.relax, end)
             next_follows = bool(d.arms & later_arms[b.id])
             program = self.motor.plan(b, pegs, repetitions=g.repetitions, next_gesture_follows=next_follows)
             for warning in program.warnings:
@@ -162,7 +192,11 @@ class ChunkPlanner:
         return out
 
 
-def _request(b: BehaviorSpec, demands, distances: Mapping[str, float], fewer, job: Job) -> GestureRequest:
+def _request(b: BehaviorSpec, demands, distances: Mapping[str, float], fewer, job: Job, config: SchedulerConfig | None = None,
+             retractions: Mapping[str, float] | None = None) -> GestureRequest:
+    if synced.is_synced(b):
+        retraction = (retractions or {}).get(b.id, float(fitts_duration(demands.preparation_distance)))
+        return GestureRequest(b.id, demands, distances, synced=synced.phases(b, config.timing, retraction))
     if isinstance(b.timing, Affiliate):
         return GestureRequest(b.id, demands, distances, affiliate=(b.timing.onset, b.timing.end), fewer_repetitions=fewer)
     return GestureRequest(b.id, demands, distances, absolute=(job.origin + b.timing.onset, job.origin + b.timing.end),
@@ -180,7 +214,22 @@ def _take_absolute(job: Job, board: Blackboard, speech_end: float) -> list[Behav
     return taken
 
 
-def _record(board: Blackboard, job: Job, timing: ChunkTiming, anchors: Mapping[str, TagAnchor]) -> None:
+def _retime_ends(board: Blackboard, timing: ChunkTiming, retractions: dict[str, float]) -> bool:
+    """For synced gestures whose ``end`` a constraint names: remember the motor's own
+    retraction where it differs from the estimate; True when timing must be solved again."""
+    named = synced.named_end(board.behaviors)
+    solved_end = {g.behavior: g.end for g in timing.gestures}
+    again = False
+    for planned in board.gestures:
+        b = planned.behavior.id
+        if b in named and b not in retractions and abs(planned.program.pegs.end - solved_end[b]) > 1e-6:
+            retractions[b] = planned.program.pegs.end - planned.program.pegs.relax
+            again = True
+    return again
+
+
+def _record(board: Blackboard, job: Job, timing: ChunkTiming, anchors: Mapping[str, TagAnchor],
+            unperformed: tuple[BehaviorSpec, ...] = ()) -> None:
     """Write the chunk's speech, anchors, stretches, relaxations and gesture phases to the timeline."""
     tl, o, i = job.timeline, job.origin, board.index
     entry = tl.chunk(i)
@@ -201,7 +250,9 @@ def _record(board: Blackboard, job: Job, timing: ChunkTiming, anchors: Mapping[s
         tl.tag_anchors[name] = {"mark": mark, "acoustic_onset": onset + anchor.onset, "acoustic_end": onset + anchor.end}
     for g in board.gestures:
         b = g.behavior
-        if isinstance(b.timing, Affiliate):
+        if synced.is_synced(b):
+            affiliate = None
+        elif isinstance(b.timing, Affiliate):
             first, last = tl.tag_anchors[b.timing.onset], tl.tag_anchors[b.timing.end]
             affiliate = {"onset": first["acoustic_onset"], "end": last["acoustic_end"],
                          "onset_mark": first["mark"], "end_mark": last["mark"]}
@@ -216,3 +267,14 @@ def _record(board: Blackboard, job: Job, timing: ChunkTiming, anchors: Mapping[s
             g.timing.mode, g.timing.repetitions, g.timing.slowdown, False, g.next_gesture_follows,
             [r.to_json() for r in g.timing.relaxations],
         ))
+    for dropped in timing.dropped:
+        tl.warn(f"constraint {dropped} dropped: it conflicts with the rest of the block and is not required")
+    timed = {g.behavior: g for g in timing.gestures}
+    for b in unperformed:
+        g = timed[b.id]
+        phases = dict(zip(PEG_NAMES, (g.prep_start, g.ready, g.stroke_start, g.stroke, g.stroke_end, g.relax, g.end)))
+        for relaxation in g.relaxations:
+            tl.warn(relaxation.describe())
+        tl.add_behavior(BehaviorEntry(b.id, i, b.kind, (), {name: t - o for name, t in phases.items()}, None,
+                                      g.mode, g.repetitions, g.slowdown, relaxations=[r.to_json() for r in g.relaxations],
+                                      performed=False))

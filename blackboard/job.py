@@ -110,6 +110,7 @@ def concatenated(frames: list[Motion], origin: float) -> Motion | None:
     if not frames:
         return None
     first = frames[0]
+    faces = [m.face_weights for m in frames if m.face_weights is not None]
     return Motion(
         fps=first.fps,
         joint_names=first.joint_names,
@@ -118,4 +119,6 @@ def concatenated(frames: list[Motion], origin: float) -> Motion | None:
         rotations=np.concatenate([m.rotations for m in frames]),
         root_translation=np.concatenate([m.root_translation for m in frames]),
         start_time=first.start_time - origin,
+        face_names=first.face_names,
+        face_weights=np.concatenate(faces) if first.face_names and len(faces) == len(frames) else None,
     )

@@ -17,6 +17,7 @@ from motor.motion import Motion
 from motor.program.gesture import GestureDemands
 from motor.program.lmp import TimePegs
 from mura.model import BehaviorSpec
+from tts.speech import SpeechTiming
 
 #: The pegs in phase order, as they appear in the timeline.
 PEG_NAMES: tuple[str, ...] = ("start", "ready", "stroke_start", "stroke", "stroke_end", "relax", "end")
@@ -49,7 +50,8 @@ class MotorControl(Protocol):
 
     def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> Mapping[str, float]:
         """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
-        activated so far) to the start of ``behavior``'s stroke."""
+        activated so far) to the start of ``behavior``'s stroke (and possibly ``"gaze"``: a
+        distance whose preparation time lets eyes and head reach the behaviour's gaze target)."""
         ...
 
     def plan(
@@ -78,6 +80,13 @@ class MotorControl(Protocol):
 
     def frames(self, start: float, end: float) -> Motion:
         """Frames at times ``k / fps`` in ``[start, end)`` from everything activated so far."""
+        ...
+
+    def speak(self, speech: SpeechTiming, onset: float, accents: Sequence[tuple[float, float]] = ()) -> Sequence[str]:
+        """Lip-sync a chunk's speech that starts at ``onset``, with the face and head
+        marking the ``accents`` (utterance-clock spans of its emphasized affiliates);
+        called when the chunk becomes Lurking, before frames at ``onset`` are sampled.
+        Returns warnings for the timeline."""
         ...
 
     def busy_until(self, arm: str) -> float:

@@ -25,6 +25,11 @@ frame window is sampled when the clock reaches its end (the viewer buffers one w
 
 A gesture-only utterance (no text) is one chunk without speech. Other behaviours than gestures (facial,
 …) are listed in the timeline's ``other_behaviors`` but not performed; gestures and signs are.
+Behaviours of a BML block are timed by the block's sync constraints (:mod:`blackboard.synced`):
+those no motor module performs yet are timed and listed (``performed`` false), not performed;
+a BML speech reports its start, its sync markers and its end as behaviour feedback. Observers
+also hear when a chunk is planned (:class:`ChunkPlanned`) and when an utterance ends
+(:class:`UtteranceEnded`), from which :mod:`blackboard.feedback` makes BML's feedback.
 """
 
 from __future__ import annotations
@@ -35,20 +40,22 @@ import threading
 from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
 
+from blackboard import synced
 from blackboard.agenda import Agenda
+from blackboard.anchors import acoustic_anchors
 from blackboard.board import Blackboard, PlannedGesture
 from blackboard.chunk import ChunkState
 from blackboard.clock import Clock, VirtualClock
 from blackboard.config import SchedulerConfig
 from blackboard.errors import ScheduleError
-from blackboard.events import EventBus, FramesReady, Observer, SpeechEnded, SpeechStarted
+from blackboard.events import ChunkPlanned, EventBus, FramesReady, Observer, SpeechEnded, SpeechStarted, UtteranceEnded
 from blackboard.inprep import ChunkPlanner, result
 from blackboard.job import Job, ScheduledUtterance, performed
 from blackboard.planning import PEG_NAMES, MotorControl
 from blackboard.timeline import ChunkEntry, PlanningSlack, Timeline
 from blackboard.validation import validate
-from mura.model import AbsoluteTiming, BehaviorSpec, ChunkSpec, Utterance
-from tts import SpeechError, SpeechSynthesizer
+from mura.model import AbsoluteTiming, Affiliate, BehaviorSpec, ChunkSpec, Utterance
+from tts import SpeechSynthesizer
 
 __all__ = ["LiveHandle", "ScheduledUtterance", "Scheduler", "SchedulerConfig", "validate"]
 
@@ -77,6 +84,11 @@ class LiveHandle:
     @property
     def timeline(self) -> Timeline:
         return self._job.timeline
+
+    @property
+    def done(self) -> bool:
+        """True once the utterance is over (performed, interrupted or failed)."""
+        return self._job.done.is_set()
 
 
 class Scheduler:
@@ -167,8 +179,10 @@ class Scheduler:
         absolute = sorted((b for b in utterance.behaviors if isinstance(b.timing, AbsoluteTiming) and b.moves_arms),
                           key=lambda b: b.timing.onset)
         timeline = Timeline(name, self.motor.fps)
+        for warning in utterance.warnings:
+            timeline.warn(warning)
         for b in utterance.behaviors:
-            if not b.moves_arms:
+            if not b.moves_arms and not synced.is_synced(b):  # BML's reader says it of its own
                 timeline.warn(f"behaviour {b.id!r} ({b.kind}) is listed but not performed: only gestures and signs are scheduled")
         return Job(utterance, name, chunks, timeline, absolute=list(absolute))
 
@@ -239,7 +253,7 @@ class Scheduler:
             board.move(ChunkState.IN_EXEC, self._time)
         pending = self._submit_next(board)  # Fig. 6: the next chunk is prepared while this one executes
         if not job.interrupted:
-            self._advance_to(max(board.strokes_done, self._time))
+            self._advance_to(max(board.strokes_done, self._time), unless=lambda: job.interrupted)  # REPLACE goes on at once
         following = result(pending)
         if job.interrupted:
             return following
@@ -269,8 +283,24 @@ class Scheduler:
             self._schedule_feedback(board, gesture)
         if board.has_speech:
             onset, end = board.speech_onset, board.speech_end
+            for warning in self.motor.speak(board.speech, onset, _accents(board)):
+                job.timeline.warn(warning)
             self._at(onset, lambda: self._start_speech(job, board, onset))
             board.speech_end_entry = self._at(end, lambda: self.bus.publish(SpeechEnded(job.name, board.index, end - job.origin)))
+            if board.spec.speech is not None:
+                self._schedule_speech_feedback(board)
+
+    def _schedule_speech_feedback(self, board: Blackboard) -> None:
+        """A BML speech's progress, on the audio: ``started`` at the first word, ``sync`` at
+        the word after each marker, ``finished`` at the end of the last word."""
+        speech = board.spec.speech
+        anchors = acoustic_anchors(board.speech, board.spec.time_tags)
+        for tag in board.spec.time_tags:
+            point = tag.id.split(":", 1)[1]
+            anchor = anchors[tag.id]
+            t = board.speech_onset + (anchor.end if point == "end" else anchor.onset)
+            kind = {"start": "started", "end": "finished"}.get(point, "sync")
+            board.feedback_entries.append(self._at(t, lambda k=kind, p=point, t=t: board.post(speech, k, p, t)))
 
     def _start_speech(self, job: Job, board: Blackboard, onset: float) -> None:
         speech = board.speech
@@ -341,10 +371,13 @@ class Scheduler:
     def _cancel(self, key: int) -> None:
         self._agenda.cancel(key)
 
-    def _advance_to(self, t: float) -> None:
-        """Let time pass until ``t``: sample frames window by window and fire due agenda events."""
+    def _advance_to(self, t: float, unless: Callable[[], bool] | None = None) -> None:
+        """Let time pass until ``t``: sample frames window by window and fire due agenda
+        events; return early once ``unless()`` holds (checked after each interrupt check)."""
         while True:
             self._handle_interrupts()
+            if unless is not None and unless():
+                return
             stop = min(t, self._agenda.next_time(), self._frame_cursor + self._frame_window())
             self.clock.sleep_until(stop)
             self._time = max(self._time, stop)
@@ -422,7 +455,7 @@ class Scheduler:
         spec = job.chunks[index]
         now = self.clock.now()
         job.timeline.add_chunk(ChunkEntry(index, spec.text))
-        behaviors = job.utterance.behaviors_in_chunk(index) if job.utterance.chunks else ()
+        behaviors = job.utterance.behaviors_in_chunk(index)
         board = Blackboard(job.name, spec, tuple(b for b in behaviors if b.moves_arms), job.origin, now, self.bus, job.timeline)
         job.boards.append(board)
         with self._lock:
@@ -430,7 +463,7 @@ class Scheduler:
         try:
             margin = self.config.live_margin if self.clock.live else 0.0
             self._inprep.fill(board, job, previous, now, margin, self._followed(job, board.index))
-        except (SpeechError, ScheduleError, ValueError) as error:
+        except Exception as error:  # noqa: BLE001 - any failure fails this chunk only; the part performed is kept
             board.error = error
             job.failed = board
             job.timeline.chunk(index).error = f"{type(error).__name__}: {error}"
@@ -439,7 +472,19 @@ class Scheduler:
             return board
         board.move(ChunkState.PENDING, self.clock.now())
         job.timeline.slack.append(PlanningSlack(index, self.clock.now() - job.origin, board.exec_start - job.origin))
+        self._announce_plan(board, job)
         return board
+
+    def _announce_plan(self, board: Blackboard, job: Job) -> None:
+        """Tell observers the chunk's planned times (BML's prediction feedback is made of them)."""
+        tl, entry = job.timeline, job.timeline.chunk(board.index)
+        phases = {b.id: dict(b.phases) for b in list(tl.behaviors) if b.chunk == board.index}
+        tags = {}
+        for tag in board.spec.time_tags:
+            anchor = tl.tag_anchors.get(tag.id)
+            if anchor is not None:
+                tags[tag.id] = anchor["acoustic_end" if tag.id.endswith(":end") and board.spec.speech else "acoustic_onset"]
+        self.bus.publish(ChunkPlanned(job.name, board.index, job.origin, entry.speech_onset, entry.speech_end, phases, tags, tuple(tl.warnings)))
 
     def _contribute(self, function: Callable, *args) -> Future | object:
         if self._contributors is None:
@@ -464,4 +509,19 @@ class Scheduler:
             (self._active if job in self._active else self._queue).remove(job)
             for board in job.boards:
                 self._board_jobs.pop(board, None)
+        failed = job.failed
+        status = "interrupted" if job.interrupted else "failed" if failed is not None else "done"
+        error = f"{type(failed.error).__name__}: {failed.error}" if failed is not None and failed.error is not None else None
+        ended = min(job.end, max(self._time, job.origin)) if job.interrupted else job.end  # not the unspoken rest of the audio
+        self.bus.publish(UtteranceEnded(job.name, ended - job.origin, job.origin, status, tuple(job.timeline.warnings), error))
         job.done.set()
+
+
+def _accents(board: Blackboard) -> tuple[tuple[float, float], ...]:
+    """The utterance-clock spans of the chunk's affiliates, which its speech emphasizes."""
+    marks, onset = board.speech.marks, board.speech_onset
+    return tuple(
+        (onset + marks[g.behavior.timing.onset], onset + marks[g.behavior.timing.end])
+        for g in board.gestures
+        if isinstance(g.behavior.timing, Affiliate) and g.behavior.timing.onset in marks and g.behavior.timing.end in marks
+    )

@@ -32,7 +32,8 @@ class ChunkEntry:
 class BehaviorEntry:
     """One behaviour's phases (the pegs its motor program realized), affiliate times (the
     acoustic onset and end of its words, with the mark times beside them) and the
-    relaxations taken for it (``step``, ``amount``, ``unit``, ``constraint``, ``conflict``)."""
+    relaxations taken for it (``step``, ``amount``, ``unit``, ``constraint``, ``conflict``);
+    ``performed`` is False for a BML behaviour that is timed but that no motor module performs."""
 
     id: str
     chunk: int
@@ -46,6 +47,7 @@ class BehaviorEntry:
     retraction_skipped: bool = False
     next_gesture_follows: bool = False
     relaxations: list[dict] = field(default_factory=list)
+    performed: bool = True
 
 
 @dataclass(frozen=True)
@@ -165,4 +167,5 @@ def _behavior_json(b: BehaviorEntry) -> dict:
         "retraction_skipped": b.retraction_skipped,
         "next_gesture_follows": b.next_gesture_follows,
         "relaxations": [dict(r) for r in b.relaxations],
+        "performed": b.performed,
     }

@@ -64,7 +64,9 @@ class Give:
     unit: str = "s"
 
 
-def _ns(seconds: float) -> int:
+def _ns(seconds: float, name: str = "a time") -> int:
+    if math.isnan(seconds) or seconds < -UNLIMITED:
+        raise TimingConflict(f"{name}: {seconds} s is not a time the schedule can hold", (name,))
     return int(round(min(seconds, UNLIMITED) * _NS))
 
 
@@ -79,12 +81,12 @@ class TemporalNetwork:
     def at_least(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None,
                  gives: tuple[Give, ...] = ()) -> None:
         """``t[later] − t[earlier] ≥ gap`` seconds; ``gives`` lower the gap."""
-        self._edge(earlier, later, -_ns(gap), name, behavior, gives)
+        self._edge(earlier, later, -_ns(gap, name), name, behavior, gives)
 
     def at_most(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None,
                 gives: tuple[Give, ...] = ()) -> None:
         """``t[later] − t[earlier] ≤ gap`` seconds; ``gives`` raise the gap."""
-        self._edge(later, earlier, _ns(gap), name, behavior, gives)
+        self._edge(later, earlier, _ns(gap, name), name, behavior, gives)
 
     def exactly(self, later: str, earlier: str, gap: float, name: str, behavior: str | None = None) -> None:
         """``t[later] − t[earlier] = gap`` seconds (hard)."""

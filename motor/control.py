@@ -5,8 +5,17 @@ arm — wrist position, hand rotation, hand shape — holding every LMP activate
 Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
 all frames of the window at once: first the externally formulated LMPs (wrist position,
 wrist rotation) are sampled, then both arms' IK is solved (analytic, natural swivel),
-then the joint-space LMPs (hand shape → finger joint rotations) are applied; every other
-joint keeps its rest rotation and the root stands still at ``(0, root_height, 0)``.
+then the joint-space LMPs (hand shape → finger joint rotations) are applied; then the
+neck module (:mod:`motor.neck`) turns torso, shoulders, neck, head and eyes, and the face
+module (:mod:`motor.face`) gives the frame's ARKit morph weights; every other joint keeps
+its rest rotation and the root stands still at ``(0, root_height, 0)``.
+
+Head and face: :meth:`MotorControl.plan` adds to each program the neck LMPs and face
+tracks of the behaviour's head and face slots (MURML ``GazeDirection``, ``Neck`` …,
+:mod:`motor.neck.planning`, :mod:`motor.face.planning`) or of its sign's non-manual tiers
+(:mod:`motor.signing.nonmanual`); a gaze shift counts in the preparation time.
+:meth:`MotorControl.speak` adds a chunk's lip-sync, the brow raise and a small head beat
+on its accented words, and its boundary blink.
 
 The elbow's swivel: the IK's natural swivel (Soechting & Flanders with its wrist and
 torso corrections, a search over candidate swivels) is the costly part of the arm, and
@@ -28,10 +37,20 @@ where it can change things (its start, less the swivel interpolation's reach).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
+from motor import quaternion as quat
 from motor.arm.ik import solve_arm
+from motor.face.arkit import FACE_NAMES
+from motor.face.control import FaceControl
+from motor.face.planning import plan_face
+from motor.neck.control import NeckControl
+from motor.neck import gaze as neck_gaze
+from motor.neck.lexemes import head_lexeme
+from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.hand.shape import hand_rotations
@@ -52,8 +71,11 @@ from motor.program.lmp import (
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
+from motor.signing.nonmanual import plan_nonmanuals
 from motor.trajectory.spline import fitts_duration
+from motor.verbs.behavior import VerbBehaviorPlanner
 from mura.model import BehaviorSpec
+from tts.speech import SpeechTiming
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
@@ -70,6 +92,16 @@ SWIVEL_LOOKAHEAD = 20
 FRAME_LOOKAHEAD = 2.0
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
+#: Module of a channel that is not an arm's: its LMPs go to the neck or the face.
+_NONMANUAL = ("neck", "face")
+#: The head beat on an accented vowel starts this long before it and ends this long after, s.
+BEAT_LEAD, BEAT_TAIL = 0.15, 0.2
+#: Fitts' law ``T = FITTS_SCALE · ln(FITTS_AMPLITUDE · A + 1)`` (motor.trajectory.spline), inverted
+#: to express a gaze shift's time as the wrist distance the scheduler times preparations from.
+FITTS_SCALE, FITTS_AMPLITUDE = 0.24, 100.0
+#: Nothing of a chunk's face shows earlier than this before its speech onset, s (the
+#: articulation's lead-in: a pause, the anticipation and the dominance's reach).
+SPEECH_REACH = 1.0
 
 
 class MotorControl:
@@ -79,19 +111,24 @@ class MotorControl:
     structurally. Times are seconds on the utterance clock; ``fps`` frames per second.
     """
 
-    def __init__(self, avatar: Avatar, fps: float = 60.0) -> None:
+    def __init__(self, avatar: Avatar, fps: float = 60.0, face_seed: int = 0) -> None:
         if not fps > 0:
             raise ValueError(f"fps must be positive, got {fps}")
         self.avatar = avatar
         self.fps = float(fps)
         self.planner = Planner(avatar)
         self.signs = SignBehaviorPlanner(avatar)
+        self.verbs = VerbBehaviorPlanner(avatar)
+        self.neck = NeckControl(avatar, self.palm_centres)
+        self.neck_planner = NeckPlanner(self.neck)
+        self.face = FaceControl(face_seed)
+        self._palm_offset = {arm: _palm_offset(avatar, AVATAR_SIDE[arm]) for arm in ARMS}
         self._initial = self._rest_states()
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
         self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
-        self._ahead: tuple[int, np.ndarray] | None = None  # first frame index, rotations
+        self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._last_swivel = {arm: _LastRun() for arm in ARMS}
@@ -115,36 +152,94 @@ class MotorControl:
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
         """Arms, natural stroke duration and preparation distance of ``behavior``."""
+        if behavior.spatial is not None:
+            return self.verbs.demands(behavior)
         if behavior.sign is not None:
             return self.signs.demands(behavior)
         return self.planner.demands(behavior)
 
     def preparation_distances(self, behavior: BehaviorSpec, at_time: float) -> dict[str, float]:
         """Per arm, metres from where the wrist will be at ``at_time`` (given the programs
-        activated so far) to the start of the stroke; arms the stroke leaves free are absent."""
-        if behavior.sign is not None:
+        activated so far) to the start of the stroke; arms the stroke leaves free are absent.
+
+        A behaviour that shifts the gaze (:mod:`motor.neck.planning`) adds ``"gaze"``: the
+        wrist distance whose Fitts' law time is the time eyes and head need to get on the
+        target, so that the scheduler, which times preparations from distances, leaves them
+        that time before the stroke."""
+        if behavior.spatial is not None:
+            targets = self.verbs.first_wrists(behavior)
+        elif behavior.sign is not None:
             targets = self.signs.first_wrists(behavior)
         else:
             fragment = self.planner.fragment(behavior)
             targets = {arm: first_location(fragment, arm) for arm in ARMS}
-        return {
+        distances = {
             arm: float(np.linalg.norm(target - self.timeline((arm, "wrist_position")).state(at_time).value))
             for arm, target in targets.items() if target is not None
         }
+        gaze = self.neck_planner.preparation(behavior.id, behavior.gesture.constraints, at_time) if behavior.gesture is not None else 0.0
+        if gaze > 0.0:
+            distances["gaze"] = float(np.expm1(gaze / FITTS_SCALE) / FITTS_AMPLITUDE)
+        return distances
 
     def preparation_duration(self, behavior: BehaviorSpec, at_time: float) -> float:
         """Fitts' law time (s) from where the arms will be at ``at_time`` (given the
-        programs activated so far) to the start of the stroke; the slowest arm counts."""
+        programs activated so far) to the start of the stroke; the slowest arm counts, or
+        the gaze shift the behaviour asks for when longer."""
         return max((float(fitts_duration(d)) for d in self.preparation_distances(behavior, at_time).values()), default=0.0)
 
     def plan(
         self, behavior: BehaviorSpec, pegs: TimePegs, *, repetitions: int = 1, next_gesture_follows: bool = False
     ) -> MotorProgram:
         """The motor program performing ``behavior`` on ``pegs`` (see :mod:`motor.program.gesture`;
-        a sign behaviour: :mod:`motor.signing.behavior`)."""
+        a sign behaviour: :mod:`motor.signing.behavior`; pointing and indicating verbs:
+        :mod:`motor.verbs.behavior`)."""
+        if behavior.spatial is not None:
+            program = self.verbs.plan(behavior, pegs, next_gesture_follows)
+        elif behavior.sign is not None:
+            program = self.signs.plan(behavior, pegs, next_gesture_follows)
+        else:
+            states = {arm: self.timeline((arm, "wrist_position")).state(pegs.start) for arm in ARMS}
+            program = self.planner.plan(behavior, pegs, repetitions, next_gesture_follows, start_states=states)
+        return self._with_head_and_face(behavior, program)
+
+    def _with_head_and_face(self, behavior: BehaviorSpec, program: MotorProgram) -> MotorProgram:
+        """``program`` with the neck LMPs and face tracks of ``behavior`` added (module docstring)."""
+        pegs = program.pegs
         if behavior.sign is not None:
-            return self.signs.plan(behavior, pegs, next_gesture_follows)
-        return self.planner.plan(behavior, pegs, repetitions, next_gesture_follows)
+            sign = behavior.sign
+            dominant = sign.dominant.side
+            nonmanual = plan_nonmanuals(self.avatar, sign.gloss, sign.nonmanual, pegs.start, pegs.stroke_start, pegs.stroke_end,
+                                        self.palm_centres, dominant, sign.where)  # fmt: skip
+            lmps, notes = nonmanual.lmps, nonmanual.warnings
+        else:
+            tree = behavior.gesture.constraints if behavior.gesture is not None else None
+            neck = self.neck_planner.plan(behavior.id, tree, pegs)
+            face = plan_face(behavior.id, tree, pegs)
+            lmps, notes = [*neck.lmps, *face.tracks], [*neck.warnings, *face.warnings]
+        if not lmps and not notes:
+            return program
+        return replace(program, lmps=(*program.lmps, *lmps), warnings=(*program.warnings, *notes))
+
+    def speak(self, speech: SpeechTiming, onset: float, accents: Sequence[tuple[float, float]] = ()) -> tuple[str, ...]:
+        """Lip-sync of a chunk's speech starting at ``onset`` (seconds), a brow raise and a
+        head beat (unless a head lexeme already moves the head then) on each accented span
+        ``(start, end)``, a blink at its end
+        (:meth:`motor.face.control.FaceControl.speak`); call it before frames at ``onset``
+        are sampled. Returns what was done instead of something asked, said once."""
+        self._forget_ahead_from(onset - SPEECH_REACH)
+        notes, peaks = self.face.speak(speech, onset, accents)
+        for peak in peaks:
+            if not self.neck.head_moves(peak):
+                self._forget_ahead_from(self.neck.activate(head_lexeme("BEAT", peak - BEAT_LEAD, peak + BEAT_TAIL)))
+        return notes
+
+    def palm_centres(self, arm: str, times: np.ndarray) -> np.ndarray:
+        """Where the palm of ``arm`` is asked to be at sorted ``times`` (metres): the wrist
+        channel moved by the hand rotation to the palm's centre."""
+        wrists = self._wrists(arm, times)
+        hands = quat.normalize(_sample(self.timeline((arm, "hand_rotation")), times))
+        return wrists + quat.rotate(hands, self._palm_offset[arm])
 
     # -- execution ----------------------------------------------------------------------
 
@@ -152,10 +247,14 @@ class MotorControl:
         """Hand the program's LMPs to their channels; each starts itself at its start peg."""
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
-            if channel not in self._lmps:
+            if channel not in self._lmps and channel[0] not in _NONMANUAL:
                 raise ValueError(f"program {program.behavior!r}: no channel {channel} on this avatar")
         for lmp in program.lmps:
             channel = tuple(lmp.channel)
+            if channel[0] in _NONMANUAL:
+                module = self.neck if channel[0] == "neck" else self.face
+                self._forget_ahead_from(module.activate(lmp))
+                continue
             self._lmps[channel].append(lmp)
             self._pending[channel].append(lmp)
             self._changed(channel, lmp.pegs.start)
@@ -168,10 +267,16 @@ class MotorControl:
         first = math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE)
         for index in [i for i in grid if i >= first]:
             del grid[index]
-        if self._ahead is not None:
-            # a frame's swivel is interpolated from grid points up to two periods after it
-            kept = max(0, math.ceil((first - 3) * SWIVEL_PERIOD * self.fps - _FRAME_TOLERANCE) - self._ahead[0])
-            self._ahead = (self._ahead[0], self._ahead[1][:kept]) if kept else None
+        # a frame's swivel is interpolated from grid points up to two periods after it
+        self._forget_ahead_from((first - 3) * SWIVEL_PERIOD)
+
+    def _forget_ahead_from(self, since: float) -> None:
+        """Drop the frames computed ahead from time ``since`` on (something changes them)."""
+        if self._ahead is None:
+            return
+        held, rotations, faces = self._ahead
+        kept = max(0, math.ceil(since * self.fps - _FRAME_TOLERANCE) - held)
+        self._ahead = (held, rotations[:kept], faces[:kept]) if kept else None
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
         """The channel's timeline of everything activated so far (built on demand; LMPs
@@ -197,7 +302,11 @@ class MotorControl:
 
     def interrupt(self, at_time: float) -> None:
         """Stop every gesture at ``at_time``: LMPs starting later are dropped and each arm
-        that is away from rest retracts from where it is then, in Fitts' law time."""
+        that is away from rest retracts from where it is then, in Fitts' law time; the
+        gaze goes back to rest and head and face movements not yet begun are dropped."""
+        self.neck.interrupt(at_time, neck_gaze.gaze(self.avatar, neck_gaze.rest(self.avatar), at_time, returning=True))
+        self.face.interrupt(at_time)
+        self._forget_ahead_from(at_time)
         for arm in ARMS:
             channels = [(arm, name) for name in ARM_CHANNELS]
             if not any(lmp.pegs.end > at_time for channel in channels for lmp in self._lmps[channel]):
@@ -224,7 +333,7 @@ class MotorControl:
         times = self.frame_times(start, end)
         count = times.size
         first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
-        rotations = self._rotations_ahead(first, count)
+        rotations, face = self._rotations_ahead(first, count)
         if count:
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
@@ -238,24 +347,29 @@ class MotorControl:
             rotations=rotations,
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
             start_time=float(times[0]) if count else float(start),
+            face_names=FACE_NAMES,
+            face_weights=face,
         )
 
-    def _rotations_ahead(self, first: int, count: int) -> np.ndarray:
-        """Joint rotations of frames ``first … first + count − 1``: from the frames computed
-        ahead when they hold them, else computed now with :data:`FRAME_LOOKAHEAD` more."""
+    def _rotations_ahead(self, first: int, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """Joint rotations and face weights of frames ``first … first + count − 1``: from the
+        frames computed ahead when they hold them, else computed now with
+        :data:`FRAME_LOOKAHEAD` more (arms, then neck and face)."""
         if count and self._ahead is not None:
-            held, rotations = self._ahead
+            held, rotations, faces = self._ahead
             if held <= first and first + count <= held + rotations.shape[0]:
-                return rotations[first - held : first - held + count].copy()
+                return rotations[first - held : first - held + count].copy(), faces[first - held : first - held + count].copy()
         if count == 0:
-            return np.empty((0, self.avatar.joint_count, 4))
+            return np.empty((0, self.avatar.joint_count, 4)), np.empty((0, len(FACE_NAMES)))
         total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
-        rotations = self._rotations(np.arange(first, first + total) / self.fps)
+        times = np.arange(first, first + total) / self.fps
+        rotations = self.neck.pose(times, self._rotations(times))
+        faces = self.face.weights(times)
         if total == count:  # nothing ahead to keep
             self._ahead = None
-            return rotations
-        self._ahead = (first, rotations)
-        return rotations[:count].copy()
+            return rotations, faces
+        self._ahead = (first, rotations, faces)
+        return rotations[:count].copy(), faces[:count].copy()
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
         """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
@@ -299,6 +413,8 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
+        self.neck.forget_before(horizon)
+        self.face.forget_before(horizon)
         limit = math.floor(horizon / SWIVEL_PERIOD) - 2
         for grid in self._swivels.values():
             for index in [i for i in grid if i < limit]:
@@ -416,3 +532,9 @@ def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.nd
     p0, p1, p2, p3 = values[index - 1], values[index], values[index + 1], values[index + 2]
     return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
 
+
+
+def _palm_offset(avatar: Avatar, side: str) -> np.ndarray:
+    """From the wrist to the palm's centre at rest (halfway to the middle finger's base), metres."""
+    wrist = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    return 0.5 * (avatar.rest_positions[avatar.joint_index(f"{side}_middle1")] - wrist)

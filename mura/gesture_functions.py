@@ -12,7 +12,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from mura.errors import SourceLocation, SpecError
+from mura.expansion import check_movements
 from mura.lexicon import GestureLexicon, LexiconEntry, SceneLocation, bind_params
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.model import FunctionCall, Gesture
 from mura.murml_constraints import ConstraintReader, arm_or_none
 
@@ -24,6 +26,7 @@ def function_gesture(
     scene: Mapping[str, SceneLocation] | None = None,
     gesture_id: str | None = None,
     where: SourceLocation | None = None,
+    limits: Limits = DEFAULT_LIMITS,
 ) -> Gesture:
     """The gesture ``call`` asks for.
 
@@ -34,6 +37,7 @@ def function_gesture(
         scene: places known at the call (the utterance's own scene over the lexicon's);
             the lexicon's scene when None.
         gesture_id, where: the gesture's id and place, for the result.
+        limits: what the gesture may ask for (its movements once repetitions expand, lengths).
 
     Raises:
         SpecError: an unknown function, a missing or unknown parameter, or a problem in
@@ -48,17 +52,19 @@ def function_gesture(
     except ValueError as error:
         raise SpecError(str(error), call.where) from None
     places = scene if scene is not None else lexicon.scene
-    reader = ConstraintReader(entry.source, entry.unit, places, bound, call.where, lexicon.symbols)
+    reader = ConstraintReader(entry.source, entry.unit, places, bound, call.where, lexicon.symbols, limits)
     own = arm_or_none(reader.fill(entry.scope)) if entry.scope else None
     tree = reader.read(entry.form, own or arm_or_none(scope))
-    return Gesture(gesture_id or entry.name or call.name, tree, call, scope, where or call.where)
+    identity = gesture_id or entry.name or call.name
+    check_movements(tree, limits, f"gesture {identity!r}", where or call.where)
+    return Gesture(identity, tree, call, scope, where or call.where)
 
 
-def check_entry(lexicon: GestureLexicon, entry: LexiconEntry) -> list[SpecError]:
+def check_entry(lexicon: GestureLexicon, entry: LexiconEntry, limits: Limits = DEFAULT_LIMITS) -> list[SpecError]:
     """The problems of one entry read as a call would read it: defaults bound, required
     parameters left as written (so only what does not depend on them is checked)."""
     bound = {name: default for name, default in entry.params.items() if default is not None}
-    reader = ConstraintReader(entry.source, entry.unit, lexicon.scene, bound, None, lexicon.symbols)
+    reader = ConstraintReader(entry.source, entry.unit, lexicon.scene, bound, None, lexicon.symbols, limits)
     try:
         reader.read(entry.form, arm_or_none(entry.scope))
     except SpecError as error:

@@ -94,7 +94,9 @@ from mura.constraints import (
 )
 from mura.constraints import Sequence as SequenceNode
 from mura.errors import SourceLocation, SpecError
+from mura.expansion import check_sign
 from mura.hamnosys_symbols import Symbol, vocabulary
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.signs import HandConstellation, HandPosture, NonmanualItem, Sign, SignSymmetry
 from mura.values import (
     FINGERS,
@@ -234,14 +236,15 @@ def hamnosys_string(names: Iterable[str]) -> str:
     return "".join(chars)
 
 
-def parse_hamnosys(text: str, gloss: str = "<string>", file: str = "<string>") -> Sign:
+def parse_hamnosys(text: str, gloss: str = "<string>", file: str = "<string>", limits: Limits = DEFAULT_LIMITS) -> Sign:
     """A sign from a HamNoSys 4 Unicode string (private-use codepoints U+E000 …).
 
     Raises SpecError naming the gloss, the symbol and its position for anything the
-    grammar does not accept.
+    grammar does not accept, and for a sign whose repetitions expand to more than
+    ``limits.max_movements`` movements.
     """
     tokens = tokens_from_string(text, gloss, file)
-    return parse_manual(tokens, gloss, SourceLocation(file, 1, 1))
+    return check_sign(parse_manual(tokens, gloss, SourceLocation(file, 1, 1)), limits)
 
 
 def parse_manual(

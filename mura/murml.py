@@ -17,6 +17,18 @@ published dialect (its symbol table is in cm, and ``40`` is a 40 cm zip-fastener
 A document is in the published dialect when it contains ``<timing>`` or
 ``<dynamicElement>``.
 
+**Head and gaze values** (``GazeDirection``, ``Neck``, ``HeadDirection``): a ``Dir…``
+name or three numbers are a direction from the eyes in the avatar frame; with
+``mode="pointTo"`` three numbers are a position like any other (the document's unit,
+relative to the root joint); ``$place`` and grid names are places. The published dialect
+writes gaze vectors in its own frame — x ahead, y up, z to the avatar's right, judging by
+its files (``1000 -500 0`` looks ahead and down, ``1000 -500 1000`` down toward the right
+hand's periphery) — and, ``pointTo`` or not, as seen from the eyes: mura reads them as
+directions in that frame. Any other word (``Nod``, ``Listener``, ``RightHand`` …) is kept
+as a :class:`~mura.values.Symbol` for ``motor/`` to read; so is the value of the other
+non-arm slots (``FaceExpression``, ``Mouth``, ``Shoulders``, ``Torso``) when it is not a
+vector, a direction or a place.
+
 **Untimed gestures.** A gesture or sign with neither ``<affiliate>`` nor ``<timing>`` is
 performed as the realizers that read published MURML perform an unconstrained behaviour:
 from the start of the utterance, in document order, each in the first free time: its
@@ -41,10 +53,14 @@ from pathlib import Path
 
 from lxml import etree
 
+from collections.abc import Mapping
+
 from mura.errors import SourceLocation, SpecError, SpecErrors
-from mura.gesture_functions import function_gesture
+from mura.expansion import check_movements
+from mura.gesture_functions import function_gesture as lexicon_gesture
 from mura.hamnosys import parse_hamnosys
 from mura.lexicon import GestureLexicon, SceneLocation, load_lexicons, read_scene
+from mura.limits import DEFAULT_LIMITS, LimitError, Limits
 from mura.model import (
     AbsoluteTiming,
     Affiliate,
@@ -59,6 +75,8 @@ from mura.murml_constraints import UNIT_METRES, ConstraintReader, arm_or_none, f
 from mura.schema import validate_murml
 from mura.sigml import read_sign_element
 from mura.signs import Sign
+from mura.space import SpatialReference
+from mura.space_markup import is_spatial_sign, read_space, read_spatial_sign
 from mura.xml_source import XmlSource
 
 #: Stroke duration (s) given to a gesture written without timing, and the time (s) left
@@ -72,20 +90,21 @@ _TRUE = {"true", "1", "yes"}
 _FALSE = {"false", "0", "no"}
 
 
-def load_utterances(path: str | Path, lexicon: GestureLexicon | None = None) -> tuple[Utterance, ...]:
-    """Every utterance of a MURML file, checked; raises :class:`SpecError` on the first problems."""
-    return read_utterances(XmlSource.from_path(path), lexicon)
+def load_utterances(path: str | Path, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> tuple[Utterance, ...]:
+    """Every utterance of a MURML file, checked (also against ``limits``); raises :class:`SpecError` on the first problems."""
+    return read_utterances(XmlSource.from_path(path, limits=limits), lexicon, limits)
 
 
-def load_utterance(path: str | Path, lexicon: GestureLexicon | None = None) -> Utterance:
+def load_utterance(path: str | Path, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> Utterance:
     """The single utterance of a MURML file."""
-    return _single(load_utterances(path, lexicon), str(path))
+    return _single(load_utterances(path, lexicon, limits), str(path))
 
 
-def parse_utterance(data: str | bytes, file: str = "<input>", lexicon: GestureLexicon | None = None) -> Utterance:
+def parse_utterance(data: str | bytes, file: str = "<input>", lexicon: GestureLexicon | None = None,
+                    limits: Limits = DEFAULT_LIMITS) -> Utterance:
     """The single utterance of a MURML document given as text."""
     raw = data.encode("utf-8") if isinstance(data, str) else data
-    return _single(read_utterances(XmlSource.from_bytes(raw, file), lexicon), file)
+    return _single(read_utterances(XmlSource.from_bytes(raw, file, limits=limits), lexicon, limits), file)
 
 
 def _single(utterances: tuple[Utterance, ...], file: str) -> Utterance:
@@ -94,26 +113,33 @@ def _single(utterances: tuple[Utterance, ...], file: str) -> Utterance:
     return utterances[0]
 
 
-def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None) -> tuple[Utterance, ...]:
-    """Check ``source`` against the schema and read its utterances into the model."""
+def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None, limits: Limits = DEFAULT_LIMITS) -> tuple[Utterance, ...]:
+    """Check ``source`` against the schema and ``limits``, and read its utterances into the model."""
     validate_murml(source)
     root = source.root
     unit = _document_unit(source, root)
     lexicon = lexicon if lexicon is not None else load_lexicons(())
     if root.tag == "utterance":
-        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon).read(root),)
+        return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits, published=_is_published(root)).read(root),)
     scene = dict(lexicon.scene)
     for child in root.iterchildren("scene"):
         scene.update(read_scene(source, child, unit))
+    placed: dict[str, SpatialReference] = {}
+    for child in root.iterchildren("space"):
+        read_space(source, child, placed)
     return tuple(
-        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon).read(child)
+        _UtteranceReader(source, _element_unit(source, child, unit), scene, lexicon, limits, placed=dict(placed), published=_is_published(root)).read(child)
         for child in root.iterchildren("utterance")
     )
 
 
 def _document_unit(source: XmlSource, root: etree._Element) -> str:
-    published = any(True for _ in root.iter("timing", "dynamicElement"))
-    return _element_unit(source, root, "cm" if published else "mm")
+    return _element_unit(source, root, "cm" if _is_published(root) else "mm")
+
+
+def _is_published(root: etree._Element) -> bool:
+    """Whether a document is in the published dialect (module docstring)."""
+    return any(True for _ in root.iter("timing", "dynamicElement"))
 
 
 def _element_unit(source: XmlSource, element: etree._Element, default: str) -> str:
@@ -131,11 +157,16 @@ class _UtteranceReader:
     unit: str
     scene: dict[str, SceneLocation]
     lexicon: GestureLexicon
+    limits: Limits = DEFAULT_LIMITS
     tags: dict[str, TimeTag] = field(default_factory=dict)
+    placed: dict[str, SpatialReference] = field(default_factory=dict)
+    published: bool = False
 
     def read(self, utterance: etree._Element) -> Utterance:
         for child in utterance.iterchildren("scene"):
             self.scene.update(read_scene(self.source, child, self.unit))
+        for child in utterance.iterchildren("space"):
+            read_space(self.source, child, self.placed)
         specification = utterance.find("specification")
         chunks = self._read_specification(specification) if specification is not None else ()
         behaviors: list[BehaviorSpec] = []
@@ -159,7 +190,7 @@ class _UtteranceReader:
             errors.append(self.source.error("utterance has neither spoken text nor behaviours", utterance))
         if errors:
             raise errors[0] if len(errors) == 1 else SpecErrors(errors)
-        return Utterance(tuple(chunks), tuple(_with_untimed_scheduled(behaviors)), self.source.file)
+        return Utterance(tuple(chunks), tuple(_with_untimed_scheduled(behaviors)), self.source.file, space=tuple(self.placed.values()))
 
     # -- speech ---------------------------------------------------------------------
 
@@ -167,6 +198,7 @@ class _UtteranceReader:
         chunks: list[ChunkSpec] = []
         buffer = _TextBuffer()
         pending: list[tuple[etree._Element, int]] = []
+        opening = specification  # where the chunk being collected begins, for messages
         buffer.add(specification.text)
         for child in specification:
             if child.tag != "time":
@@ -180,18 +212,23 @@ class _UtteranceReader:
                 raise self.source.error(f"time tag {tag_id!r} stands inside a word; put it between words", child)
             pending.append((child, buffer.length))
             if _boolean(self.source, child, "chunkborder", False):
-                chunks.append(self._close_chunk(len(chunks), buffer, pending, specification))
-                buffer, pending = _TextBuffer(), []
+                chunks.append(self._close_chunk(len(chunks), buffer, pending, specification, opening))
+                buffer, pending, opening = _TextBuffer(), [], child
             buffer.add(child.tail)
         if buffer.text or pending:
-            chunks.append(self._close_chunk(len(chunks), buffer, pending, specification))
+            chunks.append(self._close_chunk(len(chunks), buffer, pending, specification, opening))
         return tuple(chunks)
 
-    def _close_chunk(self, index: int, buffer: _TextBuffer, pending: list[tuple[etree._Element, int]], spec: etree._Element) -> ChunkSpec:
+    def _close_chunk(self, index: int, buffer: _TextBuffer, pending: list[tuple[etree._Element, int]], spec: etree._Element,
+                     opening: etree._Element) -> ChunkSpec:
         text = buffer.text
         if not text:
             anchor = pending[-1][0] if pending else spec
             raise self.source.error(f"chunk {index + 1} has no words", anchor)
+        try:
+            self.limits.check_chunk_text(text, f"chunk {index + 1}")
+        except LimitError as error:
+            raise self.source.error(f"{error}; put chunk borders between its phrases", opening) from None
         tags = []
         for element, raw_offset in pending:
             offset = buffer.offset_in_text(raw_offset)
@@ -211,9 +248,10 @@ class _UtteranceReader:
         timing_element = _timing_element(element, body)
         timing = self._read_timing(timing_element, behavior_id) if timing_element is not None else None
         gesture = self._read_gesture(body, behavior_id) if body.tag == "gesture" else None
-        sign = self._read_sign(body, behavior_id) if body.tag == "sign" else None
+        spatial = read_spatial_sign(self.source, body, behavior_id, self.placed) if body.tag == "sign" and is_spatial_sign(body) else None
+        sign = self._read_sign(body, behavior_id) if body.tag == "sign" and spatial is None else None
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
-        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign)
+        return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial=spatial)
 
     def _read_sign(self, element: etree._Element, behavior_id: str) -> Sign:
         """A sign behaviour: ``<hamnosys>`` text (HamNoSys 4 Unicode) or a SiGML
@@ -224,17 +262,19 @@ class _UtteranceReader:
         form = forms[0]
         gloss = element.get("gloss") or form.get("gloss") or behavior_id
         if form.tag != "hamnosys":
-            return read_sign_element(form, gloss, self.source.where)
+            return read_sign_element(form, gloss, self.source.where, self.limits)
         text = (form.text or "").strip()
         if not text:
             raise self.source.error(f"sign {behavior_id!r}: <hamnosys> is empty", form)
         try:
-            return parse_hamnosys(text, gloss=gloss, file=str(self.source.where(form)))
+            return parse_hamnosys(text, gloss=gloss, file=str(self.source.where(form)), limits=self.limits)
         except SpecError as error:
             raise SpecError(error.message, self.source.where(form)) from None
 
     def _read_timing(self, element: etree._Element, behavior_id: str) -> Affiliate | AbsoluteTiming:
         onset_text, end_text = element.get("onset", ""), element.get("end", "")
+        if element.tag == "timing":
+            self._check_times(element, behavior_id, onset_text, end_text)
         onset, end = float_or_none(onset_text), float_or_none(end_text)
         if element.tag == "timing" and onset is not None and end is not None:
             if onset < 0:
@@ -243,6 +283,21 @@ class _UtteranceReader:
                 raise self.source.error(f"timing of {behavior_id!r} ends at {end} s, not after its onset {onset} s", element, "end")
             return AbsoluteTiming(onset, end, self.source.where(element))
         return self._read_affiliate(element, onset_text, end_text, behavior_id)
+
+    def _check_times(self, element: etree._Element, behavior_id: str, *texts: str) -> None:
+        """Times on the utterance clock must be finite and within ``limits.max_duration``
+        (not ``nan``, ``1e300``, or a day of animation)."""
+        for attribute, text in zip(("onset", "end"), texts):
+            if text in self.tags:
+                continue
+            try:
+                seconds = float(text)
+            except ValueError:
+                continue
+            try:
+                self.limits.check_time(seconds, f"timing {attribute} of {behavior_id!r}:")
+            except LimitError as error:
+                raise self.source.error(str(error), element, attribute) from None
 
     def _read_affiliate(self, element: etree._Element, onset: str, end: str, behavior_id: str) -> Affiliate:
         for attribute, tag_id in (("onset", onset), ("end", end)):
@@ -272,13 +327,39 @@ class _UtteranceReader:
             if self.lexicon.entry(name) is None:
                 known = ", ".join(self.lexicon.functions) or "none"
                 raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function_element, "name")
-            return function_gesture(self.lexicon, call, scope, self.scene, element.get("id") or behavior_id, self.source.where(element))
+            return function_gesture(call, element.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(element), self.limits)
         constraints = element.find("constraints")
         if constraints is None:
             raise self.source.error(f"gesture {behavior_id!r} needs <function> or <constraints>", element)
-        reader = ConstraintReader(self.source, self.unit, self.scene, {}, symbols=self.lexicon.symbols)
+        reader = ConstraintReader(self.source, self.unit, self.scene, {}, symbols=self.lexicon.symbols, limits=self.limits, published=self.published)
         tree = reader.read_root(constraints, arm_or_none(scope))
+        check_movements(tree, self.limits, f"gesture {behavior_id!r}", self.source.where(element))
         return Gesture(element.get("id") or behavior_id, tree, None, scope, self.source.where(element))
+
+
+def function_gesture(
+    call: FunctionCall,
+    gesture_id: str,
+    scope: str | None,
+    lexicon: GestureLexicon,
+    scene: Mapping[str, SceneLocation],
+    where: SourceLocation | None,
+    limits: Limits = DEFAULT_LIMITS,
+) -> Gesture:
+    """The gesture a lexicon function makes for ``call`` (raises :class:`SpecError` at the
+    call's place for an unknown function, a missing parameter or a problem in the entry);
+    BML reads its function gestures with it. See :func:`mura.gesture_functions.function_gesture`."""
+    return lexicon_gesture(lexicon, call, scope, scene, gesture_id, where, limits)
+
+
+def read_gesture_element(
+    source: XmlSource, element: etree._Element, behavior_id: str, lexicon: GestureLexicon, unit: str = "m",
+    limits: Limits = DEFAULT_LIMITS,
+) -> Gesture:
+    """A MURML ``<gesture>``-like element (``<function>`` or ``<constraints>`` inside, plain
+    names without a namespace) read as the MURML reader reads it; lengths without a unit are
+    in ``unit``. BML reads the MURML gestures it embeds with it."""
+    return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits)._read_gesture(element, behavior_id)
 
 
 def _with_untimed_scheduled(behaviors: list[BehaviorSpec]) -> list[BehaviorSpec]:

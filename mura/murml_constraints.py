@@ -22,6 +22,7 @@ reader is given (see :mod:`mura.murml`).
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -48,8 +49,9 @@ from mura.constraints import (
 )
 from mura.errors import SourceLocation, SpecError
 from mura.lexicon import PLACEHOLDER, SceneLocation
+from mura.limits import DEFAULT_LIMITS, Limits, hint
 from mura.murml_vocabulary import DEFAULT_SYMBOLS, SymbolTable
-from mura.values import Direction, Location, PalmOrientation, PointLocation, SlotValue, Vector
+from mura.values import Direction, Location, PalmOrientation, PointLocation, SlotValue, Symbol, Vector
 from mura.xml_source import XmlSource
 
 UNIT_METRES = {"mm": 0.001, "cm": 0.01, "m": 1.0}
@@ -65,6 +67,8 @@ _SEGMENT_TYPES: dict[str, SegmentKind] = {
     "chop": SegmentKind.LINEAR, "via": SegmentKind.LINEAR,
 }  # fmt: skip
 _KEYFRAMING_MODES = ("spline", "linear", "squad", "quaternion", "raw")
+#: Slots whose values aim the eyes or the head (see :mod:`mura.murml`, *Head and gaze values*).
+_HEAD_SLOTS = ("GazeDirection", "Neck", "HeadDirection")
 _POSTURE_JOINT = re.compile(r"\(([^()]*)\)")
 #: Frames of one keyframing read at most, a bound against runaway documents.
 MAX_KEYFRAMES = 10_000
@@ -84,6 +88,8 @@ class ConstraintReader:
     params: Mapping[str, str]
     call_site: SourceLocation | None = None
     symbols: SymbolTable = field(default_factory=lambda: DEFAULT_SYMBOLS)
+    limits: Limits = DEFAULT_LIMITS
+    published: bool = False
 
     def read_root(self, constraints: etree._Element, scope: Arm | None) -> Constraint:
         """The one constraint inside ``<constraints>`` (or a lexicon's wrapper element)."""
@@ -135,12 +141,17 @@ class ConstraintReader:
     def _repetition(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Repetition:
         attribute = "count" if element.get("count") is not None else "number"
         text = self._attr(element, attribute) if element.get(attribute) is not None else "2"
-        if not text.strip().isdigit() or int(text) < 1:
+        digits = text.strip()
+        if not (digits.isascii() and digits.isdigit()) or not digits.strip("0"):
             raise self.error(f"repetition {attribute} {text!r} is not a positive whole number", element, attribute)
+        significant = digits.lstrip("0")
+        if len(significant) > 18 or int(significant) > self.limits.max_movements:
+            raise self.error(f"repetition {attribute} {significant[:20]} is more than the limit of {self.limits.max_movements} "
+                             f"movements ({hint('max_movements')})", element, attribute)
         children = [child for child in element if isinstance(child.tag, str)]
         if len(children) != 1:
             raise self.error(f"<repetition> must hold exactly one constraint, found {len(children)}", element)
-        return Repetition(self.read(children[0], scope), int(text), where)
+        return Repetition(self.read(children[0], scope), int(significant), where)
 
     def _static(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Static:
         slot = self._slot(element)
@@ -332,13 +343,40 @@ class ConstraintReader:
                 return PalmOrientation(self._direction(text, element, attribute).vector, text, mode == "relative")
             palm = vocabulary.parse_palm_orientation(text, self.symbols)
             return PalmOrientation(palm.direction, palm.name, mode == "relative")
+        if slot in _HEAD_SLOTS:
+            return self._head_value(text, mode, element, attribute)
         if is_numbers(text):
             return Vector(tuple(float(part) for part in text.split()))
         if text.startswith("Dir"):
             return vocabulary.parse_direction(text)
         if text.startswith("$"):
             return self._location(text, element, attribute)
-        raise ValueError(f"value {text!r} is not a vector, a direction or a place")
+        if not text.strip():
+            raise ValueError("empty value")
+        return Symbol(text.strip())
+
+    def _head_value(self, text: str, mode: str | None, element: etree._Element, attribute: str) -> SlotValue:
+        """A gaze or head value (:mod:`mura.murml`, *Head and gaze values*)."""
+        if is_numbers(text):
+            if self.published:
+                x, y, z = self._three(self._numbers(element, attribute, None, text), text)
+                return Direction(self._direction(f"{-z} {y} {x}", element, attribute).vector, text)
+            if mode == "pointTo":
+                return self._location(text, element, attribute)
+            return self._direction(text, element, attribute)
+        if text.startswith("Dir"):
+            return self._direction(text, element, attribute)
+        if text.startswith("$") or text.startswith("Loc"):
+            return self._location(text, element, attribute)
+        if not text.strip():
+            raise ValueError("empty value")
+        return Symbol(text.strip())
+
+    @staticmethod
+    def _three(values: tuple[float, ...], text: str) -> tuple[float, float, float]:
+        if len(values) != 3:
+            raise ValueError(f"a gaze or head vector needs three numbers, got {text!r}")
+        return values[0], values[1], values[2]
 
     def _location(self, text: str, element: etree._Element, attribute: str) -> Location:
         if text.startswith("$"):
@@ -416,8 +454,11 @@ class ConstraintReader:
             if match is None:
                 raise ValueError(f"{part!r} is not a number")
             number = float(match.group(1))
+            if not math.isfinite(number):
+                raise ValueError(f"{part!r} is too large to be a number")
             if unit is not None:
                 number *= UNIT_METRES[match.group(2) or unit]
+                self.limits.check_length(number, f"length {part!r} =")
             elif match.group(2):
                 raise ValueError(f"{part!r} takes no unit here")
             values.append(number)

@@ -9,7 +9,8 @@ seed 000 Figure 7). Both become :class:`~mura.signs.Sign`.
 
 Each sign is read on its own: one broken sign becomes a :class:`~mura.signs.SignFailure`
 with its reason and the others still parse. Reading is safe: no network, no DTD, no
-entity expansion, and inputs over :data:`MAX_SIGML_BYTES` are refused.
+entity expansion; inputs over ``Limits.max_input_bytes`` and signs whose repetitions
+expand to more than ``Limits.max_movements`` movements are refused.
 """
 
 from __future__ import annotations
@@ -30,8 +31,10 @@ from mura.constraints import (
     Sequence,
 )
 from mura.errors import SourceLocation, SpecError
+from mura.expansion import check_sign
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
 from mura.hamnosys_symbols import lookup as lookup_symbol
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.signs import (
     HandConstellation,
     HandPosture,
@@ -56,25 +59,22 @@ from mura.values import (
 )
 from mura.xml_source import XmlSource
 
-#: Largest SiGML document accepted, bytes (the corpora are about 1 MB).
-MAX_SIGML_BYTES = 32 * 1024 * 1024
-
 ROOTS: tuple[str, ...] = ("sigml", "sigml_collection")
 SIGN_TAGS: tuple[str, ...] = ("hns_sign", "hamgestural_sign")
 
 
 
-def parse_sigml(source: str | bytes, file: str = "<input>") -> SigmlParseResult:
+def parse_sigml(source: str | bytes, file: str = "<input>", limits: Limits = DEFAULT_LIMITS) -> SigmlParseResult:
     """Every sign of a SiGML document; broken signs are reported one by one.
 
     Raises SpecError only when the document as a whole cannot be read (not XML, too
     large, wrong root).
     """
     data = source.encode("utf-8") if isinstance(source, str) else source
-    return read_sigml(XmlSource.from_bytes(data, file, MAX_SIGML_BYTES))
+    return read_sigml(XmlSource.from_bytes(data, file, limits=limits), limits)
 
 
-def read_sigml(source: XmlSource) -> SigmlParseResult:
+def read_sigml(source: XmlSource, limits: Limits = DEFAULT_LIMITS) -> SigmlParseResult:
     """Every sign of an already parsed SiGML document."""
     root = source.root
     where_of: Callable[[etree._Element], SourceLocation] = source.where
@@ -85,23 +85,27 @@ def read_sigml(source: XmlSource) -> SigmlParseResult:
     for index, element in enumerate(e for e in root if isinstance(e.tag, str)):
         gloss = element.get("gloss", f"#{index}")
         try:
-            signs.append(read_sign_element(element, gloss, where_of))
+            signs.append(read_sign_element(element, gloss, where_of, limits))
         except SpecError as error:
             failures.append(SignFailure(gloss, index, error))
     return SigmlParseResult(tuple(signs), tuple(failures), source.file)
 
 
-def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation]) -> Sign:
+def read_sign_element(element: etree._Element, gloss: str, where_of: Callable[[etree._Element], SourceLocation],
+                      limits: Limits = DEFAULT_LIMITS) -> Sign:
     """One ``<hns_sign>`` or ``<hamgestural_sign>`` element as a :class:`Sign`; the sign
-    elements of a SiGML document and those inside MURML utterances read alike."""
+    elements of a SiGML document and those inside MURML utterances read alike. A sign
+    whose repetitions expand to more than ``limits.max_movements`` movements is refused."""
     if element.tag == "hns_sign":
-        return _hns_sign(element, gloss, where_of)
+        return check_sign(_hns_sign(element, gloss, where_of), limits)
     if element.tag == "hamgestural_sign":
-        return _GesturalReader(gloss, where_of).sign(element)
+        return check_sign(_GesturalReader(gloss, where_of).sign(element), limits)
     raise SpecError(f"unexpected element <{element.tag}> (expected <hns_sign> or <hamgestural_sign>)", where_of(element))
 
 
-def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[NonmanualItem, ...]]:
+def _nonmanual_tiers(
+    element: etree._Element | None, where_of: Callable[[etree._Element], SourceLocation] | None = None
+) -> dict[str, tuple[NonmanualItem, ...]]:
     """Tier name → the items written in it, in order.
 
     A child with children of its own is a tier (``<head_tier>…</head_tier>`` in gestural
@@ -114,7 +118,7 @@ def _nonmanual_tiers(element: etree._Element | None) -> dict[str, tuple[Nonmanua
     for child in (c for c in element if isinstance(c.tag, str)):
         items = [e for e in child.iterdescendants() if isinstance(e.tag, str)] or [child]
         tier = tiers.setdefault(child.tag.removeprefix("hnm_"), [])
-        tier.extend(NonmanualItem(item.tag, tuple(sorted(item.attrib.items()))) for item in items)
+        tier.extend(NonmanualItem(item.tag, tuple(sorted(item.attrib.items())), where_of(item) if where_of else None) for item in items)
     return {tier: tuple(items) for tier, items in tiers.items()}
 
 
@@ -127,7 +131,7 @@ def _hns_sign(element: etree._Element, gloss: str, where_of: Callable[[etree._El
         raise SpecError(f"sign {gloss!r}: text {manual.text.strip()[:20]!r} in <hamnosys_manual> (expected only ham… tags)", where_of(manual))
     names = [(child.tag, where_of(child)) for child in manual if isinstance(child.tag, str)]
     tokens: list[Token] = tokens_from_names(names, gloss)
-    nonmanual = _nonmanual_tiers(element.find("hamnosys_nonmanual"))
+    nonmanual = _nonmanual_tiers(element.find("hamnosys_nonmanual"), where_of)
     return parse_manual(tokens, gloss, where, nonmanual=nonmanual)
 
 
@@ -213,7 +217,7 @@ class _GesturalReader:
         manual = element.find("sign_manual")
         if manual is None:
             raise self.error(element, "no <sign_manual>")
-        for tier, items in _nonmanual_tiers(element.find("sign_nonmanual")).items():
+        for tier, items in _nonmanual_tiers(element.find("sign_nonmanual"), self.where_of).items():
             self.nonmanual.setdefault(tier, []).extend(items)
         self.dominant = Arm.LEFT if manual.get("nondominant") == "true" or manual.get("dominant") == "left" else Arm.RIGHT
         both = self.flag(manual, "both_hands")
@@ -464,7 +468,7 @@ class _GesturalReader:
 
     def keep_nonmanual(self, element: etree._Element) -> None:
         """A ``<nonman_motion>`` inside the manual part goes to the nonmanual tiers."""
-        for tier, items in _nonmanual_tiers(element).items():
+        for tier, items in _nonmanual_tiers(element, self.where_of).items():
             self.nonmanual.setdefault(tier, []).extend(items)
 
     def qualities(self, element: etree._Element, segment: Segment) -> Segment:

@@ -114,10 +114,12 @@ class HandConstellation:
 
 @dataclass(frozen=True)
 class NonmanualItem:
-    """One item of a nonmanual tier, kept as written (tag and attributes) for the timeline."""
+    """One item of a nonmanual tier, kept as written (tag and attributes) and where it
+    stands in its source; ``motor/`` reads the codes."""
 
     tag: str
     attributes: tuple[tuple[str, str], ...] = ()
+    where: SourceLocation | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)

@@ -206,4 +206,13 @@ class Vector:
     values: tuple[float, ...]
 
 
-SlotValue = Union[HandShape, Direction, PalmOrientation, GridLocation, PointLocation, BodySite, BetweenLocation, Vector]
+@dataclass(frozen=True)
+class Symbol:
+    """A name a head or face slot takes as written: a head lexeme (``Nod``), a gaze target
+    (``Listener``, ``RightHand``), a face lexeme (``Smile``), a HamNoSys non-manual code
+    (``UB``) or a SAMPA mouth picture (``hVlU``); ``motor/`` reads it."""
+
+    name: str
+
+
+SlotValue = Union[HandShape, Direction, PalmOrientation, GridLocation, PointLocation, BodySite, BetweenLocation, Vector, Symbol]

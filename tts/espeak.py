@@ -181,7 +181,11 @@ def _default_library() -> tuple[str, str | None]:
     if espeakng_loader is not None:
         path = espeakng_loader.get_library_path()
         if Path(path).exists():
-            return path, espeakng_loader.get_data_path()
+            try:
+                data = espeakng_loader.get_data_path()
+            except (RuntimeError, OSError) as error:  # the wheel raises RuntimeError when its data folder is gone
+                raise BackendUnavailable(f"espeak-ng's data folder is missing ({error})") from None
+            return path, data
     system = ctypes.util.find_library("espeak-ng")
     if system is None:
         raise BackendUnavailable("espeak-ng library not found: install espeakng-loader or libespeak-ng1")
@@ -197,6 +201,8 @@ def _get_engine(library_path: str | None, data_path: str | None) -> _Engine:
         library_path, data_path = _default_library()
     if not Path(library_path).exists() and "/" in library_path:
         raise BackendUnavailable(f"espeak-ng library {library_path} does not exist")
+    if data_path is not None and not Path(data_path).is_dir():
+        raise BackendUnavailable(f"espeak-ng data folder {data_path} does not exist")
     if _engine is None and _pyttsx3_drives_espeak():
         raise BackendUnavailable("pyttsx3's espeak driver already owns espeak-ng in this process")
     if _engine is not None:

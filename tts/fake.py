@@ -33,6 +33,8 @@ from tts.text import (
 )
 
 SAMPLE_RATE = 22050
+#: Samples of buzz computed at a time.
+BUZZ_BLOCK = 1 << 18
 
 _CONSONANT_DIGRAPHS = ("tch", "th", "sh", "ch", "ph", "wh", "ng", "ck", "gh", "qu")
 _VOWEL_DIGRAPHS = ("ee", "ea", "oo", "ou", "ow", "ai", "ay", "oa", "oi", "oy", "ie", "ei", "au", "aw", "ue", "ew", "ey")
@@ -202,20 +204,29 @@ def _buzz(segments: list[tuple[str, int, int]], final: bool) -> np.ndarray:
     """A triangle-wave buzz under the phonemes, silence in pauses, int16, exact length.
 
     Integer phase accumulation keeps it bit-identical across machines (no libm calls).
+    Computed in blocks of :data:`BUZZ_BLOCK` samples, so that the temporaries stay small
+    however long the chunk (the result is the same as in one piece).
     """
     lengths = np.array([n for _, n, _ in segments], dtype=np.int64)
-    total = int(lengths.sum())
+    bounds = np.concatenate(([0], np.cumsum(lengths)))
+    total = int(bounds[-1])
     amplitude_per_segment = np.array(
         [0 if owner < 0 else (_AMPLITUDE_VOWEL if _is_vowel_symbol(s) else _AMPLITUDE_CONSONANT) for s, _, owner in segments],
         dtype=np.int64,
     )
-    amplitude = np.repeat(amplitude_per_segment, lengths)
     f0_start, f0_end = _F0_FINAL if final else _F0_NONFINAL
-    f0 = f0_start + (f0_end - f0_start) * (np.arange(total, dtype=np.float64) / max(total, 1))
-    increment = np.round(f0 * (2.0**32 / SAMPLE_RATE)).astype(np.int64)
-    phase = np.cumsum(increment) % (1 << 32)
-    triangle = np.abs(phase - (1 << 31)) - (1 << 30)  # -2^30 .. 2^30
-    return ((triangle * amplitude) >> 30).astype(np.int16)
+    out = np.empty(total, dtype=np.int16)
+    carry = 0
+    for start in range(0, total, BUZZ_BLOCK):
+        index = np.arange(start, min(start + BUZZ_BLOCK, total), dtype=np.int64)
+        amplitude = amplitude_per_segment[np.searchsorted(bounds, index, side="right") - 1]
+        f0 = f0_start + (f0_end - f0_start) * (index.astype(np.float64) / max(total, 1))
+        increment = np.round(f0 * (2.0**32 / SAMPLE_RATE)).astype(np.int64)
+        phase = (carry + np.cumsum(increment)) % (1 << 32)
+        carry = int(phase[-1])
+        triangle = np.abs(phase - (1 << 31)) - (1 << 30)  # -2^30 .. 2^30
+        out[start : start + len(index)] = (triangle * amplitude) >> 30
+    return out
 
 
 def _is_vowel_symbol(symbol: str) -> bool:

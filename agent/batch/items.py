@@ -29,7 +29,8 @@ from mura.errors import SpecError
 from mura.sigml import ROOTS as SIGML_ROOTS
 from mura.sigml import read_sign_element
 from mura.signs import Sign
-from mura.xml_source import MAX_SPEC_BYTES, XmlSource
+from mura.limits import DEFAULT_LIMITS, Limits
+from mura.xml_source import XmlSource
 
 #: File suffixes taken from a folder.
 CORPUS_SUFFIXES: tuple[str, ...] = (".sigml", ".xml", ".us", ".bml")
@@ -85,22 +86,26 @@ def corpus_files(inputs: Iterable[str | Path]) -> list[Path]:
     return files
 
 
-def read_corpus(inputs: Iterable[str | Path], glosses: Sequence[str] = ()) -> Corpus:
+def read_corpus(inputs: Iterable[str | Path], glosses: Sequence[str] = (), limits: Limits = DEFAULT_LIMITS) -> Corpus:
     """Every item of ``inputs``, only those whose label matches one of ``glosses`` (exact
-    names or shell wildcards such as ``HOUSE*``) when any are given."""
+    names or shell wildcards such as ``HOUSE*``) when any are given; files and signs are
+    read within ``limits`` (a sign beyond them is a failed item)."""
     drafts: list[tuple[str, str, str, str, Sign | None, str | None]] = []
     unreadable: list[tuple[str, str]] = []
     for path in corpus_files(inputs):
         try:
-            source = XmlSource.from_path(path, MAX_SPEC_BYTES)
+            source = XmlSource.from_path(path, limits=limits)
         except SpecError as error:
             unreadable.append((str(path), str(error)))
             continue
+        except Exception as error:  # noqa: BLE001 - one document's failure is its own (out of memory included)
+            unreadable.append((str(path), _failure(error)))
+            continue
         if source.root.tag in SIGML_ROOTS:
-            drafts.extend(_signs_of(source))
+            drafts.extend(_signs_of(source, limits))
         else:
             label = path.stem
-            drafts.append((UTTERANCE, label, str(path), _digest(source.data), None, None))
+            drafts.append((UTTERANCE, label, str(path), _digest(source.text.encode("utf-8")), None, None))
     taken: set[str] = set()
     items = tuple(
         CorpusItem(index, unique_stem(label, taken, kind), kind, label, source, key, sign, error)
@@ -111,17 +116,28 @@ def read_corpus(inputs: Iterable[str | Path], glosses: Sequence[str] = ()) -> Co
     return Corpus(items, tuple(unreadable))
 
 
-def _signs_of(source: XmlSource) -> list[tuple[str, str, str, str, Sign | None, str | None]]:
+def _signs_of(source: XmlSource, limits: Limits) -> list[tuple[str, str, str, str, Sign | None, str | None]]:
     """One draft per sign element of a SiGML document: parsed, or failed with its reason."""
     drafts = []
     for index, element in enumerate(e for e in source.root if isinstance(e.tag, str)):
         gloss = element.get("gloss", f"#{index}")
         key = _digest(etree.tostring(element, encoding="utf-8"))
         try:
-            drafts.append((SIGN, gloss, source.file, key, read_sign_element(element, gloss, source.where), None))
+            drafts.append((SIGN, gloss, source.file, key, read_sign_element(element, gloss, source.where, limits), None))
         except SpecError as error:
             drafts.append((SIGN, gloss, source.file, key, None, str(error)))
+        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
+            drafts.append((SIGN, gloss, source.file, key, None, f"{source.file}: sign {gloss!r}: {_failure(error)}"))
     return drafts
+
+
+def _failure(error: BaseException) -> str:
+    """One line for an unexpected failure while reading (never a traceback)."""
+    if isinstance(error, MemoryError):
+        return "out of memory while reading it"
+    if isinstance(error, RecursionError):
+        return "nested too deeply to read"
+    return f"{type(error).__name__}: {error}"
 
 
 def _digest(data: bytes) -> str:

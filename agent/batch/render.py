@@ -11,9 +11,9 @@ scheduler per utterance — so its files depend only on the chunk it belongs to 
 options, never on which process rendered it; the files of an item appear together, when
 all are complete, or not at all.
 
-Files of a sign: ``NAME.bvh`` and ``NAME.motion.js`` (for the corpus index), with
-``pages`` ``NAME.html`` and with ``glb`` ``NAME.glb``. Of an utterance: also ``NAME.wav``
-and ``NAME.timeline.json``.
+Files of a sign: ``NAME.bvh``, ``NAME.face.json`` (the non-manuals' morph weights per
+frame) and ``NAME.motion.js`` (for the corpus index), with ``pages`` ``NAME.html`` and
+with ``glb`` ``NAME.glb``. Of an utterance: also ``NAME.wav`` and ``NAME.timeline.json``.
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ from agent.batch.items import SIGN, CorpusItem
 from agent.batch.report import summarize_warnings
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.corpus_index import write_motion_script
+from agent.export.face import face_json, page_face_json
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
 from agent.export.page_model import page_model
@@ -44,6 +45,7 @@ from motor.signing.planning import plan_signs
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.lexicon import load_lexicons
+from mura.limits import DEFAULT_LIMITS, Limits
 from mura.signs import Sign
 from tts.wav import write_wav
 
@@ -62,7 +64,8 @@ class RenderOptions:
 
     ``fps`` None means :data:`SIGN_FPS` for signs and :data:`UTTERANCE_FPS` for
     utterances; ``lexicons`` are layered over the bundled one for utterances;
-    ``time_limit`` is seconds per item.
+    ``limits`` are ``--limit NAME=VALUE`` overrides of the input limits; ``time_limit`` is
+    seconds per item.
     """
 
     avatar: str = DEFAULT_AVATAR
@@ -72,6 +75,11 @@ class RenderOptions:
     tts: str = "fake"
     lexicons: tuple[str, ...] = ()
     time_limit: float = DEFAULT_TIME_LIMIT
+    limits: tuple[str, ...] = ()
+
+    def input_limits(self) -> Limits:
+        """The input limits these options ask for (raises :class:`~mura.limits.LimitError`)."""
+        return DEFAULT_LIMITS.with_overrides(self.limits) if self.limits else DEFAULT_LIMITS
 
     def key(self) -> str:
         """A hash of everything that changes an item's files (not the time limit)."""
@@ -215,8 +223,9 @@ def _avatar(name: str) -> Avatar:
 
 
 @lru_cache(maxsize=4)
-def _agent(avatar: str, tts: str, fps: float, lexicons: tuple[str, ...]) -> Agent:
-    return Agent(avatar=_avatar(avatar), tts=tts, fps=fps, lexicon=load_lexicons(lexicons) if lexicons else None)
+def _agent(avatar: str, tts: str, fps: float, lexicons: tuple[str, ...], limits: tuple[str, ...]) -> Agent:
+    input_limits = DEFAULT_LIMITS.with_overrides(limits) if limits else DEFAULT_LIMITS
+    return Agent(avatar=_avatar(avatar), tts=tts, fps=fps, lexicon=load_lexicons(lexicons) if lexicons else None, limits=input_limits)
 
 
 def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: SignPlan | SignPlanningError) -> ItemResult:
@@ -228,6 +237,7 @@ def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: S
     timeline = timeline_of(signed, item.label)
     writers: dict[str, Callable[[Path], None]] = {
         f"{item.name}.bvh": lambda path: write_bvh(signed.motion, path),
+        f"{item.name}.face.json": lambda path: path.write_text(face_json(signed.motion), encoding="ascii"),
         f"{item.name}.motion.js": lambda path: write_motion_script(path, item.name, signed.motion, timeline),
     }
     _add_extras(writers, item.name, signed.motion, timeline, avatar, options, wav=None)
@@ -236,7 +246,7 @@ def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: S
 
 
 def _render_utterance(item: CorpusItem, options: RenderOptions, folder: Path) -> ItemResult:
-    agent = _agent(options.avatar, options.tts, options.fps or UTTERANCE_FPS, options.lexicons)
+    agent = _agent(options.avatar, options.tts, options.fps or UTTERANCE_FPS, options.lexicons, options.limits)
     performance = agent.render(item.source, name=item.name)
     timeline = dict(performance.timeline, motion_start_time=performance.motion.start_time)
     track, rate = performance.soundtrack()
@@ -244,6 +254,7 @@ def _render_utterance(item: CorpusItem, options: RenderOptions, folder: Path) ->
         f"{item.name}.wav": lambda path: write_wav(path, track, rate),
         f"{item.name}.bvh": lambda path: write_bvh(performance.motion, path),
         f"{item.name}.timeline.json": lambda path: path.write_text(json.dumps(timeline, indent=1), encoding="utf-8"),
+        f"{item.name}.face.json": lambda path: path.write_text(face_json(performance.motion), encoding="ascii"),
         f"{item.name}.motion.js": lambda path: write_motion_script(path, item.name, performance.motion, timeline),
     }
     _add_extras(writers, item.name, performance.motion, timeline, agent.avatar, options, wav=f"{item.name}.wav")
@@ -256,7 +267,8 @@ def _add_extras(
 ) -> None:
     if options.pages:
         model = page_model(avatar)
-        writers[f"{name}.html"] = lambda path: write_html(path, name=name, bvh_text=bvh_text(motion), timeline=timeline, wav_filename=wav, model=model)
+        writers[f"{name}.html"] = lambda path: write_html(path, name=name, bvh_text=bvh_text(motion), timeline=timeline, wav_filename=wav, model=model,
+                                                          face_json=page_face_json(motion))
     if options.glb:
         writers[f"{name}.glb"] = lambda path: write_motion_glb(motion, path, motion_model(avatar), avatar.root_height)
 

@@ -15,9 +15,10 @@ import sys
 
 from agent.batch.items import read_corpus
 from agent.batch.render import DEFAULT_TIME_LIMIT, RenderOptions
-from agent.commands.render import add_lexicon_option
+from agent.commands.options import add_lexicon_option, add_limit_option, limits_from
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError, load_avatar
 from mura.lexicon import load_lexicons
+from mura.limits import LimitError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -43,6 +44,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help=f"longest time one item may take (default: {DEFAULT_TIME_LIMIT:g})")  # fmt: skip
     parser.add_argument("--no-progress", dest="progress", action="store_false", help="no progress bar")
     add_lexicon_option(parser)
+    add_limit_option(parser)
     parser.set_defaults(func=run)
 
 
@@ -51,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
     if problem is not None:
         print(f"mura batch: {problem}", file=sys.stderr)
         return 2
-    options = RenderOptions(args.avatar, args.fps, args.glb, args.pages, args.tts, tuple(args.lexicon), args.time_limit)
-    corpus = read_corpus(args.inputs, args.gloss)
+    options = RenderOptions(args.avatar, args.fps, args.glb, args.pages, args.tts, tuple(args.lexicon), args.time_limit, tuple(args.limit))
+    corpus = read_corpus(args.inputs, args.gloss, options.input_limits())
     for source, reason in corpus.unreadable:
         print(f"{source}: cannot read: {reason}", file=sys.stderr)
     if not corpus.items:
@@ -73,8 +75,12 @@ def run(args: argparse.Namespace) -> int:
 def _check_arguments(args: argparse.Namespace) -> str | None:
     if args.workers is not None and args.workers < 1:
         return f"--workers must be at least 1, got {args.workers}"
-    if args.fps is not None and not args.fps > 0:
-        return f"--fps must be positive, got {args.fps}"
+    try:
+        limits = limits_from(args)
+        if args.fps is not None:
+            limits.check_fps(args.fps)
+    except LimitError as error:
+        return str(error)
     if not args.time_limit > 0:
         return f"--time-limit must be positive, got {args.time_limit}"
     try:

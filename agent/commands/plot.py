@@ -7,7 +7,10 @@ import argparse
 import sys
 from pathlib import Path
 
+from agent.commands.options import describe_failure, limits_from, refuse
 from agent.commands.render import add_agent_options
+from agent.export.names import OutputNameError, OutputPlan
+from agent.export.staging import OutputFolderError, StagedRun
 from agent.plots import plot_timeline, plot_wrist_paths
 from agent.sources import read_utterance
 from blackboard.clock import VirtualClock
@@ -17,7 +20,9 @@ from motor.body.avatar import AvatarError, load_avatar
 from motor.control import MotorControl
 from motor.program.gesture import MotorProgram
 from mura.errors import SpecError
+from mura.limits import LimitError
 from tts import SpeechError, make_synthesizer
+from tts.interruptible import CheckedSynthesizer
 
 
 class _RecordingMotorControl(MotorControl):
@@ -48,27 +53,54 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     try:
-        utterance, name = read_utterance(args.file)
+        limits = limits_from(args)
+        fps = limits.check_fps(args.fps)
+        config = SchedulerConfig(voice=args.voice, rate=limits.check_rate(args.rate), limits=limits)
         avatar = load_avatar(args.avatar)
-        motor = _RecordingMotorControl(avatar, args.fps)
-        scheduler = Scheduler(make_synthesizer(args.tts), motor, VirtualClock(), SchedulerConfig(voice=args.voice, rate=args.rate))
-        result = scheduler.run(utterance, name)
-        scheduler.close()
+        tts = CheckedSynthesizer(make_synthesizer(args.tts))
+    except (AvatarError, SpeechError, LimitError) as error:
+        return refuse("plot", error)
+    try:
+        utterance, name = read_utterance(args.file, limits)
+        motor = _RecordingMotorControl(avatar, fps)
+        scheduler = Scheduler(tts, motor, VirtualClock(), config)
+        try:
+            result = scheduler.run(utterance, name)
+        finally:
+            scheduler.close()
     except SpecError as error:
         print(str(error), file=sys.stderr)
         return 1
-    except (AvatarError, SpeechError, ValueError) as error:
+    except (SpeechError, ValueError) as error:
         print(f"{args.file}: {error}", file=sys.stderr)
         return 1
+    except Exception as error:  # noqa: BLE001 - a one-line reason, never a traceback
+        print(f"{args.file}: {describe_failure(error)}", file=sys.stderr)
+        return 1
     output = Path(args.output)
-    output.mkdir(parents=True, exist_ok=True)
-    timeline_png = plot_timeline(result.timeline.to_json(), output / f"{name}.timeline.png")
-    print(f"{args.file}: {timeline_png}")
-    if result.motion is None or not any(_moves_a_wrist(p) for p in motor.programs):
+    try:
+        OutputPlan(output, [args.file]).claim(args.file, name, (".timeline.png", ".wrist.png"))
+    except OutputNameError as error:
+        return refuse("plot", f"{args.file}: {error}", 1)
+    try:
+        with StagedRun(output) as staged:
+            plot_timeline(result.timeline.to_json(), staged.folder / f"{name}.timeline.png")
+            wrist = result.motion is not None and any(_moves_a_wrist(p) for p in motor.programs)
+            if wrist:
+                plot_wrist_paths(avatar, result.motion, motor.programs, staged.folder / f"{name}.wrist.png")
+            staged.commit()
+    except OutputFolderError as error:
+        return refuse("plot", error)
+    except (OSError, ValueError) as error:
+        return refuse("plot", f"{args.file}: cannot draw the plots: {error}", 1)
+    print(f"{args.file}: {output / f'{name}.timeline.png'}")
+    if wrist:
+        print(f"{args.file}: {output / f'{name}.wrist.png'}")
+    else:
         print(f"{args.file}: no gesture moves a wrist; no wrist plot", file=sys.stderr)
-        return 0
-    wrist_png = plot_wrist_paths(avatar, result.motion, motor.programs, output / f"{name}.wrist.png")
-    print(f"{args.file}: {wrist_png}")
+    if result.error is not None:
+        print(f"{args.file}: chunk {result.failed_chunk + 1} failed: {result.error} (plotted up to it)", file=sys.stderr)
+        return 1
     return 0
 
 

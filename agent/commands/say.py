@@ -6,7 +6,11 @@ import argparse
 import re
 import sys
 import warnings
+from pathlib import Path
 
+from agent.commands.options import add_limit_option, limits_from, refuse
+from agent.export.staging import staged_file
+from mura.limits import LimitError
 from tts import (
     BACKENDS,
     PlaybackUnavailable,
@@ -58,20 +62,30 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("text", metavar="TEXT", help="what to say; [t1] places a time tag, *word* emphasizes")
-    parser.add_argument("--tts", choices=sorted(BACKENDS), default=None, help="speech backend (default: espeak, else fake)")
+    parser.add_argument("--tts", choices=[*sorted(BACKENDS), "default"], default="default",
+                        help="speech backend (default: espeak when it can speak here, else fake)")
     parser.add_argument("-o", "--output", metavar="OUT.wav", help="write the audio to this WAV file")
     parser.add_argument("--timings", action="store_true", help="print the phoneme, word and mark table")
     parser.add_argument("--play", action="store_true", help="play the audio on the default sound device")
     parser.add_argument("--voice", metavar="V", help="voice name of the backend (espeak: en, en-us, de, ...)")
     parser.add_argument("--rate", metavar="R", type=float, default=1.0, help="relative speaking rate (default 1.0)")
     parser.add_argument("--not-final", dest="final", action="store_false", help="another chunk follows: no final fall")
+    add_limit_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     text, marks, emphasis = parse_marked_text(args.text)
+    try:
+        limits = limits_from(args)
+        limits.check_chunk_text(text, "the text")
+        rate = limits.check_rate(args.rate)
+    except LimitError as error:
+        return refuse("say", error)
+    if args.output and Path(args.output).is_dir():
+        return refuse("say", f"-o {args.output}: is a folder; give the WAV file's name")
     want_audio = bool(args.output or args.play)
-    request = SpeechRequest(text, marks, emphasis, args.final, args.voice, args.rate, want_audio)
+    request = SpeechRequest(text, marks, emphasis, args.final, args.voice, rate, want_audio)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -87,7 +101,11 @@ def run(args: argparse.Namespace) -> int:
     if args.timings:
         print(format_timings(timing))
     if args.output:
-        write_wav(args.output, timing.audio, timing.sample_rate)
+        try:
+            with staged_file(args.output) as temporary:
+                write_wav(temporary, timing.audio, timing.sample_rate)
+        except OSError as error:
+            return refuse("say", f"cannot write {args.output}: {error.strerror or error}", 1)
         print(f"wrote {args.output}")
     if args.play:
         try:

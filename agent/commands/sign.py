@@ -1,20 +1,26 @@
 """``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and the corpus viewer.
 
-Every sign is rendered on its own — ``NAME.bvh``, ``NAME.motion.js`` for ``DIR/index.html``
-(one viewer for all the signs: search by gloss, play, step through), ``NAME.glb`` unless
-``--no-glb``, ``NAME.html`` with ``--pages`` — or with ``--sequence`` all signs of all
-files in order as one performance (``sequence.bvh``, ``sequence.html``) with transitions
-between them. ``NAME`` is the gloss with its letters of any script kept
-(:mod:`agent.batch.naming`); ``--gloss`` picks signs by gloss. A sign that cannot be read
-or realized fails alone with its reason; the others still render. ``--report`` writes a
-JSON record of every sign (whether it rendered, its duration, its warnings said once, why
-not when it did not) and the failures and warnings grouped by kind. For a corpus on many
-cores, resumably, see ``mura batch``.
+Every sign is rendered on its own — ``NAME.bvh``, ``NAME.face.json`` (the non-manuals'
+morph weights), ``NAME.motion.js`` for ``DIR/index.html`` (one viewer for all the signs:
+search by gloss, play, step through), ``NAME.glb`` unless ``--no-glb``, ``NAME.html`` with
+``--pages`` — or with ``--sequence`` all signs of all files in order as one performance
+(``sequence.bvh``, ``sequence.html`` …) with transitions between them. ``NAME`` is the
+gloss with its letters of any script kept (:mod:`agent.batch.naming`); ``--gloss`` picks
+signs by gloss. A sign that cannot be read or realized fails alone with its reason (any
+exception, running out of memory included); the others still render. ``--report`` writes
+a JSON record of every sign (whether it rendered, its duration, its warnings said once,
+why not when it did not) and the failures and warnings grouped by kind. For a corpus on
+many cores, resumably, see ``mura batch``.
+
+A sign is refused when its repetitions expand to more than ``--limit max_movements``
+movements. The files are staged and moved into the output folder when the run ends, so an
+interrupted run leaves the folder (and the report) as they were.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from dataclasses import dataclass
@@ -22,24 +28,33 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from agent.batch.items import SIGN, Corpus, CorpusItem, read_corpus
+from agent.batch.items import SIGN, Corpus, CorpusItem, chunks_of, corpus_title, read_corpus
 from agent.batch.manifest import Entry, entry_of
 from agent.batch.naming import unique_stem
 from agent.batch.outputs import report_of, write_corpus_pages
 from agent.batch.report import summarize_warnings
 from agent.batch.render import RenderOptions, planning_reason, render_chunk, timeline_of
-from agent.batch.items import chunks_of, corpus_title
+from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.bvh import bvh_text, write_bvh
+from agent.export.face import face_json, page_face_json
 from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
+from agent.export.names import OutputNameError, OutputPlan
 from agent.export.page_model import page_model
-from agent.export.staging import staged_text
+from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, load_avatar
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
+from mura.limits import Limits
+
+#: The files one rendered sign may be written as.
+SIGN_SUFFIXES = (".bvh", ".face.json", ".motion.js", ".html", ".glb")
+
+__all__ = ["SignRecord", "register", "run", "safe_stem", "timeline_of"]
+
 
 @dataclass
 class SignRecord:
@@ -79,45 +94,45 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--gloss", action="append", default=[], metavar="NAME",
                         help="render only the signs with this gloss (wildcards * ? allowed); repeatable. "
                         "With --hamnosys, the first names that sign (default: sign)")  # fmt: skip
+    add_limit_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     if not args.files and args.hamnosys is None:
-        print("mura sign: give SiGML files or --hamnosys", file=sys.stderr)
-        return 2
-    if not args.fps > 0:
-        print(f"mura sign: --fps must be positive, got {args.fps}", file=sys.stderr)
-        return 2
+        return refuse("sign", "give SiGML files or --hamnosys")
     try:
+        limits = limits_from(args)
+        fps = limits.check_fps(args.fps)
         avatar = load_avatar(args.avatar)
     except (OSError, ValueError) as error:
-        print(f"mura sign: {error}", file=sys.stderr)
-        return 2
-    output = Path(args.output)
-    output.mkdir(parents=True, exist_ok=True)
-    corpus, records = _read_signs(args)
+        return refuse("sign", error)
+    if args.report and Path(args.report).is_dir():
+        return refuse("sign", f"--report {args.report}: is a folder; give the report file's name")
+    corpus, records = _read_signs(args, limits)
     if not corpus.items and not records:
         print(f"mura sign: no sign with gloss {', '.join(args.gloss)}", file=sys.stderr)
         return 1
-    if args.sequence:
-        plans: list[tuple[SignRecord, SignPlan]] = []
-        for item in corpus.items:
-            record = SignRecord(item.source, item.label, reason=item.error)
-            records.append(record)
-            try:
-                if item.sign is not None:
-                    plans.append((record, plan_sign(avatar, item.sign)))
-            except SignPlanningError as error:
-                record.reason = planning_reason(item.sign, error)
-        _render_sequence(avatar, plans, output, args.fps, args.glb)
-    else:
-        records.extend(_render_signs(corpus, output, RenderOptions(args.avatar, args.fps, args.glb, args.pages)))
-    report = _report(records)
-    if args.report:
-        _write_json(Path(args.report), report)
+    output = Path(args.output)
+    try:
+        with StagedRun(output) as staged:
+            report_path = staged.beside(args.report) if args.report else None
+            outputs = OutputPlan(output, args.files)
+            if args.sequence:
+                records.extend(_sequence(avatar, corpus, staged.folder, fps, outputs, args.glb))
+            else:
+                options = RenderOptions(args.avatar, fps, args.glb, args.pages, limits=tuple(args.limit))
+                records.extend(_render_signs(corpus, staged.folder, output, options, outputs))
+            report = _report(records)
+            if report_path is not None:
+                report_path.write_text(json.dumps(report, indent=1, ensure_ascii=False), encoding="utf-8")
+            staged.commit()
+    except OutputFolderError as error:
+        return refuse("sign", error)
     rendered = sum(record.rendered for record in records)
-    print(f"{rendered} of {len(records)} signs rendered to {output}" + ("" if args.sequence else f" (viewer: {output / 'index.html'})"))
+    viewer = "" if args.sequence or not rendered else f" (viewer: {output / 'index.html'})"
+    print(f"{rendered} of {len(records)} signs rendered to {output}{viewer}"
+          + (f"; {len(records) - rendered} failed" if rendered < len(records) else ""))  # fmt: skip
     for record in records:
         if not record.rendered:
             print(f"{record.source}: {record.gloss}: {record.reason}")
@@ -126,11 +141,11 @@ def run(args: argparse.Namespace) -> int:
     return 0 if rendered == len(records) else 1
 
 
-def _read_signs(args: argparse.Namespace) -> tuple[Corpus, list[SignRecord]]:
+def _read_signs(args: argparse.Namespace, limits: Limits) -> tuple[Corpus, list[SignRecord]]:
     """The signs of every file (a file that is no SiGML, or that cannot be read, is a
     failed record) and the HamNoSys sign."""
     glosses = args.gloss if args.files else ()
-    corpus = read_corpus(args.files, [] if args.hamnosys is not None and not args.files else glosses)
+    corpus = read_corpus(args.files, glosses, limits)
     records = [SignRecord(source, "*", reason=f"cannot read the document: {reason}") for source, reason in corpus.unreadable]
     items = []
     for item in corpus.items:
@@ -140,34 +155,45 @@ def _read_signs(args: argparse.Namespace) -> tuple[Corpus, list[SignRecord]]:
             records.append(SignRecord(item.source, "*", reason="cannot read the document: not a SiGML document (<sigml> or <sigml_collection>)"))
     if args.hamnosys is not None:
         gloss = args.gloss[0] if args.gloss and not args.files else "sign"
-        taken = {item.name.casefold() for item in items}
-        name = unique_stem(gloss, taken)
+        name = unique_stem(gloss, {item.name.casefold() for item in items})
         try:
-            sign = parse_hamnosys(args.hamnosys, gloss=gloss, file="--hamnosys")
+            sign = parse_hamnosys(args.hamnosys, gloss=gloss, file="--hamnosys", limits=limits)
             items.append(CorpusItem(len(corpus.items), name, SIGN, gloss, "--hamnosys", "", sign))
         except SpecError as error:
             records.append(SignRecord("--hamnosys", gloss, reason=str(error)))
+        except Exception as error:  # noqa: BLE001 - the sign's failure is its own
+            records.append(SignRecord("--hamnosys", gloss, reason=describe_failure(error)))
     return Corpus(tuple(items), corpus.unreadable), records
 
 
-def _render_signs(corpus: Corpus, output: Path, options: RenderOptions) -> list[SignRecord]:
-    """Every sign rendered on its own (chunk by chunk, as ``mura batch`` renders them),
-    then the corpus viewer for all of them."""
+def _render_signs(corpus: Corpus, folder: Path, output: Path, options: RenderOptions, outputs: OutputPlan) -> list[SignRecord]:
+    """Every sign rendered on its own into ``folder`` (chunk by chunk, as ``mura batch``
+    renders them), then the corpus viewer for all of them; files are named as they end
+    up, in ``output``."""
     records, entries = [], []
-    items = list(corpus.items)
+    items = [_claimed(item, outputs) for item in corpus.items]
     bar = tqdm(total=len(items), desc="rendering", unit="sign", file=sys.stderr, disable=len(items) < 20)
     for chunk in chunks_of(items):
         by_index = {item.index: item for item in chunk}
-        for result in render_chunk(chunk, options, output):
+        for result in render_chunk(chunk, options, folder):
             item = by_index[result.index]
             files = tuple(str(output / f.name) for f in result.files)
             records.append(SignRecord(item.source, item.label, result.rendered, result.duration, files, result.reason, result.warnings))
             entries.append(entry_of(item, result, options.key()))
         bar.update(len(chunk))
     bar.close()
-    if entries:
-        write_corpus_pages(output, entries, options, corpus_title(corpus))
+    if any(entry.rendered for entry in entries):
+        write_corpus_pages(folder, entries, options, corpus_title(corpus))
     return records
+
+
+def _claimed(item: CorpusItem, outputs: OutputPlan) -> CorpusItem:
+    """``item``, failed when its files would overwrite an input of the run."""
+    try:
+        outputs.claim(f"sign {item.label!r}", item.name, SIGN_SUFFIXES)
+    except OutputNameError as error:
+        return dataclasses.replace(item, sign=None, error=f"{item.source}: {item.label}: {error}")
+    return item
 
 
 def safe_stem(gloss: str, taken: set[str]) -> str:
@@ -176,15 +202,36 @@ def safe_stem(gloss: str, taken: set[str]) -> str:
     return unique_stem(gloss, taken)
 
 
-def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: Path, fps: float, glb: bool = True) -> None:
+def _sequence(avatar, corpus: Corpus, folder: Path, fps: float, outputs: OutputPlan, glb: bool) -> list[SignRecord]:
+    """All signs planned one by one, then realized in order as one performance."""
+    records: list[SignRecord] = []
+    plans: list[tuple[SignRecord, SignPlan]] = []
+    for item in corpus.items:
+        record = SignRecord(item.source, item.label, reason=item.error)
+        records.append(record)
+        if item.sign is None:
+            continue
+        try:
+            plans.append((record, plan_sign(avatar, item.sign)))
+        except SignPlanningError as error:
+            record.reason = planning_reason(item.sign, error)
+        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
+            record.reason = describe_failure(error)
+    _render_sequence(avatar, plans, folder, fps, outputs, glb)
+    return records
+
+
+def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan,
+                     glb: bool = True) -> None:
     if not plans:
         return
     try:
+        outputs.claim("the sequence", "sequence", SIGN_SUFFIXES)
         signed = realize_signs(avatar, [plan for _, plan in plans], fps)
-        files = _write_performance(signed, output, "sequence", "sequence", avatar if glb else None, avatar)
-    except (SignPlanningError, ValueError, FloatingPointError, OSError) as error:
+        files = _write_performance(signed, folder, "sequence", "sequence", outputs.folder, avatar if glb else None, avatar)
+    except Exception as error:  # noqa: BLE001 - reported on every sign of the sequence
         for record, _ in plans:
-            record.reason = f"the sequence failed: {type(error).__name__}: {error}"
+            record.reason = f"the sequence failed: {describe_failure(error)}"
         return
     for (record, plan), timing in zip(plans, signed.timings):
         record.rendered = True
@@ -193,20 +240,22 @@ def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], output: P
         record.warnings = summarize_warnings(plan.warnings)
 
 
-def _write_performance(signed: SignedMotion, output: Path, stem: str, name: str, glb_avatar=None, page_avatar=None) -> tuple[str, ...]:
-    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB."""
-    bvh_path = output / f"{stem}.bvh"
-    write_bvh(signed.motion, bvh_path)
-    files = [str(bvh_path)]
+def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str, output: Path, glb_avatar=None,
+                       page_avatar=None) -> tuple[str, ...]:
+    """BVH, face weights, page (drawing ``page_avatar``'s own model) and, with
+    ``glb_avatar``, the GLB, written into ``folder``; returns their paths in ``output``,
+    where they end up."""
+    write_bvh(signed.motion, folder / f"{stem}.bvh")
+    (folder / f"{stem}.face.json").write_text(face_json(signed.motion), encoding="ascii")
+    files = [str(output / f"{stem}.bvh"), str(output / f"{stem}.face.json")]
     if glb_avatar is not None:
-        glb_path = output / f"{stem}.glb"
-        write_motion_glb(signed.motion, glb_path, motion_model(glb_avatar), glb_avatar.root_height)
-        files.append(str(glb_path))
+        write_motion_glb(signed.motion, folder / f"{stem}.glb", motion_model(glb_avatar), glb_avatar.root_height)
+        files.append(str(output / f"{stem}.glb"))
     try:
-        html_path = output / f"{stem}.html"
         model = page_model(page_avatar) if page_avatar is not None else None
-        write_html(html_path, name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name), wav_filename=None, model=model)
-        files.append(str(html_path))
+        write_html(folder / f"{stem}.html", name=name, bvh_text=bvh_text(signed.motion), timeline=timeline_of(signed, name),
+                   wav_filename=None, model=model, face_json=page_face_json(signed.motion))
+        files.append(str(output / f"{stem}.html"))
     except Exception as error:  # noqa: BLE001 - the page is optional; the BVH is the sign
         print(f"mura sign: no avatar page for {name!r}: {error}", file=sys.stderr)
     return tuple(files)
@@ -226,10 +275,3 @@ def _report(records: list[SignRecord]) -> dict:
         "warnings_by_kind": grouped["warnings_by_kind"],
         "signs": [record.as_json() for record in records],
     }
-
-
-def _write_json(path: Path, data: dict) -> None:
-    """Write JSON under a temporary name in the same folder, then rename."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with staged_text(path) as stream:
-        json.dump(data, stream, indent=1, ensure_ascii=False)

@@ -8,12 +8,15 @@ small script beside the page, ``NAME.motion.js``, loaded when the item is chosen
 its frames::
 
     window.__muraMotion("NAME", {"fps": 25, "frames": 61, "start": 0.0, "duration": 2.4,
-                                  "rotations": "<base64>", "root": "<base64>", "timeline": {…}})
+                                  "rotations": "<base64>", "root": "<base64>", "timeline": {…},
+                                  "face": {"fps": 25, "names": [...], "weights": [[...], ...]}})
 
 ``rotations`` are the frames' local joint quaternions (scalar last) in the page's joint
 order, each component as a little-endian int16 of ``round(q · 32767)`` (a resolution of
 3·10⁻⁵, far below a visible angle); ``root`` the root positions as little-endian float32
-metres. The page's ``script#mura-corpus`` carries the joint list (name, parent, rest
+metres. ``face``, present when the motion moves the face, holds the morph weights that
+move (ARKit names, :func:`agent.export.face.page_face_json`), which the viewer plays on the
+model's morph targets as the item pages do. The page's ``script#mura-corpus`` carries the joint list (name, parent, rest
 offset in metres) once for all items. Files are written whole or not at all, and their
 bytes depend only on the motion, so a corpus rendered twice gives the same files.
 """
@@ -30,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from agent.export.face import page_face_json
 from agent.export.html import VIEWER_BUNDLE, ViewerNotBuiltError
 from agent.export.page_model import PageModel, model_tags, write_sidecar
 from agent.export.staging import staged_text
@@ -82,6 +86,9 @@ def motion_payload(motion: Motion, timeline: dict | None = None) -> dict:
     }
     if timeline is not None:
         payload["timeline"] = timeline
+    face = json.loads(page_face_json(motion))
+    if face["names"]:
+        payload["face"] = face
     return payload
 
 

@@ -3,7 +3,8 @@
 The page inlines the built viewer bundle (``viewer/dist/viewer.js``, made by ``make setup``),
 the BVH text and the timeline JSON, and refers to the WAV by a relative file name, so it
 works opened straight from the output folder (``file://``) and fetches nothing from the
-network. Query parameters the page honours: ``?t=SECONDS`` opens it paused at that time;
+network. With a face (``face_json``, see :mod:`agent.export.face`) the page carries its
+morph weights in ``script#mura-face`` and plays them on the avatar. Query parameters the page honours: ``?t=SECONDS`` opens it paused at that time;
 ``?live=1`` follows a server's event stream instead (see ``viewer/src/live.js``).
 
 :func:`write_html_stream` writes the same page to an open stream with the BVH text given
@@ -16,7 +17,7 @@ import html
 import json
 import os
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import TextIO
 from urllib.parse import quote
@@ -45,6 +46,7 @@ def write_html(
     timeline: dict,
     wav_filename: str | None,
     model: PageModel | None = None,
+    face_json: str | None = None,
 ) -> None:
     """Write the avatar page for one performance to ``path``.
 
@@ -57,24 +59,27 @@ def write_html(
             silent page (a wall clock then drives the animation).
         model: the avatar's own model to draw (its sidecar script is written beside the
             page), or None for the joint-and-capsule figure.
+        face_json: the page's face weights (:func:`agent.export.face.page_face_json`), or None.
 
     Raises:
         ViewerNotBuiltError: the viewer bundle has not been built.
         ValueError: ``timeline`` is not a JSON object of finite numbers, or ``bvh_text``
             does not look like BVH, or ``wav_filename`` is absolute.
     """
-    page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename, model=model)
+    page = render_html(name=name, bvh_text=bvh_text, timeline=timeline, wav_filename=wav_filename, model=model, face_json=face_json)
     if model is not None:
         write_sidecar(model, Path(path).parent)
     with staged_text(path) as stream:
         stream.write(page)
 
 
-def render_html(*, name: str, bvh_text: str, timeline: dict, wav_filename: str | None, model: PageModel | None = None) -> str:
+def render_html(
+    *, name: str, bvh_text: str, timeline: dict, wav_filename: str | None, model: PageModel | None = None, face_json: str | None = None
+) -> str:
     """The page :func:`write_html` writes, as a string (the model's sidecar not written)."""
     _check_bvh_start(bvh_text)
     head, tail = _page_around_bvh(name, timeline, wav_filename, model)
-    return head + _script_json(json.dumps(bvh_text)) + tail
+    return head + _script_json(json.dumps(bvh_text)) + "".join(_face_script([face_json] if face_json is not None else None)) + tail
 
 
 def write_html_stream(
@@ -85,8 +90,10 @@ def write_html_stream(
     timeline: dict,
     wav_filename: str | None,
     model: PageModel | None = None,
+    face_blocks: Iterable[str] | None = None,
 ) -> None:
-    """Write the page :func:`render_html` makes to ``stream``, the BVH text coming in pieces.
+    """Write the page :func:`render_html` makes to ``stream``, the BVH text (and the face
+    JSON, ``face_blocks``) coming in pieces.
 
     ``bvh_blocks`` concatenated is the whole BVH file; its first piece must hold the header
     up to ``MOTION`` (as ``StreamingBvh.text_blocks`` yields it). Each piece is escaped on
@@ -104,7 +111,18 @@ def write_html_stream(
     for block in blocks:
         stream.write(_script_json(_json_string_body(block)))
     stream.write('"')
+    for piece in _face_script(face_blocks):
+        stream.write(piece)
     stream.write(tail)
+
+
+def _face_script(face_blocks: Iterable[str] | None) -> Iterator[str]:
+    """``script#mura-face`` (after the BVH's script, which the tail closes first), or nothing."""
+    if face_blocks is None:
+        return
+    yield '</script>\n<script type="application/json" id="mura-face">'
+    for block in face_blocks:
+        yield _script_json(block)
 
 
 def _check_bvh_start(bvh_text: str) -> None:

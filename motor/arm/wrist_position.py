@@ -1,9 +1,29 @@
-"""The wrist position LMP: guiding strokes realized as a Hermite spline when activated.
+"""The wrist position LMP: a preparation from wherever the wrist is, then the stroke's strokes.
 
-Starting from wherever the wrist is (value and velocity of the channel at activation), a
-preparatory guiding stroke leads to the first breakpoint, arriving at ``ready``; from
-rest it waits and takes the Fitts'-law duration ``0.24 ln(100 A + 1)`` when the plan
-leaves more time than that. Positions are metres in the avatar frame.
+The stroke (the breakpoints from ``stroke_start`` on) is formed once, by the gesture
+planner or when the LMP is made (:func:`motor.trajectory.spline.plan_wrist_trajectory`,
+which never exceeds :data:`motor.trajectory.spline.MAX_WRIST_SPEED`): it starts and ends at
+rest and follows the power law.
+At activation the LMP takes the channel's value and velocity and prepends the
+*preparation*: the minimum-jerk movement from that state to rest at the first breakpoint
+(:func:`motor.trajectory.spline.approach`).
+
+**The stroke onset is visible** (Kendon's pre-stroke hold, as Greta does). The preparation
+always arrives at rest, by the ``ready`` peg — a speed minimum of zero at the
+preparation–stroke breakpoint — and the wrist holds there until the stroke starts from a
+standstill exactly at its first breakpoint time (the program's ``stroke_start``). The rule
+(:func:`preparation_timing`; the gesture planner applies it to set ``ready``, the same
+for both arms): the preparation takes its natural duration, the longer of Fitts' law
+``0.24 ln(100 A + 1)`` and the shortest duration the speed budget allows
+(:mod:`motor.trajectory.speed_budget`); the pre-stroke hold takes what the window from
+``start`` to ``stroke_start`` leaves beyond that, up to :data:`PRE_STROKE_HOLD`; from rest
+the wrist waits before it starts moving with what is left. A window shorter than the
+natural duration is used whole (the scheduler keeps it within the manner's budget
+beforehand); one that would go beyond the absolute ceiling
+(:data:`motor.trajectory.speed_budget.CEILING`) makes the stroke start late, with a
+warning.
+
+Positions are metres in the avatar frame, times seconds on the utterance clock.
 """
 
 from __future__ import annotations
@@ -13,18 +33,37 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor.program.lmp import Channel, ChannelState, TimePegs, check_activation
+from motor.trajectory.speed_budget import CEILING, budget
 from motor.trajectory.spline import (
-    Accent,
     WristTrajectory,
+    approach,
     fitts_duration,
+    held,
+    joined,
     plan_wrist_trajectory,
+    stretch_factor,
     time_breakpoints,
 )
 
-#: Step of the backward difference that ends a one-point path, seconds.
-_DIFFERENCE_STEP = 1e-4
+#: Longest pre-stroke hold (s): the hand waits this long at the stroke's start when the
+#: preparation leaves the time.
+PRE_STROKE_HOLD = 0.15
 #: Below this distance (m) or speed (m/s) the wrist counts as still.
 _AT_REST = 1e-6
+#: Shortest time (s) an LMP holds a single target, when its pegs give none.
+_DIFFERENCE_STEP = 1e-4
+
+
+def preparation_timing(amplitude: float, window: float, manner: str | None = None) -> tuple[float, float]:
+    """Duration of the preparation and of the pre-stroke hold (s) for a preparation of
+    ``amplitude`` metres in a ``window`` of seconds (module docstring)."""
+    if amplitude <= _AT_REST:
+        return 0.0, 0.0
+    natural = max(float(fitts_duration(amplitude)), budget(manner).shortest_duration(amplitude))
+    if window <= natural + _AT_REST:
+        return min(window, natural), 0.0
+    return natural, min(PRE_STROKE_HOLD, window - natural)
+
 
 @dataclass(frozen=True, eq=False)
 class SplineRealization:
@@ -46,28 +85,29 @@ class SplineRealization:
 
 @dataclass(frozen=True, eq=False)
 class WristPositionLMP:
-    """Guiding strokes of the wrist, realized as a Hermite spline at activation.
+    """The wrist through guiding-stroke breakpoints, after a preparation into the first.
 
     Attributes:
         side: ``"right"`` or ``"left"``.
-        pegs: time pegs; the preparation arrives at the first breakpoint at ``ready``,
-            the stroke runs through the breakpoints over ``[stroke_start, stroke_end]``.
+        pegs: time pegs; the preparation arrives at the first breakpoint by ``ready``, the
+            stroke runs through the breakpoints over ``[stroke_start, stroke_end]``.
         breakpoints: ``(n, 3)`` positions, metres; one breakpoint is a static target.
-        breakpoint_times: ``(n,)`` explicit times, or None to time the stroke by the
-            power-law rule of :func:`motor.trajectory.spline.time_breakpoints`.
-        curved: per-stroke curve flags (``n − 1``), for the 0.8 breakpoint gain.
-        accents: accents on strokes, indexed over ``breakpoints``.
+        breakpoint_times: ``(n,)`` times, from ``ready`` on, or None to time the stroke by
+            :func:`motor.trajectory.spline.time_breakpoints`. They fix where the stroke
+            starts and stops (its first and last breakpoints, holds, reversals); the
+            breakpoints in between are passed as the power law times them.
         warnings: notes from planning the breakpoints (e.g. a curve's default normal),
             carried into the realization.
+        stroke: the stroke's trajectory through the breakpoints at their times, when the
+            planner has formed it already; otherwise it is formed here.
     """
 
     side: str
     pegs: TimePegs
     breakpoints: np.ndarray
     breakpoint_times: np.ndarray | None = None
-    curved: tuple[bool, ...] | None = None
-    accents: tuple[Accent, ...] = ()
     warnings: tuple[str, ...] = ()
+    stroke: WristTrajectory | None = None
 
     def __post_init__(self) -> None:
         points = np.atleast_2d(np.asarray(self.breakpoints, dtype=float))
@@ -83,10 +123,13 @@ class WristPositionLMP:
             times = time_breakpoints(points, self.pegs.stroke_start, self.pegs.stroke_end)
         else:
             times = np.array([self.pegs.ready])
-        if self.curved is not None and len(self.curved) != points.shape[0] - 1:
-            raise ValueError(f"{self.channel}: curved needs one flag per stroke ({points.shape[0] - 1})")
         object.__setattr__(self, "breakpoints", points)
         object.__setattr__(self, "breakpoint_times", times)
+        if self.stroke is not None:
+            if abs(self.stroke.start - times[0]) > 1e-9 or abs(self.stroke.end - times[-1]) > 1e-9:
+                raise ValueError(f"{self.channel}: the given stroke spans [{self.stroke.start}, {self.stroke.end}], not its breakpoint times")
+        elif points.shape[0] > 1:
+            object.__setattr__(self, "stroke", plan_wrist_trajectory(points, times))
 
     @property
     def channel(self) -> Channel:
@@ -96,38 +139,38 @@ class WristPositionLMP:
         check_activation(self.channel, state, self.pegs.ready)
         here = np.asarray(state.value, dtype=float)
         velocity = np.asarray(state.velocity, dtype=float)
-        first, arrival = self.breakpoints[0], self.pegs.ready
+        first, onset = self.breakpoints[0], float(self.breakpoint_times[0])
         amplitude = float(np.linalg.norm(first - here))
         moving = float(np.linalg.norm(velocity)) > _AT_REST
-        warnings = list(self.warnings)
-        points, times = [here], [state.time]
+        notes = list(self.warnings)
+        pieces: list[WristTrajectory] = []
+        arrival = state.time
         if amplitude > _AT_REST or moving:
-            natural = float(fitts_duration(amplitude))
-            window = arrival - state.time
-            if natural > window:
-                warnings.append(
-                    f"{self.channel}: preparation of {amplitude:.3f} m squeezed into {window:.3f} s "
-                    f"(Fitts' law asks {natural:.3f} s)"
+            arrival = self.pegs.ready
+            duration, _ = preparation_timing(max(amplitude, _AT_REST * 2.0), arrival - state.time)
+            begin = state.time if moving else arrival - duration
+            if begin > state.time:
+                pieces.append(held(here, state.time, begin))
+            preparation = approach(here, velocity, begin, first, arrival)
+            factor = stretch_factor(preparation, CEILING.peak_speed, CEILING.peak_acceleration)
+            if factor > 1.0:
+                arrival = begin + factor * (arrival - begin)
+                notes.append(
+                    f"{self.channel}: preparation of {amplitude:.3f} m in {onset - begin:.3f} s would exceed "
+                    f"{CEILING.peak_speed} m/s or {CEILING.peak_acceleration} m/s²; the stroke starts {arrival - onset:.3f} s late"
                 )
-            elif not moving and natural > 0.0 and arrival - natural > state.time:
-                points.append(here)
-                times.append(arrival - natural)
-            points.append(first)
-            times.append(arrival)
-        if self.breakpoint_times[0] > times[-1]:
-            points.append(first)
-            times.append(float(self.breakpoint_times[0]))
-        prefix = len(points) - 1
-        points.extend(self.breakpoints[1:])
-        times.extend(self.breakpoint_times[1:])
-        if len(points) == 1:
-            points.append(here)
-            times.append(max(self.pegs.end, state.time + _DIFFERENCE_STEP))
-        curved = None if self.curved is None else (False,) * prefix + tuple(self.curved)
-        accents = tuple(Accent(a.stroke + prefix, a.fraction) for a in self.accents)
-        trajectory = plan_wrist_trajectory(
-            np.array(points), np.array(times), start_velocity=velocity, curved=curved, accents=accents,
-            warnings=tuple(warnings),
-        )
-        return SplineRealization(trajectory)
+                preparation = approach(here, velocity, begin, first, arrival)
+            pieces.append(preparation)
+        stroke = self._stroke_from(max(arrival, onset), max(0.0, arrival - onset))
+        still_from = pieces[-1].end if pieces else state.time
+        if stroke.start > still_from:
+            pieces.append(held(first, still_from, stroke.start))
+        pieces.append(stroke)
+        return SplineRealization(joined(pieces).with_warnings(notes))
 
+    def _stroke_from(self, onset: float, late: float) -> WristTrajectory:
+        """The stroke from rest at ``onset`` (late by ``late`` seconds when the preparation
+        could not arrive in time); a single target holds until the pegs' end."""
+        if self.stroke is None:
+            return held(self.breakpoints[0], onset, max(self.pegs.end, onset + _DIFFERENCE_STEP))
+        return self.stroke.shifted(late) if late > 0.0 else self.stroke

@@ -318,8 +318,6 @@ class _PosedSkin:
 
 def _skin(gltf, path: Path, bones: dict[str, int], kind: str, skeleton: _Skeleton, rest) -> tuple[_PosedSkin | None, float | None, list[str]]:
     """The file's skinned mesh at rest, re-posed into mura's rest pose; its crown height."""
-    from pygltflib import GLTF2  # noqa: F401 - loaded by _gltf already
-
     notes: list[str] = []
     skinned = [(node, gltf.skins[node.skin]) for node in gltf.nodes if node.mesh is not None and node.skin is not None]
     if not skinned:

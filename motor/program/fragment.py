@@ -36,11 +36,14 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
   one, read as millimetres (the seed dialect's unit) with the height measured from the
   floor (the avatar's ``root_height`` is subtracted); otherwise through the dominant
   hand's mean stroke position. Only the first three numbers of a center are used.
+  Hands brought together touch and do not overlap: a mirrored location closer to its
+  image than the avatar's palm thickness (:func:`motor.hand.contact.palm_thickness`) is
+  moved apart, both hands equally, to that distance.
 
-A location out of the arm's reach (the IK falls short by more than :data:`REACH_TOLERANCE`)
+A location out of the arm's reach (the IK falls short of it; :mod:`motor.arm.wrist_path`)
 is replaced by the nearest point the arm reaches, with a warning; a stroke too fast for
-the wrist (above :data:`motor.trajectory.spline.MAX_WRIST_SPEED`) is slowed by the trajectory
-planner, and the warning is carried into the program.
+the speed budget is lengthened by the gesture planner (:mod:`motor.program.gesture`), with
+a warning.
 
 ``mode="pointTo"`` with a point: the wrist goes on the line from the shoulder toward
 the point at :data:`POINTING_REACH` of the arm's length, and the fingers point from the
@@ -56,11 +59,14 @@ import numpy as np
 
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.locations import resolve_location
+from motor.face.planning import FACE_SLOTS
+from motor.hand.contact import palm_thickness
 from motor.hand.shape import handshape_params
+from motor.neck.planning import NECK_SLOTS
 from motor.trajectory.biocontrol import MANNERS, movement_duration
 from motor.trajectory.guiding_strokes import circle_from_start, curve_breakpoints
 from motor.trajectory.spline import time_breakpoints
-from motor.trajectory.symmetry import mirror_directions, mirror_points
+from motor.trajectory.symmetry import kept_apart, mirror_directions, mirror_points, reflection_signs
 from mura.constraints import (
     Arm,
     Constraint,
@@ -135,15 +141,11 @@ class PointTarget:
 
 @dataclass(frozen=True, eq=False)
 class Key:
-    """A feature value reached at ``start`` and held until ``end`` (local seconds).
-
-    ``curved`` marks a location reached along a curve (for the breakpoint-speed gain).
-    """
+    """A feature value reached at ``start`` and held until ``end`` (local seconds)."""
 
     start: float
     end: float
     value: object
-    curved: bool = False
 
 
 Track = tuple[str, str]
@@ -293,8 +295,24 @@ class Compiler:
         for (arm, feature), keys in child.tracks.items():
             if arm != dominant or (other, feature) in child.tracks:
                 continue
+            if feature == "location":
+                keys = self.kept_apart(keys, node.symmetry, center, dominant)
+                tracks[(arm, feature)] = keys
             tracks[(other, feature)] = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
         return Fragment(child.duration, tracks, child.warnings)
+
+    def kept_apart(self, keys: tuple[Key, ...], symmetry: Symmetry, center: np.ndarray, dominant: str) -> tuple[Key, ...]:
+        """Dominant-hand location keys at least a palm thickness from their mirror images
+        (:mod:`motor.hand.contact`): hands brought together touch, they do not overlap. A key
+        on the mirror planes is moved to the dominant hand's side (the avatar's right is −x)."""
+        signs = reflection_signs(symmetry)
+        away = np.where(signs < 0.0, 1.0, 0.0)
+        away[0] *= -1.0 if dominant == "right" else 1.0
+        if not np.any(away):
+            return keys
+        points = np.array([np.asarray(key.value, dtype=float) for key in keys])
+        apart = kept_apart(points, symmetry, center, palm_thickness(self.avatar), away / np.linalg.norm(away))
+        return tuple(replace(key, value=point) for key, point in zip(keys, apart))
 
     def mirror_center(self, node: Symmetrical, child: Fragment) -> np.ndarray:
         """Center of the mirror planes, metres (module docstring)."""
@@ -329,13 +347,16 @@ class Compiler:
     def static(self, leaf: Static) -> Fragment:
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
+            return Fragment(0.0, {}, self.unrealized(leaf.slot))
         arm = self.arm_of(leaf)
         value = self.value(feature, leaf.value, arm, leaf.mode, leaf.where)
         return Fragment(0.0, {(arm, feature): (Key(0.0, 0.0, value),)})
 
-    def unrealized(self, slot: str) -> str:
-        return f"{self.behavior}: slot {slot} is not realized by the arm motor programs"
+    def unrealized(self, slot: str) -> tuple[str, ...]:
+        """The warning for a slot no motor module realizes; none for the neck's and the face's."""
+        if slot in NECK_SLOTS | FACE_SLOTS:
+            return ()
+        return (f"{self.behavior}: slot {slot} is not realized by the arm motor programs",)
 
     def value(self, feature: str, value: object, arm: str, mode: str | None, where: SourceLocation | None) -> object:
         """A slot value as the planner keys it (metres, unit vectors, hand parameters)."""
@@ -383,11 +404,11 @@ class Compiler:
         return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
 
     def dynamic(self, leaf: Dynamic, origin: Mapping[str, np.ndarray]) -> Fragment:
+        if leaf.keyframes is not None and not leaf.segments:  # joint keyframes: neither the arm nor the neck planner reads them
+            return Fragment(0.0, {}, (f"{self.behavior}: keyframed {leaf.slot} ({len(leaf.keyframes.frames)} frames of named joints) is not realized by the motor programs",))
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
-            return Fragment(0.0, {}, (self.unrealized(leaf.slot),))
-        if leaf.keyframes is not None and not leaf.segments:
-            return Fragment(0.0, {}, (f"{self.behavior}: keyframed {leaf.slot} ({len(leaf.keyframes.frames)} frames of named joints) is not realized by the arm motor programs",))
+            return Fragment(0.0, {}, self.unrealized(leaf.slot))
         if not leaf.segments:
             raise self.error(f"dynamic {leaf.slot} has no segments", leaf.where)
         arm = self.arm_of(leaf)
@@ -420,7 +441,7 @@ class Compiler:
             elif here is None:
                 here = self.neutral_location(arm)
                 notes.append(f"{self.behavior}: path without a start; starting at the neutral position {np.round(here, 3).tolist()}")
-            points, curved, kind, segment_notes = self.segment_points(segment, np.asarray(here, dtype=float), arm, where)
+            points, kind, segment_notes = self.segment_points(segment, np.asarray(here, dtype=float), arm, where)
             notes.extend(segment_notes)
             if keys and np.linalg.norm(points[0] - np.asarray(keys[-1].value)) > _SAME_PLACE:
                 clock += movement_time(float(np.linalg.norm(points[0] - np.asarray(keys[-1].value))))
@@ -433,16 +454,16 @@ class Compiler:
                 continue
             duration = movement_time(length, kind, segment.manner)
             times = clock + time_breakpoints(points, 0.0, duration)
-            keys.extend(Key(float(t), float(t), p, curved) for t, p in zip(times[1:], points[1:]))
+            keys.extend(Key(float(t), float(t), p) for t, p in zip(times[1:], points[1:]))
             clock += duration
             here = points[-1]
         return Fragment(clock, {(arm, "location"): tuple(keys)}, tuple(notes))
 
     def segment_points(
         self, segment: Segment, start: np.ndarray, arm: str, where: SourceLocation | None
-    ) -> tuple[np.ndarray, bool, str, list[str]]:
-        """Breakpoints ``(n, 3)`` of one HandLocation segment from ``start``, whether they
-        approximate a curve, the movement kind for its duration, and notes."""
+    ) -> tuple[np.ndarray, str, list[str]]:
+        """Breakpoints ``(n, 3)`` of one HandLocation segment from ``start``, the movement
+        kind for its duration, and notes."""
         end = self.segment_end(segment, start, arm, where)
         try:
             if segment.kind is SegmentKind.CURVE:
@@ -455,14 +476,14 @@ class Compiler:
                 notes = [f"{self.behavior}: {note}" for note in strokes.warnings]
                 if segment.shape is None:
                     notes.append(f"{self.behavior}: curve without a shape; using LeftC")
-                return strokes.points, True, "curved", notes
+                return strokes.points, "curved", notes
             if segment.kind is SegmentKind.CIRCLE:
                 axis = (0.0, 0.0, 1.0) if segment.normal is None else segment.normal.vector
                 radius = 0.5 * segment.distance if segment.distance else _CIRCLE_RADIUS.get(segment.size or "", 0.06)
-                return circle_from_start(start, axis, radius), True, "circle", []
+                return circle_from_start(start, axis, radius), "circle", []
         except ValueError as error:
             raise self.error(f"{segment.kind.value} segment: {error}", where) from None
-        return np.stack([start, end]), False, "straight", []
+        return np.stack([start, end]), "straight", []
 
     def segment_end(self, segment: Segment, start: np.ndarray, arm: str, where: SourceLocation | None) -> np.ndarray:
         if segment.end is not None:
@@ -574,9 +595,4 @@ def first_location(fragment: Fragment, arm: str) -> np.ndarray | None:
     """Where the stroke of ``arm`` starts, or None when its location is unconstrained."""
     value = fragment.first((arm, "location"))
     return None if value is None else np.asarray(value, dtype=float)
-
-
-def curved_into(keys: tuple[Key, ...], time: float) -> bool:
-    """Whether the breakpoint at ``time`` is reached along a curve."""
-    return any(key.curved and abs(key.start - time) <= SAME_TIME for key in keys)
 

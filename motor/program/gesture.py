@@ -20,16 +20,15 @@ names them.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
-from motor.arm.ik import solve_arm
-from motor.arm.wrist_position import WristPositionLMP
+from motor.arm.wrist_path import followable, placed
+from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
 from motor.hand.lmp import HandShapeLMP
 from motor.hand.shape import handshape_params
 from motor.program.fragment import (
@@ -37,15 +36,15 @@ from motor.program.fragment import (
     Compiler,
     Fragment,
     PointTarget,
-    curved_into,
     first_location,
     timed_values,
     unit_vector,
     value_at,
 )
-from motor.program.lmp import LMP, RetractionLMP, TimePegs
+from motor.program.lmp import LMP, ChannelState, RetractionLMP, TimePegs
 from motor.quaternion import between_vectors, continuous, rotate
-from motor.trajectory.spline import fitts_duration, plan_wrist_trajectory
+from motor.trajectory.speed_budget import CEILING, SpeedBudget, budget
+from motor.trajectory.spline import HOLD_LENGTH, WristTrajectory, fitts_duration, plan_wrist_trajectory, stretch_factor
 from mura.model import BehaviorSpec
 from mura.values import FingerBend, HandShape, PalmOrientation
 
@@ -59,8 +58,16 @@ MIN_PREPARATION = 1e-3
 NEUTRAL_FINGERS = np.array([0.0, 0.0, 1.0])
 #: The relaxed hand: this fraction of the way from the flat hand to the rounded one.
 REST_CURL = 0.3
-#: How far (m) the IK may fall short of a planned location before it is moved in reach.
-REACH_TOLERANCE = 1e-3
+#: A location this far (m) out of reach or more is reported when it is moved into reach
+#: (closer ones are rounding and are moved silently).
+NOTICEABLE_SHORTFALL = 1e-3
+#: The manner whose speed budget (:mod:`motor.trajectory.speed_budget`) MURML gestures keep.
+GESTURE_MANNER = "targetted"
+#: Rounds of lengthening a stroke until it is within its budget (the second rarely acts).
+_STRETCH_ROUNDS = 3
+_PEG_NAMES = tuple(f.name for f in fields(TimePegs))
+#: Excess over a limit below this fraction is rounding.
+_ROUNDING = 1e-6
 
 
 
@@ -101,6 +108,26 @@ class GestureDemands:
 
 
 @dataclass(frozen=True, eq=False)
+class WristPath:
+    """One arm's stroke path: breakpoints ``(n, 3)`` (metres), their times ``(n,)`` (s) and
+    the trajectory through them (None for a single location)."""
+
+    points: np.ndarray
+    times: np.ndarray
+    trajectory: WristTrajectory | None
+
+    def stretched(self, origin: float, factor: float) -> WristPath:
+        """The path timed ``factor`` times slower about ``origin`` (the trajectory planned
+        anew on those times)."""
+        times = origin + (self.times - origin) * factor
+        return WristPath(self.points, times, None if self.trajectory is None else unlimited(self.points, times))
+
+    def shifted(self, delay: float) -> WristPath:
+        """The path ``delay`` seconds later."""
+        return WristPath(self.points, self.times + delay, None if self.trajectory is None else self.trajectory.shifted(delay))
+
+
+@dataclass(frozen=True, eq=False)
 class MotorProgram:
     """A planned gesture: its LMPs on every channel it uses, and what planning changed.
 
@@ -127,10 +154,16 @@ class MotorProgram:
 
 
 
+def unlimited(points: np.ndarray, times: np.ndarray) -> WristTrajectory:
+    """The wrist trajectory through ``points`` at ``times`` as they are: the planner keeps
+    it within its limits itself (:meth:`Planner.within_budget`)."""
+    return plan_wrist_trajectory(points, times, max_speed=np.inf)
+
+
 def retraction_duration(distance: float) -> float:
     """Seconds to retract the wrist over ``distance`` metres: Fitts' law, at least
-    :data:`MIN_RETRACTION`."""
-    return max(MIN_RETRACTION, float(fitts_duration(distance)))
+    :data:`MIN_RETRACTION`, and long enough to stay within the lax manner's speed budget."""
+    return max(MIN_RETRACTION, float(fitts_duration(distance)), budget("lax").shortest_duration(distance))
 
 
 def rest_handshape() -> np.ndarray:
@@ -203,23 +236,36 @@ class Planner:
         )
 
     def plan(
-        self, behavior: BehaviorSpec, pegs: TimePegs, repetitions: int = 1, next_gesture_follows: bool = False
+        self,
+        behavior: BehaviorSpec,
+        pegs: TimePegs,
+        repetitions: int = 1,
+        next_gesture_follows: bool = False,
+        start_states: Mapping[str, ChannelState] | None = None,
     ) -> MotorProgram:
-        """The motor program of ``behavior`` on ``pegs`` (see the module docstring)."""
+        """The motor program of ``behavior`` on ``pegs`` (see the module docstring).
+
+        ``start_states`` are the arms' wrist states (position and velocity) at
+        ``pegs.start`` (default: still in the rest posture), from which the pre-stroke hold
+        is reckoned.
+        """
         compiler = Compiler(self.avatar, behavior.id)
         fragment = self.fragment(behavior)
         if repetitions != 1:
             fragment = compiler.repeat(fragment, repetitions)
         notes = list(fragment.warnings)
         pegs = self.usable_pegs(behavior.id, pegs, fragment.duration > 0.0, notes)
+        tentative = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
+        arms = sorted({arm for arm, _ in tentative.tracks}, key=ARMS.index)
+        paths = {arm: self.stroke_path(behavior.id, tentative, arm, notes) for arm in arms}
+        pegs, paths = self.within_budget(behavior.id, paths, pegs, start_states or {}, notes)
         stroke = fragment.placed(pegs.stroke_start, pegs.stroke_end - pegs.stroke_start)
-        arms = sorted({arm for arm, _ in stroke.tracks}, key=ARMS.index)
         lmps: list[LMP] = []
         retraction = 0.0
         posture = "interim_rest" if next_gesture_follows else "rest"
         for arm in arms:
-            arm_lmps, last_wrist = self.arm_lmps(compiler, stroke, arm, pegs, notes)
-            lmps.extend(arm_lmps)
+            lmps.extend(self.arm_lmps(compiler, stroke, arm, pegs, paths[arm]))
+            last_wrist = None if paths[arm] is None else paths[arm].points[-1]
             distance = 0.0 if last_wrist is None else float(np.linalg.norm(last_wrist - self.rest_wrist(arm, posture)))
             retraction = max(retraction, retraction_duration(distance))
         end = pegs.relax + retraction if arms else pegs.relax
@@ -227,6 +273,96 @@ class Planner:
         lmps.extend([self.retraction(lmp.channel, retract, posture) for lmp in lmps])
         final = replace(pegs, end=end)
         return MotorProgram(behavior.id, tuple(lmps), tuple(notes), final, frozenset(arms))
+
+    def stroke_path(self, behavior: str, stroke: Fragment, arm: str, notes: list[str]) -> WristPath | None:
+        """The wrist path of ``arm``'s stroke as placed in ``stroke``: its locations moved out
+        of the torso and into reach, the curve between them kept where the arm can follow it
+        (:mod:`motor.arm.wrist_path`; warnings), and its trajectory; None when the arm's
+        location is unconstrained."""
+        locations = stroke.tracks.get((arm, "location"), ())
+        if not locations:
+            return None
+        times, values = timed_values(locations)
+        points = self.within_reach(behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+        if len(times) < 2:
+            return WristPath(points, np.array(times), None)
+        points, times, replaced = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
+        if replaced:
+            notes.append(
+                f"{behavior}: the {arm} hand's path left the reach or entered the torso between its "
+                f"locations in {replaced} movement(s); kept where the arm can follow it"
+            )
+        return WristPath(points, times, unlimited(points, times))
+
+    def within_budget(
+        self,
+        behavior: str,
+        paths: Mapping[str, WristPath | None],
+        pegs: TimePegs,
+        start_states: Mapping[str, ChannelState],
+        notes: list[str],
+    ) -> tuple[TimePegs, dict[str, WristPath | None]]:
+        """The pegs kept, or the stroke lengthened as little as the speed ceiling needs; the
+        preparation's arrival (``ready``) before the pre-stroke hold; and the paths retimed
+        to match.
+
+        The scheduler has already relaxed the timing to :data:`GESTURE_MANNER`'s budget
+        (``GestureDemands.manner``; preparations from where the arm will be, which it knows
+        better than the motor control before the chunk's earlier gestures are activated),
+        so its pegs are kept as long as the stroke stays below the absolute ceiling
+        (:data:`motor.trajectory.speed_budget.CEILING`); a stroke that would exceed it is
+        lengthened. A stroke that keeps the pegs but exceeds the manner's budget (the timing
+        could not be relaxed enough, or the budget's minimum-jerk estimate falls short of
+        what the path's stops and curves need) is reported. Either is one warning per
+        behaviour, with the amounts. A preparation is kept below the ceiling when it is
+        activated (:class:`motor.arm.wrist_position.WristPositionLMP`). Both arms share the
+        pre-stroke hold (the shorter of theirs); a stroke whose wrists do not move has none:
+        the hand's arrival is its onset."""
+        limits = budget(GESTURE_MANNER)
+        changes: list[str] = []
+        moving = {arm: path for arm, path in paths.items() if path is not None}
+        origin = pegs.stroke_start
+        factor = max((self.stroke_stretch(path, CEILING) for path in moving.values()), default=1.0)
+        if factor > 1.0:
+            length = pegs.stroke_end - pegs.stroke_start
+            stroke_end = pegs.stroke_start + factor * length
+            changes.append(f"the stroke needs {factor * length:.3f} s instead of {length:.3f} s; it ends {stroke_end - pegs.stroke_end:.3f} s later")
+            relax = max(pegs.relax, stroke_end)
+            pegs = replace(
+                pegs, stroke=pegs.stroke_start + factor * (pegs.stroke - pegs.stroke_start), stroke_end=stroke_end,
+                relax=relax, end=max(pegs.end, relax + pegs.end - pegs.relax),
+            )  # fmt: skip
+            moving = {arm: path.stretched(origin, factor) for arm, path in moving.items()}
+        over = [path.trajectory for path in moving.values() if path.trajectory is not None]
+        if over and max(stretch_factor(t, limits.peak_speed, limits.peak_acceleration) for t in over) > 1.0 + _ROUNDING:
+            speed, acceleration = max(t.peak_speed() for t in over), max(t.peak_acceleration() for t in over)
+            changes.append(f"the stroke peaks at {speed:.2f} m/s and {acceleration:.1f} m/s² in its {pegs.stroke_end - pegs.stroke_start:.3f} s")
+        window = pegs.stroke_start - pegs.start
+        states = {arm: start_states.get(arm) or ChannelState.at_rest(self.rest_wrist(arm), pegs.start) for arm in moving}
+        if changes:
+            notes.append(
+                f"{behavior}: over the {GESTURE_MANNER} speed budget ({limits.peak_speed} m/s, {limits.peak_acceleration} m/s²) "
+                f"in the time given, kept below {CEILING.peak_speed} m/s and {CEILING.peak_acceleration} m/s²: " + "; ".join(changes)
+            )
+        holds = [preparation_timing(float(np.linalg.norm(path.points[0] - states[arm].value)), window)[1] for arm, path in moving.items()]
+        if any(float(np.ptp(path.points, axis=0).max()) > HOLD_LENGTH for path in moving.values()) and holds and min(holds) > 0.0:
+            pegs = replace(pegs, ready=pegs.stroke_start - min(holds))
+        return pegs, {arm: moving.get(arm) for arm in paths}
+
+    @staticmethod
+    def stroke_stretch(path: WristPath, limits: SpeedBudget) -> float:
+        """How much longer (≥ 1) a stroke must last to stay within ``limits``."""
+        if path.trajectory is None:
+            return 1.0
+        factor = 1.0
+        trajectory = path.trajectory
+        for _ in range(_STRETCH_ROUNDS):
+            step = stretch_factor(trajectory, limits.peak_speed, limits.peak_acceleration)
+            if step <= 1.0 + 1e-6:
+                break
+            factor *= step * (1.0 + 1e-6)
+            trajectory = path.stretched(path.times[0], factor).trajectory
+        return factor
 
     def usable_pegs(self, behavior: str, pegs: TimePegs, dynamic: bool, notes: list[str]) -> TimePegs:
         """The scheduler's pegs, widened by the documented rules where they cannot work."""
@@ -244,41 +380,27 @@ class Planner:
 
     def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
         """``points`` with those inside the torso pushed out in front of it and those the arm
-        cannot reach moved to the nearest it can (warnings)."""
-        clear = outside_torso(self.avatar, points)
-        moved = np.any(clear != points, axis=1)
-        if np.any(moved):
+        cannot reach moved to the nearest it can (:func:`motor.arm.wrist_path.placed`;
+        warnings)."""
+        placement = placed(self.avatar, AVATAR_SIDE[arm], points)
+        if placement.inside:
             notes.append(
-                f"{behavior}: {int(np.sum(moved))} location(s) of the {arm} hand inside the torso by up to "
-                f"{float(np.max(np.abs(clear - points))):.3f} m; moved in front of it"
+                f"{behavior}: {placement.inside} location(s) of the {arm} hand inside the torso by up to "
+                f"{placement.depth:.3f} m; moved in front of it"
             )
-            points = clear
-        solution = solve_arm(self.avatar, AVATAR_SIDE[arm], points)
-        short = solution.shortfall > REACH_TOLERANCE
-        if not np.any(short):
-            return points
-        notes.append(
-            f"{behavior}: {int(np.sum(short))} location(s) of the {arm} hand out of reach by up to "
-            f"{float(np.max(solution.shortfall)):.3f} m; moved to the nearest reachable point"
-        )
-        return np.where(short[:, None], solution.wrist, points)
+        if placement.short and placement.shortfall >= NOTICEABLE_SHORTFALL:
+            notes.append(
+                f"{behavior}: {placement.short} location(s) of the {arm} hand out of reach by up to "
+                f"{placement.shortfall:.3f} m; moved to the nearest reachable point"
+            )
+        return placement.points
 
-    def arm_lmps(
-        self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, notes: list[str]
-    ) -> tuple[list[LMP], np.ndarray | None]:
-        """The stroke LMPs of one arm, and its wrist position at the end of the stroke."""
+    def arm_lmps(self, compiler: Compiler, stroke: Fragment, arm: str, pegs: TimePegs, path: WristPath | None) -> list[LMP]:
+        """The stroke LMPs of one arm; ``path`` its wrist path (or None)."""
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
-        locations = stroke.tracks.get((arm, "location"), ())
-        last_wrist = None
-        if locations:
-            times, values = timed_values(locations)
-            curved_flags = tuple(curved_into(locations, t) for t in times[1:])
-            points = self.within_reach(compiler.behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
-            if len(points) > 1:
-                notes.extend(f"{compiler.behavior}: {note}" for note in plan_wrist_trajectory(points, np.array(times), curved=curved_flags).warnings)
-            lmps.append(WristPositionLMP(arm, held, points, np.array(times), curved_flags))
-            last_wrist = points[-1]
+        if path is not None:
+            lmps.append(WristPositionLMP(arm, held, path.points, path.times, stroke=path.trajectory))
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
             times, values = self.prepared(timed_values(shapes), pegs.ready)
@@ -287,7 +409,7 @@ class Planner:
         if rotations is not None:
             times, values = rotations
             lmps.append(WristRotationLMP(arm, held, values, times))
-        return lmps, last_wrist
+        return lmps
 
     @staticmethod
     def prepared(timed: tuple[list[float], list[object]], ready: float) -> tuple[list[float], list[object]]:

@@ -13,7 +13,8 @@ activation is a *realization* with a vectorized ``sample(times)``.
 On one channel the LMPs form a :class:`ChannelTimeline`: at any time exactly one is in
 control, the latest to have started. A successor that starts before its predecessor has
 finished takes over at its start and the predecessor's remainder (typically a
-retraction) is skipped — co-articulation. Because each activation starts from the
+retraction) is skipped — co-articulation; a retraction of an earlier gesture that would
+only start after the next gesture has begun is dropped altogether. Because each activation starts from the
 predecessor's value and velocity at that instant, positions and velocities are
 continuous at every hand-over.
 
@@ -284,16 +285,17 @@ class VectorKeyframeLMP:
 
 @dataclass(frozen=True, eq=False)
 class RetractionLMP:
-    """Back to a rest (or interim rest) value, arriving at ``pegs.ready``, lax by default.
+    """Back to a rest (or interim rest) value, arriving at ``pegs.ready``.
 
     Works on any channel: vector channels move along a straight line, rotation channels
-    slerp.
+    slerp. The default profile is the minimum-jerk one: a retraction from a hold is a
+    single straight movement from rest to rest, and the smoothest is the most relaxed.
     """
 
     channel: Channel
     pegs: TimePegs
     rest: np.ndarray
-    time_profile: TimeProfile | str = "lax"
+    time_profile: TimeProfile | str = field(default_factory=minimum_jerk)
 
     def __post_init__(self) -> None:
         if self.pegs.ready <= self.pegs.start:
@@ -324,11 +326,19 @@ class ChannelTimeline:
 
     @classmethod
     def build(cls, channel: Channel, lmps: Sequence[LMP], initial: ChannelState) -> ChannelTimeline:
-        """Sort ``lmps`` by start and activate each from the state the timeline has then."""
+        """Sort ``lmps`` (given in the order they were activated) by start and activate each
+        from the state the timeline has then. A retraction that an LMP activated after it
+        starts before (or with) is dropped: the arm goes on to the later gesture instead of
+        returning to rest first (co-articulation)."""
         for lmp in lmps:
             if tuple(lmp.channel) != tuple(channel):
                 raise ValueError(f"timeline of {channel} was given an LMP on {lmp.channel}")
-        ordered = tuple(sorted(lmps, key=lambda lmp: lmp.pegs.start))
+        kept = [
+            lmp
+            for index, lmp in enumerate(lmps)
+            if not (isinstance(lmp, RetractionLMP) and any(later.pegs.start <= lmp.pegs.start for later in lmps[index + 1 :]))
+        ]
+        ordered = tuple(sorted(kept, key=lambda lmp: lmp.pegs.start))
         realizations: list[Realization] = []
         for lmp in ordered:
             start = lmp.pegs.start

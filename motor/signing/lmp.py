@@ -13,6 +13,16 @@ fraction of the way travelled. Between moves the channel holds.
 of the previous sign) it adds the *transition* from wherever the channel is to the
 sign's first value, in the transition manner (lax between signs, targetted into a static
 sign, seed 000).
+
+A wrist path of three or more points is traced along a C² curve rather than the
+polyline, so that the hand does not turn a corner at speed (:func:`smooth_path`): a
+transition passes through its way points (they keep it clear of the torso) along the
+interpolating spline; a sign's move follows the clamped B-spline whose control polygon is
+the move's polyline, which starts and ends on it and stays within its convex hull (and so
+within the reach the planner checked at the points, where an interpolating curve would
+bulge past them). Both are cut at reversals (:data:`motor.trajectory.spline.CUSP_ANGLE`),
+where the polyline's corner stays. Every move starts and stops at rest with zero
+acceleration (the manner profiles, :mod:`motor.trajectory.biocontrol`).
 """
 
 from __future__ import annotations
@@ -20,11 +30,16 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.interpolate import BSpline
 
 from motor import quaternion as quat
 from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
 from motor.trajectory.biocontrol import profile
+from motor.trajectory.power_law import path_spline
+from motor.trajectory.spline import CUSP_ANGLE, HOLD_LENGTH, turning_angles
 
+#: Points per chord with which a wrist path is traced along its spline.
+PATH_DENSITY = 12
 #: Step of the differences that estimate a channel's velocity, seconds.
 _STEP = 1e-4
 _SAME = 1e-12
@@ -58,6 +73,47 @@ class Move:
 
     def shifted(self, offset: float) -> Move:
         return replace(self, start=self.start + offset, end=self.end + offset)
+
+
+def _through(piece: np.ndarray) -> np.ndarray:
+    """The interpolating C² spline through ``piece``, densely, without its first point."""
+    spline = path_spline(piece)
+    fractions = np.linspace(0.0, 1.0, PATH_DENSITY + 1)[1:]
+    dense = spline((spline.x[:-1, None] + np.diff(spline.x)[:, None] * fractions).ravel())
+    dense[PATH_DENSITY - 1 :: PATH_DENSITY] = piece[1:]
+    return dense
+
+
+def _within(piece: np.ndarray) -> np.ndarray:
+    """The clamped B-spline (cubic, quadratic for three points) with control polygon
+    ``piece``, densely, without its first point."""
+    degree = min(3, piece.shape[0] - 1)
+    interior = piece.shape[0] - degree - 1
+    knots = np.concatenate([np.zeros(degree + 1), np.arange(1, interior + 1) / (interior + 1), np.ones(degree + 1)])
+    curve = BSpline(knots, piece, degree)
+    dense = curve(np.linspace(0.0, 1.0, PATH_DENSITY * (piece.shape[0] - 1) + 1)[1:])
+    dense[-1] = piece[-1]
+    return dense
+
+
+def smooth_path(points: np.ndarray, through: bool) -> np.ndarray:
+    """A wrist path ``(m, 3)`` traced densely (:data:`PATH_DENSITY` points per chord) along
+    the interpolating spline through its points (``through``) or the B-spline within their
+    hull (module docstring), cut at reversals; repeated points are dropped. Paths of fewer
+    than three distinct points are returned as they are."""
+    keep = np.concatenate([[True], np.linalg.norm(np.diff(points, axis=0), axis=1) > HOLD_LENGTH])
+    p = points[keep]
+    if p.shape[0] < 3:
+        return points
+    cuts = np.concatenate([[0], np.flatnonzero(turning_angles(p) >= CUSP_ANGLE) + 1, [p.shape[0] - 1]])
+    pieces = [p[:1]]
+    for first, last in zip(cuts[:-1], cuts[1:]):
+        piece = p[first : last + 1]
+        if piece.shape[0] < 3:
+            pieces.append(piece[1:])
+        else:
+            pieces.append(_through(piece) if through else _within(piece))
+    return np.concatenate(pieces)
 
 
 def path_fractions(values: np.ndarray, by_distance: bool) -> np.ndarray:
@@ -182,13 +238,16 @@ class SignChannelLMP:
         first = np.asarray(self.first, dtype=float)
         if rotation and here @ first < 0.0:
             first = -first
-        way = [here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first]
-        chain = [Move(state.time, self.pegs.ready, self.transition, np.stack(way))]
+        by_distance = self.channel[1] == "wrist_position"
+        way = np.stack([here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first])
+        chain = [Move(state.time, self.pegs.ready, self.transition, smooth_path(way, through=True) if by_distance else way)]
         previous = first
         for move in self.moves:
             values = move.values
             if rotation:
                 values = quat.continuous(np.concatenate([previous[None], values]))[1:]
+            elif by_distance:
+                values = smooth_path(values, through=False)
             chain.append(replace(move, values=values))
             previous = values[-1]
-        return _Track.of(rotation, here, chain, self.channel[1] == "wrist_position")
+        return _Track.of(rotation, here, chain, by_distance)

@@ -12,8 +12,10 @@ along the lax profile in :func:`motor.program.gesture.retraction_duration` and s
 The sign LMPs (:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and
 sign) are activated on :class:`motor.control.MotorControl`, which samples them and solves
 both arms (analytic IK with the natural swivel, torso avoidance included) and hands for
-every frame. Non-manual tiers that name a head movement (nod, shake, tilt) turn the head
-(``skullbase``) during their sign; other tiers are kept in the timing table only.
+every frame. Each sign's non-manual tiers (head, eye gaze, torso, shoulders, eyebrows,
+eyelids, nose, mouth gestures and mouth pictures) are activated with it, timed by its
+transition and movement (:mod:`motor.signing.nonmanual`), so the motion carries the head
+and eyes and the face's morph weights too.
 """
 
 from __future__ import annotations
@@ -33,10 +35,11 @@ from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
 from motor.signing.lmp import SignChannelLMP
+from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths, rotations_along
-from motor.trajectory.biocontrol import movement_duration, profile
+from motor.trajectory.biocontrol import movement_duration
 from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
 
@@ -52,14 +55,6 @@ MIN_TRANSITION_POINTS = 4
 UPPER_ARM_TOLERANCE = 0.01
 #: Channels of one arm that a sign drives.
 CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
-#: Head movements read from non-manual items: a word in the item's tag or attribute
-#: values → (axis in the avatar frame, peak angle in radians, swings).
-HEAD_MOVEMENTS: dict[str, tuple[tuple[float, float, float], float, int]] = {
-    "nod": ((1.0, 0.0, 0.0), 0.25, 2),
-    "shake": ((0.0, 1.0, 0.0), 0.3, 3),
-    "tilt": ((0.0, 0.0, 1.0), 0.2, 1),
-}
-_HEAD_CODES = {"NO": "nod", "SH": "shake", "TL": "tilt", "TR": "tilt"}
 
 
 @dataclass(frozen=True)
@@ -129,9 +124,11 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
             )
             for arm in ARMS for channel in CHANNELS
         ]  # fmt: skip
-        control.activate(SignProgram(plan.gloss, tuple(lmps)))
+        nonmanual = plan_nonmanuals(avatar, plan.gloss, plan.nonmanual, clock, ready, end, control.palm_centres)
+        control.activate(SignProgram(plan.gloss, (*lmps, *nonmanual.lmps)))
         timings.append(SignTiming(plan.gloss, clock, ready, end, tuple(sorted(plan.nonmanual))))
         warnings.extend(plan.warnings)
+        warnings.extend(nonmanual.warnings)
         clock = end
     before, _ = legs[-1]
     back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
@@ -145,7 +142,6 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     )))  # fmt: skip
     motion = control.frames(0.0, clock + back + REST_TAIL)
     motion = _elbows_outside(avatar, control, motion)
-    motion = _with_head(avatar, motion, plans, timings)
     return SignedMotion(motion, tuple(timings), tuple(warnings), control)
 
 
@@ -215,44 +211,6 @@ def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose]) ->
     """Lax straight movement time, or Fitts' law for the farthest wrist if longer."""
     distance = max(float(np.linalg.norm(targets[arm].wrist - here[arm].wrist)) for arm in ARMS)
     return max(movement_duration("straight", "lax"), float(fitts_duration(distance)))
-
-
-def head_movement(items: Sequence) -> str | None:
-    """The head movement a sign's non-manual items name (nod, shake, tilt), or None."""
-    for item in items:
-        words = [item.tag, *(value for _, value in item.attributes)]
-        for word in words:
-            text = str(word)
-            if text.upper() in _HEAD_CODES:
-                return _HEAD_CODES[text.upper()]
-            for name in HEAD_MOVEMENTS:
-                if name in text.lower():
-                    return name
-    return None
-
-
-def _with_head(avatar: Avatar, motion: Motion, plans: Sequence[SignPlan], timings: Sequence[SignTiming]) -> Motion:
-    """The motion with the head turned during signs whose non-manual tiers ask for it."""
-    if "skullbase" not in avatar.joint_names:
-        return motion
-    head = avatar.joint_index("skullbase")
-    times = motion.times
-    rotations = motion.rotations
-    for plan, timing in zip(plans, timings):
-        items = [item for tier in plan.nonmanual.values() for item in tier]
-        movement = head_movement(items)
-        if movement is None:
-            continue
-        axis, angle, swings = HEAD_MOVEMENTS[movement]
-        inside = (times >= timing.ready) & (times <= timing.end)
-        if not np.any(inside):
-            continue
-        u = (times[inside] - timing.ready) / max(timing.end - timing.ready, 1e-9)
-        envelope = np.sin(np.pi * profile("lax").fraction(u))
-        angles = angle * envelope * (np.sin(np.pi * swings * u) if swings > 1 else 1.0)
-        turn = quat.from_axis_angle(np.broadcast_to(np.asarray(axis), (angles.size, 3)), angles)
-        rotations[inside, head] = quat.multiply(rotations[inside, head], turn)
-    return motion
 
 
 @dataclass(frozen=True)

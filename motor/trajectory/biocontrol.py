@@ -17,7 +17,12 @@ Each manner is integrated once, lazily, into a lookup table ``f: [0, 1] → [0, 
 fraction → path fraction) over the movement's main part: until it has settled to within
 1% of the target (or, when truncated, until it arrives), with time rescaled to one unit
 and ``f`` normalized to end at exactly 1. The end speed is then not zero: that is the
-"sharp stop" of targetted movement.
+"sharp stop" of targetted movement — and the start is a step in acceleration. A movement
+starts and ends at rest with zero acceleration, so the speed profile ``f′`` is then
+windowed: multiplied by ``w(u/ε) · w((1 − u)/ε)`` with the smoothstep ``w(x) = 3x² − 2x³``
+(1 from x = 1 on) over :data:`END_SMOOTHING` ``= ε`` of the duration at each end, and
+integrated again. The sharp stop stays sharp (it takes the last tenth of the movement)
+but is continuous in speed and acceleration.
 
 Durations: seed 000 keeps a movement's duration independent of its size, longer for
 curved arcs and longer still for circles; :func:`movement_duration` gives
@@ -40,6 +45,9 @@ BASE_DURATION = 0.4
 MOVEMENT_KIND_DURATION: dict[str, float] = {"straight": 1.0, "curved": 1.3, "circle": 1.7}
 #: The fraction of the path counted as arrived ("settled to within 1%").
 SETTLED = 0.99
+#: Fraction of a movement's duration over which its speed profile is brought to rest
+#: with zero acceleration at each end (module docstring).
+END_SMOOTHING = 0.1
 
 
 @dataclass(frozen=True)
@@ -141,11 +149,25 @@ def integrate_manner(manner: Manner) -> TimeProfile:
     if solution.t_events[0].size == 0:
         raise RuntimeError(f"manner {manner.name!r} did not reach its target within {horizon} time units")
     duration = float(solution.t_events[0][0])
-    x, v = solution.sol(np.linspace(0.0, duration, TABLE_SIZE))
-    end = x[-1]
-    fractions = np.clip(np.maximum.accumulate(x / end), 0.0, 1.0)
-    fractions[0], fractions[-1] = 0.0, 1.0
-    return TimeProfile(manner.name, fractions, np.maximum(v * duration / end, 0.0))
+    _, v = solution.sol(np.linspace(0.0, duration, TABLE_SIZE))
+    return at_rest(manner.name, np.maximum(v, 0.0))
+
+
+def _smoothstep(x: np.ndarray) -> np.ndarray:
+    x = np.clip(x, 0.0, 1.0)
+    return x * x * (3.0 - 2.0 * x)
+
+
+def at_rest(name: str, speeds: np.ndarray) -> TimeProfile:
+    """The profile of a speed curve sampled at equal time steps over a movement, windowed
+    to start and stop at rest with zero acceleration (module docstring) and normalized."""
+    u = np.linspace(0.0, 1.0, speeds.size)
+    rates = speeds * _smoothstep(u / END_SMOOTHING) * _smoothstep((1.0 - u) / END_SMOOTHING)
+    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (rates[1:] + rates[:-1]) * np.diff(u))])
+    total = float(cumulative[-1])
+    fractions = cumulative / total
+    fractions[-1] = 1.0
+    return TimeProfile(name, fractions, rates / total)
 
 
 @cache

@@ -48,6 +48,10 @@ BUDGETS: dict[str, SpeedBudget] = {
 }
 #: The ceiling no relaxation goes beyond (the design's target for peak wrist speed).
 ABSOLUTE_PEAK_SPEED = 3.0
+#: The acceleration ceiling that goes with it, m/s² (the most abrupt manners' budget).
+ABSOLUTE_PEAK_ACCELERATION = 40.0
+#: Both ceilings as a budget: what the motion never exceeds, whatever the timing.
+CEILING = SpeedBudget(ABSOLUTE_PEAK_SPEED, ABSOLUTE_PEAK_ACCELERATION)
 
 
 def budget(manner: str | None) -> SpeedBudget:

@@ -1,44 +1,55 @@
-"""Wrist trajectory formation from guiding strokes (seed 004, section 4.1).
+"""Wrist trajectories: guiding strokes assembled into C² motion (seed 004, 4.1, with the speed laws).
 
 A movement phase is a sequence of guiding strokes between breakpoints ``p_0 … p_n`` at
-times ``t_0 … t_n``. The trajectory is the C¹ cubic Hermite curve through the breakpoints
-with velocities estimated from the local geometry (the non-uniform cubic B-spline with
-double interior knots of the seed is the same curve):
+times ``t_0 … t_n`` (metres, seconds). The seed bends them into a C¹ Hermite curve whose
+breakpoint speeds follow ``k · v̄ · ρ^{1/3}``; measured on the rendered wrist, that law
+brakes at every breakpoint and starts from rest with a step in acceleration. Here the
+movement is assembled so that the laws hold on the motion itself:
 
-* at an interior breakpoint the mean speed is
-  ``v̄_i = ½ (|p_i − p_{i−1}| / (t_i − t_{i−1}) + |p_{i+1} − p_i| / (t_{i+1} − t_i))``,
-  the direction is parallel to the chord ``p_{i+1} − p_{i−1}``, the turning angle ``α``
-  between the adjacent strokes gives the normalized radius ``ρ_i = 1 − α/π``, and the
-  speed is ``v_i = k · v̄_i · ρ_i^{1/3}`` (``k`` = 1, 0.8 next to curved strokes);
-* the ends of a phase have zero velocity unless boundary velocities are given; a
-  zero-length stroke is a hold and also ends a phase (zero velocity on both sides).
+* **Phases.** The breakpoints are cut where the wrist must stop: at a hold (a zero-length
+  stroke) and at a reversal (a turning angle of at least :data:`CUSP_ANGLE`; the seed's
+  ``ρ = 1 − α/π`` tends to a stop there too). Each phase moves from rest to rest between
+  the times of its first and last breakpoint; its interior breakpoints are passed at the
+  times the power law gives (times given for them only shape the phases' boundaries).
+* **Power law.** Within a phase the path is the C² spline through the breakpoints,
+  re-timed as a whole by arc length and curvature (:mod:`motor.trajectory.power_law`):
+  speed ∝ radius^{1/3}, zero speed and acceleration at both ends, a single straight stroke
+  exactly the minimum-jerk movement.
+* **Approach.** A preparation from the channel's current state (value and velocity, maybe
+  moving) to a breakpoint where it must arrive at rest is the quintic with those end
+  conditions (:func:`approach`): the minimum-jerk movement between the two states.
+* **Budget.** :func:`plan_wrist_trajectory` keeps a movement within a peak speed (default
+  :data:`MAX_WRIST_SPEED`) and, when given, a peak acceleration: a phase that would exceed
+  them is slowed by stretching the whole movement about its first breakpoint, with a
+  warning giving the amount.
 
-When the caller gives only a duration, :func:`time_breakpoints` distributes it over the
-strokes so that the speed follows the two-thirds power law: stroke ``i`` gets time
-``∝ L_i / R_i^{1/3}``, ``L_i`` its length and ``R_i`` the radius of curvature of the path
-there (turning angle per arc length at its breakpoints, clamped to [5 mm, 1 m]). For a
-traced ellipse this makes the speed ∝ R^{1/3}; for collinear strokes, constant speed.
+The result is a :class:`WristTrajectory`: a quintic Hermite spline through knots (time,
+position, velocity, acceleration), so position, velocity and acceleration are continuous;
+before the first and after the last knot the position is held.
 
-Speeds above :data:`MAX_WRIST_SPEED` (3 m/s) are not produced: the timing of the whole
-phase is stretched about its start until the peak speed is the maximum, with a warning.
+:func:`time_breakpoints` spreads a duration over the strokes (stroke ``i`` gets time
+``∝ L_i / R_i^{1/3}``, ``R_i`` clamped to [5 mm, 1 m]); the gesture planner uses it to
+place the keys of the other channels along a stroke.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from motor.trajectory.power_law import EXPONENT, RADIUS_RANGE, phase_knots
+from motor.trajectory.speed_budget import ABSOLUTE_PEAK_SPEED
+
 #: Fastest wrist speed the planner produces, m/s; faster requests are slowed (warning).
-MAX_WRIST_SPEED = 3.0
-#: Gain of the breakpoint speed rule, and its value next to curved strokes.
-K_STRAIGHT = 1.0
-K_CURVED = 0.8
+MAX_WRIST_SPEED = ABSOLUTE_PEAK_SPEED
 #: Exponent of the curvature–speed power law (speed ∝ radius^β).
-POWER_LAW_EXPONENT = 1.0 / 3.0
-#: Clamp of the radius-of-curvature estimate used for timing, metres.
-RADIUS_RANGE = (0.005, 1.0)
+POWER_LAW_EXPONENT = EXPONENT
+#: Turning angle (radians) at a breakpoint from which the wrist stops there.
+CUSP_ANGLE = 2.0 * np.pi / 3.0
+#: Strokes shorter than this (metres) are holds.
+HOLD_LENGTH = 1e-6
 _HOLD = 1e-9
 
 
@@ -119,78 +130,54 @@ def time_breakpoints(points: np.ndarray, start: float, end: float, exponent: flo
     return start + (end - start) * cumulative / cumulative[-1]
 
 
-def breakpoint_velocities(
-    points: np.ndarray,
-    times: np.ndarray,
-    start_velocity: np.ndarray | None = None,
-    end_velocity: np.ndarray | None = None,
-    curved: Sequence[bool] | np.ndarray | None = None,
-    k: float = K_STRAIGHT,
-    k_curved: float = K_CURVED,
-) -> np.ndarray:
-    """Velocities ``(n, d)`` at the breakpoints by the seed-004 rule (module docstring).
-
-    ``curved[i]`` marks stroke ``i`` (from breakpoint i to i+1) as part of a curve: its
-    breakpoints use ``k_curved``. Boundary velocities default to zero.
-    """
-    p = _as_points(points)
-    t = _as_times(times, p.shape[0])
-    d = np.diff(p, axis=0)
-    lengths = np.linalg.norm(d, axis=1)
-    velocities = np.zeros_like(p)
-    velocities[0] = 0.0 if start_velocity is None else np.asarray(start_velocity, dtype=float)
-    velocities[-1] = 0.0 if end_velocity is None else np.asarray(end_velocity, dtype=float)
-    if p.shape[0] == 2:
-        return velocities
-    dt = np.diff(t)
-    mean_speed = 0.5 * (lengths[:-1] / dt[:-1] + lengths[1:] / dt[1:])
-    rho = 1.0 - turning_angles(p) / np.pi
-    gains = np.full(p.shape[0] - 2, k)
-    if curved is not None:
-        flags = np.asarray(curved, dtype=bool)
-        if flags.shape != (p.shape[0] - 1,):
-            raise ValueError(f"curved: expected one flag per stroke ({p.shape[0] - 1}), got {flags.shape}")
-        gains = np.where(flags[:-1] | flags[1:], k_curved, k)
-    chord = p[2:] - p[:-2]
-    chord_length = np.linalg.norm(chord, axis=1)
-    moving = (lengths[:-1] > _HOLD) & (lengths[1:] > _HOLD) & (chord_length > _HOLD)
-    direction = np.divide(chord, chord_length[:, None], out=np.zeros_like(chord), where=moving[:, None])
-    speed = np.where(moving, gains * mean_speed * np.cbrt(rho), 0.0)
-    velocities[1:-1] = direction * speed[:, None]
-    return velocities
-
-
 @dataclass(frozen=True, eq=False)
 class WristTrajectory:
-    """The C¹ cubic Hermite curve through breakpoints with given velocities.
+    """The quintic Hermite spline through knots: C² wrist motion.
 
     Attributes:
-        breakpoints: ``(n, d)`` positions (metres for the wrist, d = 3).
-        times: ``(n,)`` increasing breakpoint times, seconds.
-        velocities: ``(n, d)`` velocities at the breakpoints, per second.
-        warnings: what the planner changed or assumed (slowed strokes, default normals).
+        times: ``(k ≥ 2,)`` increasing knot times, seconds.
+        positions: ``(k, d)`` positions at the knots (metres for the wrist, d = 3).
+        velocities: ``(k, d)`` velocities there, per second.
+        accelerations: ``(k, d)`` accelerations there, per second squared.
+        warnings: what the planner changed (slowed movements).
 
-    Before the first and after the last breakpoint the position is held constant.
+    Before the first and after the last knot the position is held (zero velocity).
     """
 
-    breakpoints: np.ndarray
     times: np.ndarray
+    positions: np.ndarray
     velocities: np.ndarray
+    accelerations: np.ndarray
     warnings: tuple[str, ...] = ()
+    _coefficients: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        p = _as_points(self.breakpoints)
+        p = _as_points(self.positions, "knot positions")
         t = _as_times(self.times, p.shape[0])
         v = np.asarray(self.velocities, dtype=float)
-        if v.shape != p.shape or not np.all(np.isfinite(v)):
-            raise ValueError(f"velocities: expected finite array of shape {p.shape}, got {v.shape}")
-        dt = np.diff(t)[:, None, None]
-        p0, p1 = p[:-1, None, :], p[1:, None, :]
-        m0, m1 = v[:-1, None, :] * dt, v[1:, None, :] * dt
-        coefficients = np.concatenate([p0, m0, 3.0 * (p1 - p0) - 2.0 * m0 - m1, 2.0 * (p0 - p1) + m0 + m1], axis=1)
-        object.__setattr__(self, "breakpoints", p)
+        a = np.asarray(self.accelerations, dtype=float)
+        for name, values in (("velocities", v), ("accelerations", a)):
+            if values.shape != p.shape or not np.all(np.isfinite(values)):
+                raise ValueError(f"knot {name}: expected a finite array of shape {p.shape}, got {values.shape}")
+        h = np.diff(t)[:, None]
+        d = p[1:] - p[:-1]
+        m0, m1 = v[:-1] * h, v[1:] * h
+        c0, c1 = a[:-1] * h * h, a[1:] * h * h
+        coefficients = np.stack(
+            [
+                p[:-1],
+                m0,
+                0.5 * c0,
+                10.0 * d - 6.0 * m0 - 4.0 * m1 - 0.5 * (3.0 * c0 - c1),
+                -15.0 * d + 8.0 * m0 + 7.0 * m1 + 0.5 * (3.0 * c0 - 2.0 * c1),
+                6.0 * d - 3.0 * m0 - 3.0 * m1 - 0.5 * (c0 - c1),
+            ],
+            axis=1,
+        )
         object.__setattr__(self, "times", t)
+        object.__setattr__(self, "positions", p)
         object.__setattr__(self, "velocities", v)
+        object.__setattr__(self, "accelerations", a)
         object.__setattr__(self, "_coefficients", coefficients)
 
     @property
@@ -206,80 +193,145 @@ class WristTrajectory:
         inside = (t >= self.times[0]) & (t <= self.times[-1])
         clipped = np.clip(t, self.times[0], self.times[-1])
         index = np.clip(np.searchsorted(self.times, clipped, side="right") - 1, 0, len(self.times) - 2)
-        dt = self.times[index + 1] - self.times[index]
-        u = (clipped - self.times[index]) / dt
-        return index, u, dt, inside
+        h = self.times[index + 1] - self.times[index]
+        return index, (clipped - self.times[index]) / h, h, inside
 
     def position(self, times: np.ndarray) -> np.ndarray:
         """Positions ``(len(times), d)`` at ``times`` (seconds)."""
         index, u, _, _ = self._locate(times)
         c = self._coefficients[index]
         u = u[:, None]
-        return c[:, 0] + u * (c[:, 1] + u * (c[:, 2] + u * c[:, 3]))
+        return c[:, 0] + u * (c[:, 1] + u * (c[:, 2] + u * (c[:, 3] + u * (c[:, 4] + u * c[:, 5]))))
 
     def velocity(self, times: np.ndarray) -> np.ndarray:
-        """Velocities ``(len(times), d)``, per second; zero outside the breakpoint span."""
-        index, u, dt, inside = self._locate(times)
+        """Velocities ``(len(times), d)``, per second; zero outside the knot span."""
+        index, u, h, inside = self._locate(times)
         c = self._coefficients[index]
         u = u[:, None]
-        v = (c[:, 1] + u * (2.0 * c[:, 2] + 3.0 * u * c[:, 3])) / dt[:, None]
-        return np.where(inside[:, None], v, 0.0)
+        v = c[:, 1] + u * (2.0 * c[:, 2] + u * (3.0 * c[:, 3] + u * (4.0 * c[:, 4] + u * 5.0 * c[:, 5])))
+        return np.where(inside[:, None], v / h[:, None], 0.0)
 
     def acceleration(self, times: np.ndarray) -> np.ndarray:
         """Accelerations ``(len(times), d)``, per second squared; zero outside the span."""
-        index, u, dt, inside = self._locate(times)
+        index, u, h, inside = self._locate(times)
         c = self._coefficients[index]
-        a = (2.0 * c[:, 2] + 6.0 * u[:, None] * c[:, 3]) / (dt * dt)[:, None]
-        return np.where(inside[:, None], a, 0.0)
+        u = u[:, None]
+        a = 2.0 * c[:, 2] + u * (6.0 * c[:, 3] + u * (12.0 * c[:, 4] + u * 20.0 * c[:, 5]))
+        return np.where(inside[:, None], a / (h * h)[:, None], 0.0)
 
-    def peak_speed(self, samples_per_stroke: int = 32) -> float:
-        """Largest speed along the curve, from dense sampling of every stroke."""
-        u = np.linspace(0.0, 1.0, samples_per_stroke + 1)
-        t = (self.times[:-1, None] + np.diff(self.times)[:, None] * u).ravel()
-        return float(np.max(np.linalg.norm(self.velocity(t), axis=1)))
+    def _dense(self, per_interval: int = 4) -> np.ndarray:
+        u = np.linspace(0.0, 1.0, per_interval + 1)[:-1]
+        return np.append((self.times[:-1, None] + np.diff(self.times)[:, None] * u).ravel(), self.times[-1])
+
+    def peak_speed(self) -> float:
+        """Largest speed along the trajectory (m/s), sampled densely between the knots."""
+        return float(np.max(np.linalg.norm(self.velocity(self._dense()), axis=1)))
+
+    def peak_acceleration(self) -> float:
+        """Largest acceleration (m/s²), sampled densely between the knots."""
+        return float(np.max(np.linalg.norm(self.acceleration(self._dense()), axis=1)))
+
+    def shifted(self, delay: float) -> WristTrajectory:
+        """The same motion ``delay`` seconds later."""
+        return WristTrajectory(self.times + delay, self.positions, self.velocities, self.accelerations, self.warnings)
+
+    def with_warnings(self, warnings: Sequence[str]) -> WristTrajectory:
+        """The same trajectory carrying ``warnings`` after its own."""
+        return WristTrajectory(self.times, self.positions, self.velocities, self.accelerations, (*self.warnings, *warnings))
 
 
-@dataclass(frozen=True)
-class Accent:
-    """Defer the speed peak of guiding stroke ``stroke`` to ``fraction`` of its duration.
+def joined(pieces: Sequence[WristTrajectory]) -> WristTrajectory:
+    """One trajectory of ``pieces`` in time order; each starts where the previous ends (in
+    position; a later start is a hold in between, which needs both to be at rest)."""
+    if not pieces:
+        raise ValueError("joined: no trajectories to join")
+    times, positions, velocities, accelerations, warnings = [], [], [], [], []
+    for index, piece in enumerate(pieces):
+        first = 0
+        if index:
+            previous_end = times[-1][-1]
+            if piece.start < previous_end - 1e-12:
+                raise ValueError(f"joined: trajectory {index} starts at {piece.start} before the previous ends at {previous_end}")
+            if np.linalg.norm(piece.positions[0] - positions[-1][-1]) > 1e-9:
+                raise ValueError(f"joined: trajectory {index} does not start where the previous one ends")
+            first = 1 if piece.start - previous_end <= 1e-12 else 0
+        times.append(piece.times[first:])
+        positions.append(piece.positions[first:])
+        velocities.append(piece.velocities[first:])
+        accelerations.append(piece.accelerations[first:])
+        warnings.extend(piece.warnings)
+    return WristTrajectory(
+        np.concatenate(times), np.concatenate(positions), np.concatenate(velocities), np.concatenate(accelerations), tuple(warnings)
+    )
 
-    Realized by an extra breakpoint on the stroke's chord at path fraction ``fraction``
-    and time fraction ``fraction``, with the stroke's peak speed along the chord: with
-    zero end speeds both halves then accelerate/decelerate monotonically and the speed
-    peaks exactly there (0.5 leaves the symmetric bell).
-    """
 
-    stroke: int
-    fraction: float = 0.7
+def held(position: np.ndarray, start: float, end: float) -> WristTrajectory:
+    """A wrist held still at ``position`` over ``[start, end]`` (end > start)."""
+    p = np.asarray(position, dtype=float)
+    return WristTrajectory(np.array([start, end]), np.stack([p, p]), np.zeros((2, p.size)), np.zeros((2, p.size)))
 
 
-def _insert_accents(
-    points: np.ndarray, times: np.ndarray, velocities: np.ndarray, accents: Sequence[Accent]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    strokes = points.shape[0] - 1
-    inserts: list[tuple[int, np.ndarray, float, np.ndarray]] = []
-    for accent in accents:
-        if not 0 <= accent.stroke < strokes:
-            raise ValueError(f"accent on stroke {accent.stroke}, but there are {strokes} strokes")
-        if not 0.05 <= accent.fraction <= 0.95:
-            raise ValueError(f"accent fraction must lie in [0.05, 0.95], got {accent.fraction}")
-        i, phi = accent.stroke, accent.fraction
-        chord = points[i + 1] - points[i]
-        length = float(np.linalg.norm(chord))
-        if length <= _HOLD:
-            raise ValueError(f"accent on stroke {i}, which has zero length (a hold)")
-        direction = chord / length
-        duration = times[i + 1] - times[i]
-        v0, v1 = velocities[i] @ direction, velocities[i + 1] @ direction
-        speed = max(1.5 * length / duration - 0.5 * min(v0, v1), v0, v1)
-        inserts.append((i + 1, points[i] + phi * chord, times[i] + phi * duration, speed * direction))
-    if len({index for index, *_ in inserts}) != len(inserts):
-        raise ValueError("at most one accent per guiding stroke")
-    for index, point, time, velocity in sorted(inserts, key=lambda item: -item[0]):
-        points = np.insert(points, index, point, axis=0)
-        times = np.insert(times, index, time)
-        velocities = np.insert(velocities, index, velocity, axis=0)
-    return points, times, velocities
+def approach(
+    position: np.ndarray,
+    velocity: np.ndarray,
+    start: float,
+    target: np.ndarray,
+    arrival: float,
+    acceleration: np.ndarray | None = None,
+) -> WristTrajectory:
+    """From ``position`` moving at ``velocity`` (and ``acceleration``, default zero) at
+    ``start`` to rest at ``target`` at ``arrival``: the quintic with those end conditions,
+    the minimum-jerk movement between the two states (a straight minimum-jerk reach from
+    rest)."""
+    p0, p1 = np.asarray(position, dtype=float), np.asarray(target, dtype=float)
+    a0 = np.zeros_like(p0) if acceleration is None else np.asarray(acceleration, dtype=float)
+    return WristTrajectory(
+        np.array([start, arrival]),
+        np.stack([p0, p1]),
+        np.stack([np.asarray(velocity, dtype=float), np.zeros_like(p1)]),
+        np.stack([a0, np.zeros_like(p1)]),
+    )
+
+
+def phases(points: np.ndarray) -> list[tuple[int, int]]:
+    """``(first, last)`` breakpoint indices of the rest-to-rest phases (module docstring)."""
+    p = _as_points(points)
+    lengths = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    moving = lengths > HOLD_LENGTH
+    cusp = np.zeros(p.shape[0], dtype=bool)
+    if p.shape[0] > 2:
+        cusp[1:-1] = turning_angles(p) >= CUSP_ANGLE
+    out: list[tuple[int, int]] = []
+    first = None
+    for stroke in range(lengths.size):
+        if not moving[stroke]:
+            if first is not None:
+                out.append((first, stroke))
+                first = None
+            continue
+        if first is None:
+            first = stroke
+        elif cusp[stroke]:
+            out.append((first, stroke))
+            first = stroke
+    if first is not None:
+        out.append((first, lengths.size))
+    return out
+
+
+def _assembled(points: np.ndarray, times: np.ndarray) -> WristTrajectory:
+    pieces = []
+    for first, last in phases(points):
+        knots = phase_knots(points[first : last + 1], float(times[first]), float(times[last]))
+        pieces.append(WristTrajectory(*knots))
+    if not pieces:
+        return held(points[0], float(times[0]), float(times[-1]))
+    out = joined(pieces)
+    if out.start > times[0]:
+        out = joined([held(points[0], float(times[0]), out.start), out])
+    if out.end < times[-1]:
+        out = joined([out, held(points[-1], out.end, float(times[-1]))])
+    return out
 
 
 def plan_wrist_trajectory(
@@ -288,23 +340,16 @@ def plan_wrist_trajectory(
     *,
     start: float | None = None,
     end: float | None = None,
-    start_velocity: np.ndarray | None = None,
-    end_velocity: np.ndarray | None = None,
-    curved: Sequence[bool] | np.ndarray | None = None,
-    k: float = K_STRAIGHT,
-    k_curved: float = K_CURVED,
-    accents: Sequence[Accent] = (),
     max_speed: float = MAX_WRIST_SPEED,
+    max_acceleration: float | None = None,
     warnings: tuple[str, ...] = (),
 ) -> WristTrajectory:
-    """A wrist trajectory through guiding-stroke breakpoints (metres, seconds).
+    """A wrist trajectory through guiding-stroke breakpoints (metres, seconds; module docstring).
 
-    Give either explicit breakpoint ``times`` or a ``start`` and ``end`` to be spread
-    over the strokes by :func:`time_breakpoints`. Velocities follow
-    :func:`breakpoint_velocities`; ``accents`` defer single strokes' speed peaks. If the
-    peak speed exceeds ``max_speed`` the timing is stretched about the first breakpoint
-    (interior velocities shrink by the same factor; the boundary velocities are kept, so
-    the phase still joins its neighbours) and a warning says by how much.
+    Give either breakpoint ``times`` or a ``start`` and ``end`` spread over the strokes by
+    :func:`time_breakpoints`. If the movement would peak above ``max_speed`` (or
+    ``max_acceleration``), its timing is stretched about the first breakpoint until it
+    peaks at the limit, and a warning says by how much.
     """
     p = _as_points(points)
     if times is None:
@@ -313,18 +358,23 @@ def plan_wrist_trajectory(
         t = time_breakpoints(p, start, end)
     else:
         t = _as_times(times, p.shape[0])
-    v = breakpoint_velocities(p, t, start_velocity, end_velocity, curved, k, k_curved)
-    p, t, v = _insert_accents(p, t, v, accents)
-    trajectory = WristTrajectory(p, t, v, tuple(warnings))
-    peak = trajectory.peak_speed()
-    if peak <= max_speed:
-        return trajectory
-    factor = peak / max_speed
+    trajectory = _assembled(p, t)
+    factor = stretch_factor(trajectory, max_speed, max_acceleration)
+    if factor <= 1.0:
+        return trajectory.with_warnings(warnings)
     length = float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
     note = (
-        f"movement of {length:.3f} m in {t[-1] - t[0]:.3f} s would peak at {peak:.2f} m/s; "
-        f"slowed to {factor * (t[-1] - t[0]):.3f} s (max wrist speed {max_speed} m/s)"
+        f"movement of {length:.3f} m in {t[-1] - t[0]:.3f} s would peak at {trajectory.peak_speed():.2f} m/s "
+        f"and {trajectory.peak_acceleration():.1f} m/s²; slowed to {factor * (t[-1] - t[0]):.3f} s "
+        f"(limits {max_speed} m/s" + ("" if max_acceleration is None else f", {max_acceleration} m/s²") + ")"
     )
-    slowed = v / factor
-    slowed[0], slowed[-1] = v[0], v[-1]
-    return WristTrajectory(p, t[0] + (t - t[0]) * factor, slowed, (*warnings, note))
+    return _assembled(p, t[0] + (t - t[0]) * factor).with_warnings((*warnings, note))
+
+
+def stretch_factor(trajectory: WristTrajectory, max_speed: float, max_acceleration: float | None = None) -> float:
+    """By how much the trajectory's timing must be stretched to stay within the limits (≥ 1
+    when it exceeds them; speed scales with 1/factor, acceleration with 1/factor²)."""
+    factor = trajectory.peak_speed() / max_speed
+    if max_acceleration is not None:
+        factor = max(factor, float(np.sqrt(trajectory.peak_acceleration() / max_acceleration)))
+    return factor

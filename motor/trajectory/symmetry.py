@@ -61,17 +61,38 @@ def mirror_quaternions(quaternions: np.ndarray, symmetry: Symmetry) -> np.ndarra
     return q * factors
 
 
+def kept_apart(
+    points: np.ndarray, symmetry: Symmetry, center: np.ndarray | tuple[float, float, float], gap: float, away: np.ndarray
+) -> np.ndarray:
+    """Positions ``(n, 3)`` of the dominant hand moved so that each is at least ``gap``
+    (metres) from its own mirror image: a point closer to the mirror planes is pushed out
+    along the line to its image (along ``away``, a unit vector, when it lies on the planes).
+    Points already far enough are unchanged. The image of the result is the other hand."""
+    p = _check_last_axis(points, 3, "kept_apart")
+    images = mirror_points(p, symmetry, center)
+    between = p - images
+    distance = np.linalg.norm(between, axis=-1, keepdims=True)
+    close = distance[..., 0] < gap
+    if not np.any(close):
+        return p
+    direction = np.where(distance > 1e-9, between / np.maximum(distance, 1e-12), away)
+    middle = 0.5 * (p + images)
+    return np.where(close[..., None], middle + 0.5 * gap * direction, p)
+
+
 def mirror_trajectory(
     trajectory: WristTrajectory, symmetry: Symmetry, center: np.ndarray | tuple[float, float, float] | None = None
 ) -> WristTrajectory:
-    """The mirror image of a wrist trajectory: breakpoints reflected, velocities flipped.
+    """The mirror image of a wrist trajectory: knots reflected, velocities and
+    accelerations flipped.
 
-    A Hermite curve commutes with the reflection, so the result is exactly the reflected
+    A Hermite spline commutes with the reflection, so the result is exactly the reflected
     curve at every time.
     """
     return WristTrajectory(
-        mirror_points(trajectory.breakpoints, symmetry, center),
         trajectory.times,
+        mirror_points(trajectory.positions, symmetry, center),
         mirror_directions(trajectory.velocities, symmetry),
+        mirror_directions(trajectory.accelerations, symmetry),
         trajectory.warnings,
     )

@@ -92,7 +92,7 @@ def test_render_command_writes_files(tmp_path, capsys):
     names = {p.name for p in tmp_path.iterdir()}
     sidecars = {name for name in names if name.startswith("mura-avatar-makehuman-") and name.endswith(".js")}
     assert len(sidecars) == 1  # the default skinned avatar's model, shared by the folder's pages
-    assert names - sidecars == {f"{stem}.wav", f"{stem}.bvh", f"{stem}.timeline.json", f"{stem}.html", f"{stem}.glb"}
+    assert names - sidecars == {f"{stem}.wav", f"{stem}.bvh", f"{stem}.timeline.json", f"{stem}.face.json", f"{stem}.html", f"{stem}.glb"}
     assert f"-> {tmp_path / (stem + '.html')}" in capsys.readouterr().out
 
 

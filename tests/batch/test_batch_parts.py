@@ -163,14 +163,15 @@ def test_motion_file_payload_round_trips() -> None:
 
 
 def test_render_says_each_warning_once(tmp_path: Path, capsys) -> None:
-    gaze = '<static slot="GazeDirection" value="0 0 1" scope="head"/>'
+    frames = '<frame ftime="0.2"><posture>Humanoid (vc4 3 5 0 0)</posture></frame><frame ftime="0.5"><posture>Humanoid (vc4 3 0 0 0)</posture></frame>'
+    nod = f'<dynamic slot="Neck" scope="neck"><keyframing mode="spline"><phase>{frames}</phase></keyframing></dynamic>'
     behaviours = "".join(
         f'<behaviorspec id="{gid}"><gesture><timing onset="{onset}" end="{onset + 1}"/><constraints><parallel>'
-        f'<static slot="HandLocation" value="LocChest LocCenterRight LocNorm"/>{gaze}{gaze}</parallel></constraints></gesture></behaviorspec>'
+        f'<static slot="HandLocation" value="LocChest LocCenterRight LocNorm"/>{nod}{nod}</parallel></constraints></gesture></behaviorspec>'
         for gid, onset in (("g1", 1), ("g2", 4))
     )
-    path = tmp_path / "gaze.xml"
+    path = tmp_path / "nods.xml"
     path.write_text(f"<definition><utterance>{behaviours}</utterance></definition>")
     assert main(["render", str(path), "-o", str(tmp_path / "out"), "--no-glb", "--avatar", "max"]) == 0
-    lines = [line for line in capsys.readouterr().err.splitlines() if "GazeDirection" in line]
-    assert lines == [f"{path}: warning: g1, g2: slot GazeDirection is not realized by the arm motor programs (×4)"]
+    lines = [line for line in capsys.readouterr().err.splitlines() if "keyframed" in line]
+    assert lines == [f"{path}: warning: g1, g2: keyframed Neck (2 frames of named joints) is not realized by the motor programs (×4)"]

@@ -126,16 +126,18 @@ def test_bad_arguments_are_refused_before_any_work(corpus_file: Path, tmp_path: 
     assert not (tmp_path / "out").exists()
 
 
-def test_folders_of_utterances_render_with_their_speech(cluster: str, tmp_path: Path) -> None:
+def test_folders_of_utterances_and_bml_blocks_render_with_their_speech(cluster: str, tmp_path: Path) -> None:
     talk = tmp_path / "talk"
     talk.mkdir()
     for name in ("sign_here.xml", "present_and_negate.xml"):
         (talk / name).write_bytes((REPO / "specs" / "utterances" / name).read_bytes())
+    (talk / "take_this_bar.bml").write_bytes((REPO / "specs" / "bml" / "take_this_bar.bml").read_bytes())
     (talk / "broken.xml").write_text("<utterance><behaviorspec/></utterance>")
     summary = run_batch(read_corpus([talk]), tmp_path / "out", OPTIONS, scheduler=cluster, progress=False)
-    assert (summary.rendered, summary.failed) == (2, 1)
+    assert (summary.rendered, summary.failed) == (3, 1)
     items = {entry["label"]: entry for entry in _manifest(tmp_path / "out")["items"]}
-    assert set(items["sign_here"]["files"]) == {f"sign_here.{suffix}" for suffix in ("wav", "bvh", "timeline.json", "motion.js")}
+    assert set(items["sign_here"]["files"]) == {f"sign_here.{suffix}" for suffix in ("wav", "bvh", "timeline.json", "face.json", "motion.js")}
+    assert items["take_this_bar"]["status"] == "rendered"  # a BML block is an item like an utterance
     assert "broken.xml:1:" in items["broken"]["reason"]
     index = (tmp_path / "out" / "index.html").read_text(encoding="utf-8")
     assert '"audio":"sign_here.wav"' in index

@@ -100,3 +100,26 @@ def test_draws_an_item_as_its_own_page_does(browser: Browser, corpus_folder: Pat
     own = np.array([_positions(browser, t) for t in times])
     assert np.ptp(index[:, 0], axis=0).max() > 5.0  # the wrist moves (cm)
     assert np.max(np.abs(index - own)) < 0.2  # cm: the int16 quaternions draw what the BVH draws
+
+
+def test_plays_the_face_of_an_item_as_its_own_page_does(browser: Browser, tmp_path: Path) -> None:
+    source = tmp_path / "face.sigml"
+    source.write_text(
+        '<sigml><hns_sign gloss="NO"><hamnosys_nonmanual><hnm_head tag="NO"/><hnm_mouthpicture picture="hVlU"/></hamnosys_nonmanual>'
+        "<hamnosys_manual><hamflathand/><hamextfingeru/><hampalml/><hamchest/><hammoveo/></hamnosys_manual></hns_sign></sigml>",
+        encoding="utf-8",
+    )
+    assert main(["sign", str(source), "-o", str(tmp_path / "out"), "--no-glb", "--pages"]) == 0
+    _open(browser, tmp_path / "out" / "index.html")
+    assert browser.evaluate("window.__mura.faceNames()") > 0
+    duration = browser.evaluate("window.__mura.duration()")
+    times = np.linspace(0.1, duration - 0.1, 7)
+
+    def faces() -> list[dict]:
+        return [browser.evaluate(f"window.__mura.pause(); window.__mura.seek({t}); window.__mura.face()") for t in times]
+
+    index = faces()
+    _open(browser, tmp_path / "out" / "NO.html")
+    own = faces()
+    assert any(max(weights.values(), default=0) > 0.1 for weights in index)  # the mouth moves
+    assert index == own

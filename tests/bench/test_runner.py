@@ -85,7 +85,7 @@ def test_readme_without_markers_is_refused(tmp_path):
 
 
 def test_default_targets_name_real_rows():
-    assert len(runner.TARGETS) == 13
+    assert len(runner.TARGETS) == 27
     assert all(t.path[0] in runner.MODULES for t in runner.TARGETS)
 
 

@@ -72,9 +72,15 @@ class FakeMotor:
         self.activated: list[FakeProgram] = []
         self.cuts: list[tuple[str, str, float]] = []  # (arm, behaviour whose retraction was cut, time)
         self.interrupts: list[float] = []
+        self.spoken: list[tuple[float, tuple[tuple[float, float], ...]]] = []  # (speech onset, accents)
         self.sampled_until = 0.0
 
     def demands(self, behavior: BehaviorSpec) -> GestureDemands:
+        if behavior.spatial is not None:  # pointing or an indicating verb: one right-arm stroke here
+            distance = self.distances.get(behavior.id, DEFAULT_DISTANCE)
+            where = {"right": (distance, 0.0, 0.0)}
+            return GestureDemands(frozenset({"right"}), STROKE_PER_SEGMENT, True, False, distance,
+                                  first_wrists=where, last_wrists=where, stroke_distance=0.1)
         gesture = behavior.gesture
         node = gesture.constraints if gesture is not None else behavior.sign.to_constraint()
         scope = (gesture.scope if gesture is not None else None) or ""
@@ -135,6 +141,10 @@ class FakeMotor:
 
     def busy_until(self, arm: str) -> float:
         return self.keys[arm][-1][0]
+
+    def speak(self, speech, onset: float, accents=()) -> tuple[str, ...]:
+        self.spoken.append((onset, tuple(accents)))
+        return ()
 
     def interrupt(self, at_time: float) -> None:
         self.interrupts.append(at_time)

@@ -76,7 +76,8 @@ def test_audio_and_motion_cover_the_utterance(rendered):
     data = result.timeline.to_json()
     assert result.audio.dtype == np.int16 and result.sample_rate == 22050
     assert len(result.audio) / result.sample_rate <= data["duration"] + 1e-6
-    last_end = max(b["phases"]["end"] for b in data["behaviors"])
+    # the frames run to the last retraction, or to the last word when the speech outlasts the behaviours
+    last_end = max([b["phases"]["end"] for b in data["behaviors"]] + [c["speech_end"] for c in data["chunks"]])
     assert result.motion.start_time == 0.0
     assert result.motion.frame_count == pytest.approx(last_end * 60, abs=2)
     assert np.allclose(np.diff(result.motion.times), 1 / 60)
@@ -130,7 +131,7 @@ def test_observers_hear_states_feedback_speech_and_frames():
     scheduler.subscribe(events.append)
     result = scheduler.run(utterance("fig2_take_this_bar.xml"), name="fig2")
     kinds = {type(e).__name__ for e in events}
-    assert kinds == {"ChunkStateChanged", "BehaviorFeedback", "SpeechStarted", "SpeechEnded", "FramesReady"}
+    assert kinds == {"ChunkStateChanged", "BehaviorFeedback", "SpeechStarted", "SpeechEnded", "FramesReady", "ChunkPlanned", "UtteranceEnded"}
     points = [(e.behavior, e.point) for e in events if type(e).__name__ == "BehaviorFeedback"]
     assert ("gesture_1", "stroke_start") in points and ("gesture_2", "end") in points
     frames = [e for e in events if isinstance(e, FramesReady)]

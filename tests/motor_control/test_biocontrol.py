@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from motor.trajectory.biocontrol import (
+    END_SMOOTHING,
     MANNERS,
     Manner,
     integrate_manner,
@@ -37,10 +38,26 @@ def test_rate_is_the_derivative_of_the_fraction(name: str) -> None:
     np.testing.assert_allclose(integral, p.fraction(U), atol=5e-3)
 
 
+#: Where the stop begins: the speed there is what the last tenth of the movement brings to rest.
+STOPPING = 1.0 - END_SMOOTHING
+
+
+@pytest.mark.parametrize("name", sorted(MANNERS))
+def test_every_profile_starts_and_stops_at_rest_with_zero_acceleration(name: str) -> None:
+    p = profile(name)
+    h = 1.0 / (p.rates.size - 1)
+    assert p.rate(0.0) == pytest.approx(0.0, abs=1e-12) and p.rate(1.0) == pytest.approx(0.0, abs=1e-12)
+    start_acceleration = (p.rate(h) - p.rate(0.0)) / h
+    stop_acceleration = (p.rate(1.0) - p.rate(1.0 - h)) / h
+    peak_acceleration = np.max(np.abs(np.diff(p.rates))) / h
+    assert abs(start_acceleration) < 0.02 * peak_acceleration
+    assert abs(stop_acceleration) < 0.02 * peak_acceleration
+
+
 def test_targetted_peaks_late_and_stops_sharply() -> None:
     assert peak("targetted") > 0.6
     targetted, lax = profile("targetted"), profile("lax")
-    assert targetted.rate(1.0) > lax.rate(1.0), "targetted ends more suddenly than lax"
+    assert targetted.rate(STOPPING) > lax.rate(STOPPING), "targetted ends more suddenly than lax"
 
 
 def test_lax_peaks_near_the_middle_with_a_sharper_start() -> None:
@@ -57,9 +74,9 @@ def test_linear_is_near_constant_in_the_middle() -> None:
 
 
 def test_hard_contact_and_sudden_stop_end_more_suddenly_than_targetted() -> None:
-    end = profile("targetted").rate(1.0)
-    assert profile("hard_contact").rate(1.0) > end
-    assert profile("sudden_stop").rate(1.0) > profile("hard_contact").rate(1.0)
+    end = profile("targetted").rate(STOPPING)
+    assert profile("hard_contact").rate(STOPPING) > end
+    assert profile("sudden_stop").rate(STOPPING) > profile("hard_contact").rate(STOPPING)
     assert peak("hard_contact") > peak("targetted")
 
 

@@ -7,7 +7,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from motor.arm.swivel import SwivelLMP
-from motor.arm.wrist_position import WristPositionLMP
+from motor.arm.wrist_position import PRE_STROKE_HOLD, WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.hand.lmp import HandShapeLMP
 from motor.program.lmp import (
@@ -18,7 +18,8 @@ from motor.program.lmp import (
     VectorKeyframeLMP,
 )
 from motor.trajectory.guiding_strokes import curve_breakpoints
-from motor.trajectory.spline import Accent, fitts_duration
+from motor.trajectory.speed_budget import budget
+from motor.trajectory.spline import fitts_duration
 
 FPS = 120.0
 REST = np.array([0.2, 0.9, 0.1])
@@ -32,14 +33,15 @@ def frames(start: float, end: float) -> np.ndarray:
 
 
 def gesture_then_retraction(second_start: float) -> list:
-    """Gesture 1, its retraction at relax, and gesture 2 starting at ``second_start``."""
+    """Gesture 1, its retraction at relax, and gesture 2 starting at ``second_start``, in
+    activation order."""
     first = WristPositionLMP("right", TimePegs(0.2, 0.8, 0.8, 1.0, 1.3, 1.5, 1.5), STROKE)
     retract = RetractionLMP(WRIST, TimePegs.movement(1.5, 2.3), REST)
     second = WristPositionLMP(
         "right", TimePegs(*(second_start + np.array([0.0, 0.5, 0.5, 0.6, 0.7, 0.9, 0.9]))),
         np.array([[0.1, 1.3, 0.3], [0.2, 1.1, 0.3]]),
     )
-    return [second, retract, first]
+    return [first, retract, second]
 
 
 def assert_continuous(values: np.ndarray, times: np.ndarray, handovers: np.ndarray) -> None:
@@ -62,17 +64,51 @@ def test_time_pegs_must_be_ordered_and_finite() -> None:
     assert (pegs.stroke_start, pegs.stroke_end, pegs.relax, pegs.end) == (1.5, 1.5, 2.0, 2.0)
 
 
-def test_wrist_lmp_from_rest_waits_for_fitts_and_passes_its_breakpoints() -> None:
-    lmp = WristPositionLMP("right", TimePegs(0.0, 1.0, 1.2, 1.4, 1.6, 1.8, 1.8), STROKE)
+def _passes(path: np.ndarray, point: np.ndarray) -> bool:
+    return bool(np.min(np.linalg.norm(path - point, axis=1)) < 1e-3)
+
+
+def test_wrist_lmp_from_rest_waits_moves_in_natural_time_holds_and_passes_its_breakpoints() -> None:
+    arrival = 1.2 - PRE_STROKE_HOLD
+    lmp = WristPositionLMP("right", TimePegs(0.0, arrival, 1.2, 1.4, 1.6, 1.8, 1.8), STROKE)
     realization = lmp.activate(ChannelState.at_rest(REST, 0.0))
     natural = float(fitts_duration(np.linalg.norm(STROKE[0] - REST)))
     assert realization.warnings == ()
-    np.testing.assert_allclose(realization.sample(np.array([0.0, 0.99 - natural])), [REST, REST], atol=1e-12)
-    assert np.linalg.norm(realization.sample(np.array([1.01 - natural]))[0] - REST) > 1e-4
-    np.testing.assert_allclose(realization.sample(lmp.breakpoint_times), STROKE, atol=1e-12)
-    held = realization.sample(np.array([1.0, 1.1, 1.2]))
-    np.testing.assert_allclose(held, np.repeat(STROKE[:1], 3, axis=0), atol=1e-12)
-    np.testing.assert_allclose(realization.sample(np.array([5.0])), STROKE[-1:], atol=1e-12)
+    np.testing.assert_allclose(realization.sample(np.array([0.0, arrival - natural - 0.01])), [REST, REST], atol=1e-12)
+    assert np.linalg.norm(realization.sample(np.array([arrival - natural + 0.02]))[0] - REST) > 1e-5
+    held = realization.sample(np.linspace(arrival, 1.2, 5))
+    np.testing.assert_allclose(held, np.repeat(STROKE[:1], 5, axis=0), atol=1e-12)
+    path = realization.sample(np.linspace(1.2, 1.6, 801))
+    assert all(_passes(path, point) for point in STROKE)
+    np.testing.assert_allclose(realization.sample(np.array([1.6, 5.0])), STROKE[[-1, -1]], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("amplitude", "window", "expected"),
+    [
+        (0.0, 1.0, (0.0, 0.0)),
+        (0.2, 2.0, (float(fitts_duration(0.2)), PRE_STROKE_HOLD)),
+        (0.2, float(fitts_duration(0.2)) + 0.05, (float(fitts_duration(0.2)), 0.05)),
+        (0.2, 0.3, (0.3, 0.0)),
+        (1.2, 5.0, (budget(None).shortest_duration(1.2), PRE_STROKE_HOLD)),
+    ],
+    ids=["no move", "room for the hold", "some room", "squeezed", "budget over Fitts"],
+)
+def test_preparation_timing_rule(amplitude: float, window: float, expected: tuple) -> None:
+    assert preparation_timing(amplitude, window) == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("window", [0.4, 0.8, 1.5])
+def test_the_stroke_starts_from_rest_exactly_at_its_first_breakpoint_time(window: float) -> None:
+    """The visible stroke onset: whatever the window, the wrist is at rest at the stroke's
+    first breakpoint when the stroke starts, and moves right after."""
+    onset = 0.3 + window
+    lmp = WristPositionLMP("right", TimePegs(0.3, onset, onset, onset + 0.2, onset + 0.4, onset + 0.4, onset + 0.4), STROKE)
+    realization = lmp.activate(ChannelState(REST, np.array([0.3, 0.0, 0.1]), 0.3))
+    state = realization.state(onset)
+    np.testing.assert_allclose(state.value, STROKE[0], atol=1e-12)
+    np.testing.assert_allclose(state.velocity, 0.0, atol=1e-12)
+    assert np.linalg.norm(realization.state(onset + 0.05).velocity) > 0.01
 
 
 def test_wrist_lmp_started_while_moving_keeps_the_velocity() -> None:
@@ -90,10 +126,14 @@ def test_curve_warnings_reach_the_realization() -> None:
     assert any("no normal" in w for w in timeline.warnings)
 
 
-def test_squeezed_preparation_warns() -> None:
-    lmp = WristPositionLMP("right", TimePegs(0.0, 0.05, 0.05, 0.1, 0.2, 0.2, 0.2), STROKE)
-    realization = lmp.activate(ChannelState.at_rest(REST))
-    assert any("squeezed" in w for w in realization.warnings)
+def test_impossible_preparation_starts_the_stroke_late_and_never_too_fast() -> None:
+    far = np.array([[-0.6, 1.3, 0.4], [-0.4, 1.3, 0.4]])
+    lmp = WristPositionLMP("right", TimePegs(0.0, 0.05, 0.05, 0.1, 0.2, 0.2, 0.2), far)
+    timeline = ChannelTimeline.build(WRIST, [lmp], ChannelState.at_rest(REST))
+    assert any("late" in w for w in timeline.warnings)
+    values = timeline.sample(frames(0.0, 2.0))
+    speeds = np.linalg.norm(np.diff(values, axis=0), axis=1) * FPS
+    assert speeds.max() <= 3.0 * 1.01
 
 
 def test_too_fast_stroke_is_slowed_and_never_nan() -> None:
@@ -107,13 +147,15 @@ def test_too_fast_stroke_is_slowed_and_never_nan() -> None:
     assert speeds.max() <= 3.0 * 1.01
 
 
-def test_accent_on_a_wrist_lmp_stroke() -> None:
-    line = STROKE[:2]
-    lmp = WristPositionLMP("right", TimePegs(0.0, 0.6, 0.6, 0.8, 1.0, 1.0, 1.0), line, accents=(Accent(0, 0.75),))
-    realization = lmp.activate(ChannelState.at_rest(line[0]))
-    t = np.linspace(0.6, 1.0, 801)
-    speed = np.linalg.norm(realization.trajectory.velocity(t), axis=1)
-    assert (t[np.argmax(speed)] - 0.6) / 0.4 == pytest.approx(0.75, abs=0.05)
+@pytest.mark.parametrize("second_start", [0.9, 1.2, 1.5])
+def test_a_retraction_is_dropped_when_a_later_gesture_starts_first(second_start: float) -> None:
+    """The second gesture was activated after the first (and its retraction) but starts
+    before the retraction would: the arm goes straight on to it."""
+    first, retract, second = gesture_then_retraction(second_start)
+    timeline = ChannelTimeline.build(WRIST, [first, retract, second], ChannelState.at_rest(REST))
+    assert timeline.lmps == (first, second)
+    values = timeline.sample(frames(second.pegs.ready, second.pegs.ready + 0.5))
+    assert np.min(np.linalg.norm(values - REST, axis=1)) > 0.05
 
 
 def test_timeline_hands_over_with_coarticulation() -> None:
@@ -202,7 +244,7 @@ def test_vector_channels_blend_the_incoming_velocity(lmp_type: str) -> None:
     assert_continuous(timeline.sample(times), times, timeline.starts)
 
 
-def test_retraction_is_lax_and_arrives_at_ready() -> None:
+def test_retraction_is_minimum_jerk_and_arrives_at_ready() -> None:
     retraction = RetractionLMP(WRIST, TimePegs.movement(1.0, 1.5, 2.0), REST)
     realization = retraction.activate(ChannelState.at_rest(STROKE[0], 1.0))
     np.testing.assert_allclose(realization.sample(np.array([1.5, 1.8])), [REST, REST], atol=1e-12)

@@ -12,7 +12,7 @@ from motor.control import MotorControl
 from motor.hand.lmp import HandShapeLMP
 from motor.program.fragment import POINTING_REACH, PlanningError, movement_time
 from motor.program.gesture import GestureDemands, rest_handshape
-from motor.program.lmp import RetractionLMP
+from motor.program.lmp import ChannelState, RetractionLMP
 from motor.trajectory.spline import fitts_duration
 from mura.constraints import (
     Arm,
@@ -32,6 +32,7 @@ from mura.values import (
     HandShape,
     PalmOrientation,
     PointLocation,
+    Symbol,
 )
 from tests.motor_program.conftest import behavior, pegs
 
@@ -214,12 +215,13 @@ def test_impossible_constraints_raise_errors_naming_the_behaviour(control, const
 @pytest.mark.parametrize(
     ("constraints", "timing", "warning"),
     [
-        (line(2.0), pegs(0.0, 0.5, 1.0, 1.05), "slowed"),
+        (line(0.6), pegs(0.0, 0.5, 1.0, 1.05), "the stroke needs"),
+        (line(0.6), pegs(0.0, 0.5, 1.0, 1.4), "the stroke peaks at"),
         (Static("HandLocation", GridLocation("LocAboveHead", "LocRight", "LocStreched"), scope=Arm.RIGHT), pegs(0.0, 0.5, 1.0, 1.5), "out of reach"),
         (line(0.1), pegs(1.0, 1.0, 1.0, 1.5), "no time for the preparation"),
         (line(0.1), pegs(0.0, 0.5, 1.0, 1.0), "stroke interval"),
         (Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, end=CHEST),), scope=Arm.RIGHT), pegs(0.0, 0.5, 1.0, 1.5), "without a start"),
-        (Static("GazeDirection", PointLocation((0.0, 0.5, 1.0)), scope="head"), pegs(0.0, 0.5, 1.0, 1.5), "GazeDirection is not realized"),
+        (Static("GazeDirection", Symbol("Nowhere"), scope="head"), pegs(0.0, 0.5, 1.0, 1.5), "unknown gaze target 'Nowhere'"),
         (Repetition(Static("HandShape", HandShape("fist"), scope=Arm.RIGHT), 2), pegs(0.0, 0.5, 1.0, 1.5), "cannot be repeated"),
     ],
 )
@@ -231,9 +233,13 @@ def test_impossible_timing_and_places_are_resolved_with_warnings(control, constr
     assert np.all(np.isfinite(motion.rotations))
 
 
-def test_activation_warnings_are_collected(control) -> None:
-    control.activate(control.plan(behavior(line(0.1)), pegs(0.0, 0.05, 0.1, 0.6)))
-    assert any("preparation" in note and "squeezed" in note for note in control.warnings())
+def test_activation_warnings_are_collected(control, avatar) -> None:
+    """A program planned for an arm already at its stroke (no preparation) but activated
+    with the arm at rest cannot prepare in time: its stroke starts late, and says so."""
+    start = control.planner.fragment(behavior(line(0.1))).first(("right", "location"))
+    program = control.planner.plan(behavior(line(0.1)), pegs(0.0, 0.05, 0.1, 0.6), start_states={"right": ChannelState.at_rest(start)})
+    control.activate(program)
+    assert any("late" in note for note in control.warnings())
 
 
 def test_rotation_and_shape_lmps_reach_their_first_key_at_ready(control) -> None:

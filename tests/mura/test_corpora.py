@@ -6,7 +6,7 @@ from mura.check import check_file
 from mura.constraints import Arm, Dynamic, Symmetrical, iter_leaves
 from mura.model import AbsoluteTiming
 from mura.murml import load_utterance
-from mura.values import GridLocation, Vector
+from mura.values import GridLocation
 
 PUBLISHED = [
     "01_fo_reissverschluss.us",
@@ -37,7 +37,8 @@ def test_zip_fastener_strokes_are_centimetres(shared):
     assert [segment.distance for segment in dynamic.segments] == pytest.approx([0.40] * 4)
     assert dynamic.segments[1].start == GridLocation("LocNeck", "LocCCenter", "LocNear")
     gaze = [leaf for leaf in iter_leaves(behavior.gesture.constraints) if leaf.slot == "GazeDirection"]
-    assert [leaf.value for leaf in gaze] == [Vector((-1.0, 0.0, 0.0)), Vector((100.0, 0.0, 0.0))]
+    # the published dialect's gaze vectors (x ahead, y up, z right) as directions in the avatar frame
+    assert [leaf.value.vector for leaf in gaze] == [(0.0, 0.0, -1.0), (0.0, 0.0, 1.0)]
     assert gaze[1].mode == "pointTo"
 
 

@@ -1,4 +1,4 @@
-"""The body: the hand stays outside the torso, head non-manuals, errors that name the sign."""
+"""The body: the hand stays outside the torso, errors that name the sign (head non-manuals: tests/nonmanual)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,8 @@ from sign_helpers import sign_from
 from motor.body.collision import outside_torso
 from motor.signing.plan import SignPlanningError
 from motor.signing.planning import plan_sign
-from motor.signing.sequence import head_movement, realize_signs
-from mura.sigml import parse_sigml
-from mura.signs import HandPosture, NonmanualItem, Sign
+from motor.signing.sequence import realize_signs
+from mura.signs import HandPosture, Sign
 from mura.values import BodySite
 
 
@@ -46,28 +45,6 @@ def test_outside_torso_pushes_forward_onto_the_front(avatar):
     assert np.all(pushed[:, 2] > torso.center[2] + torso.half_depth)
     outside = np.array([[0.0, 0.3, 0.4], [0.0, 0.9, 0.0]])
     assert np.array_equal(outside_torso(avatar, outside), outside)
-
-
-def test_head_nod_from_the_nonmanual_tier(avatar):
-    document = (
-        '<sigml><hns_sign gloss="yes"><hamnosys_nonmanual><hnm_head tag="NO"/></hamnosys_nonmanual>'
-        "<hamnosys_manual><hamfist/><hamextfingeru/><hampalml/><hamchest/><hammoveo/></hamnosys_manual></hns_sign></sigml>"
-    )
-    (sign,) = parse_sigml(document).signs
-    assert head_movement([item for tier in sign.nonmanual.values() for item in tier]) == "nod"
-    signed = realize_signs(avatar, [sign])
-    head = avatar.joint_index("skullbase")
-    angles = 2.0 * np.arccos(np.clip(np.abs(signed.motion.rotations[:, head, 3]), 0.0, 1.0))
-    assert angles.max() > 0.1
-    assert angles[0] == pytest.approx(0.0) and angles[-1] == pytest.approx(0.0)
-
-
-@pytest.mark.parametrize(
-    ("items", "movement"),
-    [((NonmanualItem("hnm_head", (("tag", "SH"),)),), "shake"), ((NonmanualItem("hnm_mouthpicture", (("picture", "pa"),)),), None)],
-)
-def test_head_movements(items, movement):
-    assert head_movement(items) == movement
 
 
 def test_unknown_site_fails_naming_the_sign(avatar):

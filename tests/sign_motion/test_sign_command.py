@@ -59,7 +59,7 @@ def test_hamnosys_string(tmp_path):
 
 @pytest.mark.parametrize(
     ("arguments", "message"),
-    [([], "give SiGML files or --hamnosys"), (["--hamnosys", "x", "--fps", "0"], "--fps must be positive")],
+    [([], "give SiGML files or --hamnosys"), (["--hamnosys", "x", "--fps", "0"], "frame rate (--fps) 0 is outside 1..240")],
 )
 def test_bad_arguments(tmp_path, capsys, arguments, message):
     assert main(["sign", *arguments, "-o", str(tmp_path)]) == 2

@@ -52,6 +52,13 @@ def test_a_sign_without_timing_is_performed_from_the_start():
     assert sign.timing == AbsoluteTiming(UNTIMED_GAP, UNTIMED_GAP + UNTIMED_STROKE)
 
 
+def test_a_pointing_sign_without_timing_is_performed_from_the_start_too():
+    text = ('<utterance><space><place entity="john" arc="0.9"/></space><specification>Look there.</specification>'
+            '<behaviorspec id="b1"><sign point="john"/></behaviorspec></utterance>')
+    (pointing,) = parse_utterance(text, file="point.xml").behaviors
+    assert pointing.spatial is not None and pointing.timing == AbsoluteTiming(UNTIMED_GAP, UNTIMED_GAP + UNTIMED_STROKE)
+
+
 @pytest.fixture(scope="module")
 def performance():
     return Agent(tts="fake", fps=60).render(EXAMPLE)

@@ -5,7 +5,6 @@ from __future__ import annotations
 import pytest
 from signing_helpers import hns_document
 
-import mura.sigml
 from mura.constraints import (
     Arm,
     Dynamic,
@@ -16,6 +15,7 @@ from mura.constraints import (
     Sequence,
 )
 from mura.errors import SpecError
+from mura.limits import Limits
 from mura.sigml import parse_sigml
 from mura.signs import HandConstellation, NonmanualItem, SignSymmetry
 from mura.values import BetweenLocation, BodySite, Direction, HandShape
@@ -121,10 +121,9 @@ def test_document_errors(text: str, message: str) -> None:
         parse_sigml(text, file="d.sigml")
 
 
-def test_oversized_document_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(mura.sigml, "MAX_SIGML_BYTES", 100)
+def test_oversized_document_is_refused() -> None:
     with pytest.raises(SpecError, match="more than the limit of 100"):
-        parse_sigml("<sigml>" + " " * 200 + "</sigml>")
+        parse_sigml("<sigml>" + " " * 200 + "</sigml>", limits=Limits(max_input_bytes=100))
 
 
 def test_unknown_element_in_document_is_a_sign_failure() -> None:

@@ -24,7 +24,7 @@ from tts.wav import read_wav
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((REPO / "specs" / "utterances").glob("*.xml"))
-SUFFIXES = (".wav", ".bvh", ".timeline.json", ".html")
+SUFFIXES = (".wav", ".bvh", ".timeline.json", ".face.json", ".html")
 
 
 class FailingSpeech:
@@ -91,7 +91,7 @@ def test_gesture_only_utterance_gets_a_silent_track(agent, tmp_path):
 
 def test_speech_failing_in_chunk_two_leaves_no_files(tmp_path):
     agent = Agent(tts=FailingSpeech(fail_on=2))
-    with pytest.raises(PerformanceError, match="chunk 1 failed: .*went away") as caught:
+    with pytest.raises(PerformanceError, match="chunk 2 failed: .*went away") as caught:
         agent.render_files(REPO / "specs" / "utterances" / "fig2_take_this_bar.xml", tmp_path)
     assert caught.value.partial is None
     assert files_in(tmp_path) == []

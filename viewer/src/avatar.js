@@ -1,5 +1,8 @@
 // Flesh on a bone tree: capsules along bones, spheres at joints, a palm per hand and a
-// head. Meshes are children of the bones, so posing the bones moves the body.
+// head with a simple face. Meshes are children of the bones, so posing the bones moves the
+// body; eyeballs sit on the eyeball joints when the skeleton has them, so they turn with
+// the gaze. root.userData.face.apply({jawOpen, eyeBlinkLeft, browInnerUp, …}) moves the
+// face: mouth opening and shape, eyelids, eyebrows.
 import {
   CapsuleGeometry,
   Group,
@@ -10,12 +13,14 @@ import {
   Vector3,
 } from 'three';
 import { RoundedBoxGeometry } from 'three/addons/geometries/RoundedBoxGeometry.js';
-import { fingerOf, isClothed, isHead, isTorso, isWrist, segmentRadius } from './body.js';
+import { fingerOf, isClothed, isEye, isHead, isTorso, isWrist, segmentRadius } from './body.js';
 import { UNIT } from './skeleton.js';
 
 const SKIN = new MeshStandardMaterial({ color: 0xe2b08f, roughness: 0.62, metalness: 0.0 });
 const SHIRT = new MeshStandardMaterial({ color: 0x3d5a80, roughness: 0.8, metalness: 0.0 });
 const EYES = new MeshStandardMaterial({ color: 0x1d1d24, roughness: 0.3 });
+const SCLERA = new MeshStandardMaterial({ color: 0xf2efe8, roughness: 0.35 });
+const LIPS = new MeshStandardMaterial({ color: 0x6e2f2a, roughness: 0.7 });
 const HAIR = new MeshStandardMaterial({ color: 0x3b2a20, roughness: 0.9 });
 
 const Y = new Vector3(0, 1, 0);
@@ -31,8 +36,14 @@ export function buildAvatar(root) {
     if (node.isBone) bones.push(node);
   });
   let meshes = 0;
+  const face = { parts: null, apply: (weights) => face.parts && applyFace(face.parts, weights) };
+  root.userData.face = face;
   for (const bone of bones) {
-    const children = bone.children.filter((child) => child.isBone);
+    if (isEye(bone.name) || (bone.name === 'ENDSITE' && isEye(bone.parent?.name ?? ''))) {
+      if (isEye(bone.name)) meshes += eyeball(bone);
+      continue;
+    }
+    const children = bone.children.filter((child) => child.isBone && !isEye(child.name));
     for (const child of children) {
       bone.add(limb(bone.name, child));
       meshes += 1;
@@ -49,11 +60,43 @@ export function buildAvatar(root) {
       }
     }
     if (isHead(bone.name) && !isHead(bone.parent?.name ?? '')) {
-      bone.add(head(bone));
+      const { group, parts } = head(bone);
+      bone.add(group);
+      face.parts = parts;
       meshes += 1;
     }
   }
   return meshes;
+}
+
+// An eyeball on an eyeball joint: white, with a dark iris toward +z (the joint's forward).
+function eyeball(bone) {
+  const r = HEAD_RADIUS * UNIT;
+  const sclera = new Mesh(new SphereGeometry(r * 0.13, 16, 12), SCLERA);
+  const iris = new Mesh(new SphereGeometry(r * 0.07, 12, 8), EYES);
+  iris.position.set(0, 0, r * 0.09);
+  sclera.add(iris);
+  bone.add(sclera);
+  return 1;
+}
+
+// Moves the capsule head's face parts for ARKit weights.
+function applyFace(parts, w) {
+  const get = (name) => w[name] ?? 0;
+  const open = get('jawOpen');
+  const round = Math.max(get('mouthPucker'), get('mouthFunnel'));
+  const spread = Math.max((get('mouthSmileLeft') + get('mouthSmileRight')) / 2, (get('mouthStretchLeft') + get('mouthStretchRight')) / 2);
+  parts.mouth.scale.set(1 + 0.5 * spread - 0.45 * round, 0.15 + 2.2 * open, 1);
+  parts.lids.forEach((lid, k) => {
+    const closed = get(k === 0 ? 'eyeBlinkLeft' : 'eyeBlinkRight');
+    lid.visible = closed > 0.02;
+    lid.scale.set(1, Math.max(closed, 0.02), 1);
+  });
+  parts.brows.forEach((brow, k) => {
+    const side = k === 0 ? 'Left' : 'Right';
+    const up = 0.6 * get('browInnerUp') + get(`browOuterUp${side}`) - get(`browDown${side}`);
+    brow.position.y = brow.userData.y + up * parts.r * 0.12;
+  });
 }
 
 function material(name) {
@@ -119,12 +162,14 @@ function palmFor(wrist) {
   return mesh;
 }
 
-// A head above the skull base, with eyes and a nose looking along +z (the avatar's front).
+// A head above the skull base, with eyes (unless eyeball joints carry them), a nose, a
+// mouth, eyelids and eyebrows, looking along +z (the avatar's front).
 function head(skullbase) {
   const up = new Vector3();
-  const child = skullbase.children.find((c) => c.isBone);
+  const child = skullbase.children.find((c) => c.isBone && !isEye(c.name));
   if (child && child.position.lengthSq() > 1e-12) up.copy(child.position).normalize();
   else up.copy(Y);
+  const hasEyes = skullbase.children.some((c) => isEye(c.name));
   const r = HEAD_RADIUS * UNIT;
   const group = new Group();
   group.quaternion.setFromUnitVectors(Y, up);
@@ -136,14 +181,34 @@ function head(skullbase) {
   hair.scale.set(0.88, 1.14, 0.97);
   hair.position.set(0, r * 0.06, -r * 0.04);
   group.add(hair);
+  const lids = [];
+  const brows = [];
   for (const side of [1, -1]) {
-    const eye = new Mesh(new SphereGeometry(r * 0.12, 12, 8), EYES);
-    eye.position.set(side * r * 0.33, r * 0.15, r * 0.86);
-    group.add(eye);
+    if (!hasEyes) {
+      const eye = new Mesh(new SphereGeometry(r * 0.12, 12, 8), EYES);
+      eye.position.set(side * r * 0.33, r * 0.15, r * 0.86);
+      group.add(eye);
+    }
+    const lid = new Mesh(new SphereGeometry(r * 0.19, 14, 10), SKIN);
+    lid.position.set(side * r * 0.32, r * 0.1, r * 0.84);
+    lid.visible = false;
+    group.add(lid);
+    lids.push(lid);
+    const brow = new Mesh(new CapsuleGeometry(r * 0.025, r * 0.2, 4, 8), HAIR);
+    brow.rotation.z = Math.PI / 2 + side * 0.12;
+    brow.position.set(side * r * 0.33, r * 0.32, r * 0.86);
+    brow.userData.y = brow.position.y;
+    group.add(brow);
+    brows.push(brow);
   }
   const nose = new Mesh(new SphereGeometry(r * 0.13, 12, 8), SKIN);
   nose.scale.set(0.8, 1.3, 1.0);
   nose.position.set(0, -r * 0.05, r * 0.95);
   group.add(nose);
-  return group;
+  const mouth = new Mesh(new SphereGeometry(r * 0.24, 16, 10), LIPS);
+  mouth.geometry.scale(1, 0.4, 0.3);
+  mouth.position.set(0, -r * 0.4, r * 0.86);
+  mouth.scale.set(1, 0.15, 1);
+  group.add(mouth);
+  return { group, parts: { mouth, lids, brows, r } };
 }

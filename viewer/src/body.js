@@ -36,6 +36,10 @@ export function isHead(name) {
   return /skullbase|head/.test(name);
 }
 
+export function isEye(name) {
+  return /eyeball/.test(name);
+}
+
 export function isWrist(name) {
   return /wrist/.test(name);
 }

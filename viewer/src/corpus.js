@@ -10,6 +10,7 @@
 // URL: #NAME opens that item.
 import { Quaternion } from 'three';
 import { buildAvatar } from './avatar.js';
+import { faceAt, morphDriver, vrmDriver } from './face.js';
 import { Clock } from './clock.js';
 import { loadModel, modelSpec } from './model.js';
 import { UNIT, jointBones, skeletonFromLive } from './skeleton.js';
@@ -38,6 +39,7 @@ function decode(payload) {
     duration: payload.duration,
     rotations: new Int16Array(bytes(payload.rotations)),
     root: new Float32Array(bytes(payload.root)),
+    face: payload.face && payload.face.names?.length ? payload.face : null,
   };
 }
 
@@ -124,9 +126,23 @@ export function startCorpus(ui, view, params, helpers) {
   let clock = new Clock(null, 0);
   const load = motionLoader();
 
+  // The face: the item's morph weights (names it does not move rest at 0), on the model's
+  // morph targets or VRM expressions, or on the capsule figure's face.
+  let shown = {};
+  const drivers = [];
+  const poseFace = (t) => {
+    const face = state.motion.face;
+    const current = face ? faceAt(face, t - state.motion.start) : {};
+    if (!face && !Object.keys(shown).length) return;
+    const weights = { ...Object.fromEntries(Object.keys(shown).map((name) => [name, 0])), ...current };
+    shown = current;
+    for (const driver of drivers) driver.apply(weights);
+  };
+
   const pose = (t) => {
     if (!state.motion) return;
     poseAt(bones, state.motion, t);
+    poseFace(t);
     if (state.loaded) {
       root.updateMatrixWorld(true);
       state.loaded.drive(root);
@@ -259,6 +275,8 @@ export function startCorpus(ui, view, params, helpers) {
     duration: () => clock.duration,
     joints: bones.length,
     model: () => (state.loaded ? { format: spec.format, morphs: state.loaded.morphs } : null),
+    face: () => ({ ...shown }),
+    faceNames: () => state.motion?.face?.names.length ?? 0,
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(root.position.clone()).toArray() ?? null,
   };
 
@@ -290,14 +308,18 @@ export function startCorpus(ui, view, params, helpers) {
       if (loaded) {
         view.scene.add(loaded.object);
         root.traverse((node) => (node.visible = false));
+        drivers.push(morphDriver(loaded.object));
+        if (loaded.vrm) drivers.push(vrmDriver(loaded.vrm));
       } else {
         buildAvatar(root);
+        if (root.userData.face) drivers.push(root.userData.face);
       }
       begin();
     },
     (error) => {
       window.__muraModelError = String(error.message ?? error);
       buildAvatar(root);
+      if (root.userData.face) drivers.push(root.userData.face);
       begin();
     },
   );

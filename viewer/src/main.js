@@ -1,8 +1,12 @@
 // mura's avatar page. File mode: the page carries the BVH (script#mura-bvh, a JSON string)
 // and the timeline (script#mura-timeline) inline and plays them against <audio id=mura-audio>.
-// Live mode (?live=1): see live.js. Query ?t=SECONDS opens the page paused at that time.
+// Live mode (?live=1): see live.js; as a client of `mura serve` (?live=ws): see socket.js.
+// Query ?t=SECONDS opens the page paused at that time.
 // When the first frame is drawn, window.__muraReady is true; window.__mura exposes
-// time(), seek(t), play(), pause(), jointPosition(name) and counts for tests and scripting.
+// time(), seek(t), play(), pause(), jointPosition(name), face() (the morph weights shown
+// now), morph(name) (the model's morph influence), showFace(on) and counts for tests and scripting.
+// The face's morph weights (script#mura-face, see face.js) play on the model's ARKit
+// morph targets, VRM expressions, or the capsule figure's face.
 import {
   AnimationMixer,
   Box3,
@@ -19,9 +23,11 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { buildAvatar } from './avatar.js';
 import { Clock } from './clock.js';
 import { corpusSpec, startCorpus } from './corpus.js';
+import { faceAt, morphDriver, readFace, vrmDriver } from './face.js';
 import { loadModel, modelSpec } from './model.js';
 import { PLACE_COLOUR, addPlaces } from './places.js';
 import { applyFrame, connectLive } from './live.js';
+import { connectSocket, describeFeedback, socketUrl } from './socket.js';
 import { UNIT, jointBones, parseBVH, skeletonFromLive } from './skeleton.js';
 import { CSS } from './style.js';
 import { TimelineView, normalizeTimeline } from './timeline.js';
@@ -57,7 +63,7 @@ function buildUI() {
   const legend = element('div', { id: 'mura-legend' });
   const list = element('section', { id: 'mura-timeline-list' });
   app.prepend(title, stage, controls, strip, legend, list);
-  return { app, title, stage, status, play, scrub, time, strip, legend, list, viewButtons };
+  return { app, title, stage, status, controls, play, scrub, time, strip, legend, list, viewButtons };
 }
 
 function buildScene(stage) {
@@ -95,7 +101,9 @@ const VIEWS = [
   ['front', 'Front'],
   ['hands', 'Hands'],
   ['side', 'Side'],
+  ['face', 'Face'],
 ];
+const FACE_BOX = 0.24; // metres around the face that the face view shows
 
 function isLeg(bone) {
   for (let node = bone; node?.isBone; node = node.parent) if (LEG.test(node.name)) return true;
@@ -142,10 +150,13 @@ function fitBox(view, box, direction, margin) {
 }
 
 // Frame a view of the measured poses: 'front' (signing space, hips to crown), 'hands'
-// (where the hands go, close up) or 'side' (from the avatar's right).
+// (where the hands go, close up), 'side' (from the avatar's right) or 'face' (the head,
+// close up, where it is when chosen).
 function frameView(view, boxes, name) {
   const front = new Vector3(0.12, 0.05, 1).normalize();
-  if (name === 'hands') {
+  if (name === 'face' && boxes.headNow) {
+    fitBox(view, boxes.headNow(), new Vector3(0.05, 0.02, 1).normalize(), 1.0);
+  } else if (name === 'hands') {
     const box = boxes.handsNow ? boxes.handsNow() : boxes.hands.clone();
     const size = box.getSize(new Vector3());
     const grow = Math.max(0, 0.22 * UNIT - Math.max(size.x, size.y)) / 2;
@@ -202,6 +213,11 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   } else {
     meshes = buildAvatar(root);
   }
+  const face = readFace();
+  const morphs = loaded ? morphDriver(loaded.object) : null;
+  const expressions = loaded?.vrm ? vrmDriver(loaded.vrm) : null;
+  let shown = {};
+  let faceOn = true;
   const mixer = new AnimationMixer(root);
   const action = mixer.clipAction(clip);
   action.play();
@@ -209,6 +225,12 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   const pose = (t) => {
     action.time = Math.min(clip.duration, Math.max(0, t - motionStart));
     mixer.update(0);
+    if (face) {
+      shown = faceOn ? faceAt(face, t - motionStart) : Object.fromEntries(face.names.map((name) => [name, 0]));
+      if (morphs) morphs.apply(shown);
+      if (expressions) expressions.apply(shown);
+      if (!loaded) root.userData.face?.apply(shown);
+    }
     if (loaded) {
       root.updateMatrixWorld(true);
       loaded.drive(root);
@@ -237,6 +259,20 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
   boxes.handsNow = () => {
     pose(clock.time());
     return measurePoses(root, [() => root.updateMatrixWorld(true)]).hands;
+  };
+  boxes.headNow = () => {
+    pose(clock.time());
+    root.updateMatrixWorld(true);
+    const eyes = ['l_eyeball_joint', 'r_eyeball_joint'].map((name) => root.getObjectByName(name)).filter(Boolean);
+    const centre = new Vector3();
+    if (eyes.length === 2) {
+      eyes.forEach((eye) => centre.add(eye.getWorldPosition(new Vector3()).multiplyScalar(0.5)));
+      centre.y -= 0.03 * UNIT; // between the eyes and the mouth
+    } else {
+      root.getObjectByName('skullbase')?.getWorldPosition(centre);
+      centre.y += 0.07 * UNIT;
+    }
+    return new Box3().setFromCenterAndSize(centre, new Vector3(1, 1, 1).multiplyScalar(FACE_BOX * UNIT));
   };
   frameView(view, boxes, 'front');
   addFloor(view, boxes);
@@ -310,12 +346,33 @@ function finishFile(ui, view, timelineView, params, { skeleton, clip, root, raw,
     camera: () => ({ position: view.camera.position.toArray(), target: view.controls.target.toArray(), aspect: view.camera.aspect }),
     // World position of a joint in the drawn pose, scene units (cm).
     jointPosition: (name) => root.getObjectByName(name)?.getWorldPosition(new Vector3()).toArray() ?? null,
+    face: () => ({ ...shown }),
+    // Play the face (true) or hold it at rest (false), to see what the face alone changes.
+    showFace: (on) => {
+      faceOn = Boolean(on);
+      draw();
+      return faceOn;
+    },
+    morph: (name) => morphs?.influence(name) ?? null,
+    faceNames: face ? face.names.length : 0,
   };
   window.__muraReady = true;
   requestAnimationFrame(loop);
 }
 
-function startLive(ui, view, timelineView) {
+// The realizer's page: a box to send BML, the latest feedback line in the status.
+function buildSender(ui, send) {
+  const form = element('form', { id: 'mura-send' });
+  const box = element('textarea', { id: 'mura-bml', rows: 4, placeholder: '<bml xmlns="http://www.bml-initiative.org/bml/bml-1.0" id="b1">…</bml>' }, form);
+  element('button', { type: 'submit', textContent: 'Send BML' }, form);
+  form.addEventListener('submit', (event) => {
+    event.preventDefault();
+    send(box.value);
+  });
+  ui.controls.after(form);
+}
+
+function startLive(ui, view, timelineView, transport = 'sse') {
   ui.play.disabled = true;
   ui.scrub.disabled = true;
   ui.status.textContent = 'live: connecting…';
@@ -326,7 +383,7 @@ function startLive(ui, view, timelineView) {
   let meshes = 0;
   let time = 0;
   let timeline = normalizeTimeline({}, 0);
-  connectLive('./stream', {
+  const handlers = {
     onSkeleton(description) {
       if (root) view.scene.remove(root);
       const skeleton = skeletonFromLive(description);
@@ -344,6 +401,7 @@ function startLive(ui, view, timelineView) {
     },
     onFrame(frame) {
       applyFrame(bones, frame, UNIT);
+      if (root && frame.face) root.userData.face?.apply(frame.face);
       if (!framed && root) {
         // Frame on the first posed frame: the rest pose has the root at the origin.
         if (grid) view.scene.remove(grid);
@@ -355,7 +413,17 @@ function startLive(ui, view, timelineView) {
     onError(message) {
       ui.status.textContent = message;
     },
-  });
+    onFeedback(message) {
+      const line = describeFeedback(message);
+      if (line !== null) ui.status.textContent = line;
+    },
+  };
+  if (transport === 'ws') {
+    const client = connectSocket(socketUrl(window.location), handlers);
+    buildSender(ui, (xml) => client.send(xml));
+  } else {
+    connectLive('./stream', handlers);
+  }
   const loop = () => {
     ui.scrub.value = String(time);
     ui.time.textContent = format(time);
@@ -377,6 +445,7 @@ function boot() {
     const view = buildScene(ui.stage);
     if (corpusSpec()) startCorpus(ui, view, params, { measurePoses, frameView, addFloor });
     else if (params.get('live') === '1') startLive(ui, view, timelineView);
+    else if (params.get('live') === 'ws') startLive(ui, view, timelineView, 'ws');
     else startFile(ui, view, timelineView, params);
   } catch (error) {
     ui.status.textContent = `viewer error: ${error.message}`;

@@ -30,4 +30,6 @@ html, body { margin: 0; background: #101317; color: #dfe3ea; font: 14px/1.4 syst
 #mura-items li.active { color: #ffd27f; }
 #mura-more { font-size: 12px; color: #aab4c2; margin: 0; }
 #mura-play-all { font-size: 12px; white-space: nowrap; }
+#mura-send { display: flex; gap: 8px; margin: 8px 0; }
+#mura-send textarea { flex: 1; background: #1a1f26; color: #dfe3ea; border: 1px solid #4a5866; border-radius: 4px; font: 12px/1.3 monospace; }
 `;

@@ -1,0 +1,1 @@
+"""``mura serve``: the WebSocket realizer server and its protocol (BML in, feedback out)."""

@@ -1,0 +1,138 @@
+"""Wrist paths the arm can follow: in reach and clear of the torso, breakpoints and between.
+
+:func:`placed` moves points out of the torso (:func:`motor.body.collision.outside_torso`)
+and into the arm's reach (the nearest point the IK reaches); a point moved into reach may
+land in front of the torso's margin again, so the two moves alternate (a few rounds) until
+it is both. The gesture planner places every breakpoint so, but the curve through them
+(:mod:`motor.trajectory.power_law`) can still dip into the torso between two breakpoints
+on its front surface, or bulge past the reach — and the motor control would then push the
+wrist out of the body with a jump, or the arm stop short. So each rest-to-rest phase of the
+path (:func:`motor.trajectory.spline.phases`) is sampled every :data:`SPACING` metres along
+its curve; if any sample has to be moved, the phase is replaced by the samples, placed and
+their corners rounded (:data:`ROUNDING`), as its new breakpoints (timed evenly by arc
+length between the phase's own start and end times, which are all the power law keeps of
+them). Holds and reversals stay where they
+were (a reversal next to a replaced phase as a hold of :data:`STOP`). Positions are
+metres in the avatar frame, times seconds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.ndimage import gaussian_filter1d
+
+from dataclasses import dataclass
+
+from motor.arm.ik import solve_arm
+from motor.body.avatar import Avatar
+from motor.body.collision import outside_torso
+from motor.trajectory.power_law import path_spline
+from motor.trajectory.spline import phases
+
+#: Arc length between the samples of a phase checked against the torso, metres.
+SPACING = 0.01
+#: Arc length (m) over which the corners of a placed path are rounded.
+ROUNDING = 0.03
+#: Hold (s) that keeps the stop at a reversal between two phases of which one was replaced.
+STOP = 1e-3
+#: How far (m) the IK may fall short of a point before it is moved into reach (rounding
+#: only: a point left just out of reach would make the wrist stop short and jerk).
+REACH_TOLERANCE = 1e-6
+#: Rounds of alternately clearing the torso and moving into reach (usually one).
+_ROUNDS = 4
+
+
+@dataclass(frozen=True, eq=False)
+class Placement:
+    """Points moved into reach and out of the torso, and by how much: ``depth`` the most
+    (m) a point was inside the torso, ``shortfall`` the most the arm fell short, with the
+    counts of points moved for each."""
+
+    points: np.ndarray
+    inside: int
+    depth: float
+    short: int
+    shortfall: float
+
+
+def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
+    """``points`` ``(n, 3)`` of the arm on ``side`` (``"r"``/``"l"``) out of the torso and in
+    reach (module docstring)."""
+    clear = outside_torso(avatar, points)
+    inside = np.any(clear != points, axis=1)
+    solution = solve_arm(avatar, side, clear)
+    short = solution.shortfall > REACH_TOLERANCE
+    depth = float(np.max(np.abs(clear - points))) if np.any(inside) else 0.0
+    if not np.any(short):
+        return Placement(clear, int(np.sum(inside)), depth, 0, 0.0)
+    shortfall = float(np.max(solution.shortfall))
+    reached = np.where(short[:, None], solution.wrist, clear)
+    for _ in range(_ROUNDS):
+        cleared = outside_torso(avatar, reached)
+        solution = solve_arm(avatar, side, cleared)
+        reached = np.where((solution.shortfall > REACH_TOLERANCE)[:, None], solution.wrist, cleared)
+        if np.array_equal(reached, cleared):
+            break
+    return Placement(reached, int(np.sum(inside)), depth, int(np.sum(short)), shortfall)
+
+
+def _samples(piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Points along the curve through ``piece`` about every :data:`SPACING` metres (its
+    ends exact), and their fractions of the arc length."""
+    spline = path_spline(piece)
+    u = np.linspace(spline.x[0], spline.x[-1], 16 * piece.shape[0] + 1)
+    dense = spline(u)
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
+    count = max(2, int(np.ceil(arc[-1] / SPACING)) + 1)
+    fractions = np.linspace(0.0, 1.0, count)
+    samples = spline(np.interp(fractions * arc[-1], arc, u))
+    samples[[0, -1]] = piece[[0, -1]]
+    return samples, fractions
+
+
+def _rounded(avatar: Avatar, side: str, samples: np.ndarray) -> np.ndarray:
+    """Placed samples with the corners that placing leaves (where the path meets the torso
+    or the reach) rounded: smoothed by a Gaussian of :data:`ROUNDING` metres of arc and
+    placed again, twice; the ends stay."""
+    out = samples
+    for _ in range(2):
+        smooth = gaussian_filter1d(out, ROUNDING / SPACING, axis=0, mode="nearest")
+        smooth[[0, -1]] = samples[[0, -1]]
+        out = placed(avatar, side, smooth).points
+    return out
+
+
+def followable(avatar: Avatar, side: str, points: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """The breakpoints ``(n, 3)`` and times ``(n,)`` of a wrist path of the arm on ``side``,
+    with every phase that leaves the reach or enters the torso replaced by its samples,
+    placed (module docstring); and how many phases were replaced."""
+    spans = phases(points)
+    if not spans:
+        return points, times, 0
+    sampled = [_samples(points[first : last + 1]) for first, last in spans]
+    every = np.concatenate([samples for samples, _ in sampled])
+    placed_all = np.split(placed(avatar, side, every).points, np.cumsum([samples.shape[0] for samples, _ in sampled])[:-1])
+    changed = [not np.array_equal(cleared, samples) for (samples, _), cleared in zip(sampled, placed_all)]
+    placed_all = [_rounded(avatar, side, cleared) if change else cleared for cleared, change in zip(placed_all, changed)]
+    kept_points, kept_times = [points[:1]], [times[:1]]
+    previous = 0
+    for index, ((first, last), (samples, fractions), cleared) in enumerate(zip(spans, sampled, placed_all)):
+        kept_points.append(points[previous + 1 : first + 1])
+        kept_times.append(times[previous + 1 : first + 1])
+        start = float(times[first])
+        if index and spans[index - 1][1] == first and (changed[index - 1] or changed[index]):
+            # a reversal between two phases: new samples may no longer turn sharply enough
+            # there to be cut, so the stop becomes a hold of STOP seconds
+            start += STOP
+            kept_points.append(points[first : first + 1])
+            kept_times.append(np.array([start]))
+        if changed[index]:
+            kept_points.append(cleared[1:])
+            kept_times.append(start + fractions[1:] * (times[last] - start))
+        else:
+            kept_points.append(points[first + 1 : last + 1])
+            kept_times.append(times[first + 1 : last + 1])
+        previous = last
+    kept_points.append(points[previous + 1 :])
+    kept_times.append(times[previous + 1 :])
+    return np.concatenate(kept_points), np.concatenate(kept_times), int(sum(changed))

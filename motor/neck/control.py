@@ -1,0 +1,234 @@
+"""The neck motor module: torso, shoulders, neck, head and eyes of every frame.
+
+:class:`NeckControl` is what :class:`motor.control.MotorControl` holds beside the arms.
+It keeps the activated neck LMPs — gaze shifts on one :class:`ChannelTimeline`
+(:mod:`motor.neck.gaze`), head lexemes (:mod:`motor.neck.lexemes`) and body and shoulder
+movements (:mod:`motor.neck.trunk`), which add up — and :meth:`NeckControl.pose` applies
+them to frames whose arms are already solved, in this order (seed 004: joint-angle LMPs
+act on the solution configuration after the arm's IK):
+
+1. the torso rotation at ``vl5`` and the shoulders' at the sternoclavicular joints
+   (composed onto the clavicle rotation the IK chose);
+2. the head: its world orientation faces the gaze channel's head direction (shortest
+   arc from straight ahead, so it never rolls) turned by the head lexemes in its own
+   frame; relative to the torso it is shared by the neck joints — :data:`NECK_SHARES` of
+   the rotation at ``vc7`` and ``vc4``, the rest at ``skullbase``, which takes exactly
+   what is left so that the head's orientation is exact; a protrusion flexes ``vc7``
+   and the skull base makes up for it;
+3. each eye, from its actual centre in that pose, aims at the gaze channel's point:
+   the shortest rotation from straight ahead in the head's frame (Listing's law: no
+   torsion about the line of sight), at most :data:`EYE_RANGE` from it. This is the
+   vestibulo-ocular reflex of the model: while the head moves or nods, the eyes stay on
+   the target.
+
+The eyes turn at the H-Anim eyeball joints ``l_eyeball_joint``/``r_eyeball_joint`` when
+the avatar has them. Everything here is vectorized over the frames; the loop runs over
+the ~10 joints from the root to the head.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.body.avatar import Avatar
+from motor.neck.gaze import FORWARD, GazeLMP, eye_centre, rest_state
+from motor.neck.lexemes import HeadMovementLMP
+from motor.neck.trunk import TrunkLMP
+from motor.program.lmp import ChannelState, ChannelTimeline
+
+#: Share of the neck's rotation at ``vc7`` and ``vc4``; the skull base takes the rest.
+NECK_SHARES: tuple[float, float] = (0.25, 0.3)
+#: Largest eye rotation from straight ahead in the head, radians (the oculomotor range).
+EYE_RANGE = np.radians(45.0)
+EYES: tuple[str, ...] = ("l_eyeball_joint", "r_eyeball_joint")
+GAZE_CHANNEL = ("neck", "gaze")
+
+NeckLMP = GazeLMP | HeadMovementLMP | TrunkLMP
+
+
+class NeckControl:
+    """The neck LMPs activated so far, applied to frames (module docstring).
+
+    ``hands(arm, times)`` gives the palm centre of ``"right"``/``"left"`` at sorted
+    ``times``, for gaze that follows a hand.
+    """
+
+    def __init__(self, avatar: Avatar, hands: Callable[[str, np.ndarray], np.ndarray] | None = None) -> None:
+        self.avatar = avatar
+        self.hands = hands
+        self.origin = eye_centre(avatar)
+        self._initial = ChannelState.at_rest(rest_state(avatar))
+        self._gazes: list[GazeLMP] = []
+        self._timeline: ChannelTimeline | None = None
+        self._heads: list[HeadMovementLMP] = []
+        self._trunks: list[TrunkLMP] = []
+        index = avatar.joint_index
+        self._torso = index("vl5")
+        self._clavicles = (index("l_sternoclavicular"), index("r_sternoclavicular"))
+        self._neck = (index("vc7"), index("vc4"), index("skullbase"))
+        self._path = _path(avatar, self._neck[0])
+        self._eyes = tuple(index(name) for name in EYES if name in avatar.joint_names)
+
+    # -- activation ---------------------------------------------------------------
+
+    def activate(self, lmp: NeckLMP) -> float:
+        """Hand an LMP to its channel; returns the time (s) from which it changes frames."""
+        if isinstance(lmp, GazeLMP):
+            self._activate_gaze(lmp)
+            return lmp.pegs.start
+        if isinstance(lmp, HeadMovementLMP):
+            self._heads.append(lmp)
+        elif isinstance(lmp, TrunkLMP):
+            self._trunks.append(lmp)
+        else:
+            raise TypeError(f"the neck has no channel for {type(lmp).__name__}")
+        return lmp.first
+
+    def _activate_gaze(self, lmp: GazeLMP) -> None:
+        """Add a gaze LMP; returns to rest of earlier behaviours that would start after it
+        are dropped (the new gaze keeps the eyes)."""
+        kept = [g for g in self._gazes if lmp.returning or not (g.returning and g.pegs.start > lmp.pegs.start)]
+        dropped = len(kept) < len(self._gazes)
+        self._gazes = [*kept, lmp]
+        last = self._timeline.starts[-1] if self._timeline is not None and self._timeline.starts.size else -np.inf
+        if self._timeline is not None and not dropped and lmp.pegs.start >= last:
+            self._timeline = self._timeline.extended(lmp)
+        else:
+            self._timeline = None
+
+    def timeline(self) -> ChannelTimeline:
+        """The gaze channel's timeline of everything activated so far."""
+        if self._timeline is None:
+            self._timeline = ChannelTimeline.build(GAZE_CHANNEL, self._gazes, self._initial)
+        return self._timeline
+
+    def gaze_state(self, time: float) -> ChannelState:
+        """Gaze point and head direction at ``time`` given what is activated."""
+        return self.timeline().state(time)
+
+    def shift_duration(self, lmp: GazeLMP, at: float) -> float:
+        """Seconds ``lmp`` would take to bring eyes and head on target from the gaze at ``at``."""
+        state = self.gaze_state(at)
+        return lmp.natural_duration(state.value[:3], state.value[3:6], at)
+
+    def head_moves(self, time: float) -> bool:
+        """Whether a head lexeme is in progress at ``time``."""
+        return any(lmp.first <= time <= lmp.last for lmp in self._heads)
+
+    def interrupt(self, at: float, back: GazeLMP) -> None:
+        """Drop what would start after ``at`` and look back to rest with ``back``."""
+        self._heads = [lmp for lmp in self._heads if lmp.first <= at]
+        self._trunks = [lmp for lmp in self._trunks if lmp.first <= at]
+        self._gazes = [lmp for lmp in self._gazes if lmp.pegs.start <= at]
+        self._timeline = None
+        self._activate_gaze(back)
+
+    def forget_before(self, horizon: float) -> None:
+        """Drop what lost control before ``horizon`` seconds (memory stays flat)."""
+        self._heads = [lmp for lmp in self._heads if lmp.last >= horizon]
+        self._trunks = [lmp for lmp in self._trunks if lmp.last >= horizon]
+        timeline = self.timeline()
+        keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
+        if keep <= 0:
+            return
+        start = float(timeline.starts[keep])
+        state = timeline.realizations[keep - 1].state(start)
+        self._initial = ChannelState(np.asarray(state.value, dtype=float), np.asarray(state.velocity, dtype=float), start)
+        self._timeline = ChannelTimeline(GAZE_CHANNEL, self._initial, timeline.lmps[keep:], timeline.realizations[keep:], timeline.starts[keep:])
+        self._gazes = list(timeline.lmps[keep:])
+
+    # -- frames -------------------------------------------------------------------
+
+    def pose(self, times: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+        """``rotations (n, J, 4)`` (arms solved) with torso, shoulders, neck, head and eyes
+        set for ``times`` (module docstring); changed in place and returned."""
+        t = np.asarray(times, dtype=float)
+        if t.size == 0:
+            return rotations
+        self._trunk(t, rotations)
+        gaze = _sample(self.timeline(), t)
+        looked, facing = gaze[:, :3], quat.normalize(gaze[:, 3:6])
+        offsets = np.zeros((t.size, 4))
+        for lmp in self._heads:
+            if lmp.last >= t[0] and lmp.first <= t[-1]:
+                offsets += lmp.sample(t)
+        head = quat.multiply(quat.between_vectors(FORWARD, facing), quat.from_rotation_vector(offsets[:, :3]))
+        torso, torso_at = _chain(self.avatar, rotations, self._path)
+        self._neck_joints(rotations, torso, head, offsets[:, 3])
+        if self._eyes:
+            self._aim_eyes(rotations, torso, torso_at, head, looked)
+        return rotations
+
+    def _trunk(self, t: np.ndarray, rotations: np.ndarray) -> None:
+        active = [lmp for lmp in self._trunks if lmp.last >= t[0] and lmp.first <= t[-1]]
+        if not active:
+            return
+        total = sum(lmp.sample(t) for lmp in active)
+        rotations[:, self._torso] = quat.multiply(quat.from_rotation_vector(total[:, :3]), rotations[:, self._torso])
+        for joint, part in zip(self._clavicles, (total[:, 3:6], total[:, 6:9])):
+            rotations[:, joint] = quat.multiply(quat.from_rotation_vector(part), rotations[:, joint])
+
+    def _neck_joints(self, rotations: np.ndarray, torso: np.ndarray, head: np.ndarray, protrusion: np.ndarray) -> None:
+        """vc7, vc4 and skull base so that the head's world orientation is ``head``."""
+        relative = quat.to_rotation_vector(quat.multiply(quat.conjugate(torso), head))
+        flex = protrusion[:, None] * np.array([1.0, 0.0, 0.0])
+        lower = quat.from_rotation_vector(NECK_SHARES[0] * relative + flex)
+        middle = quat.from_rotation_vector(NECK_SHARES[1] * relative)
+        vc7, vc4, skull = self._neck
+        rotations[:, vc7] = lower
+        rotations[:, vc4] = middle
+        above = quat.multiply(quat.multiply(torso, lower), middle)
+        rotations[:, skull] = quat.normalize(quat.multiply(quat.conjugate(above), head))
+
+    def _aim_eyes(self, rotations: np.ndarray, torso: np.ndarray, torso_at: np.ndarray, head: np.ndarray, looked: np.ndarray) -> None:
+        """Each eye's rotation in the head so that it looks at ``looked`` from where it is."""
+        avatar = self.avatar
+        orientation, position = torso, torso_at
+        for joint in self._neck:
+            position = position + quat.rotate(orientation, avatar.offsets[joint])
+            orientation = quat.multiply(orientation, rotations[:, joint])
+        skull = self._neck[2]
+        for eye in self._eyes:
+            centre = position + quat.rotate(orientation, avatar.rest_positions[eye] - avatar.rest_positions[skull])
+            seen = quat.normalize(quat.rotate(quat.conjugate(head), looked - centre))
+            turn = quat.between_vectors(FORWARD, seen)
+            angle = quat.angle_between(quat.IDENTITY, turn)
+            fraction = np.minimum(1.0, EYE_RANGE / np.maximum(angle, 1e-12))
+            rotations[:, eye] = quat.slerp(quat.IDENTITY, turn, fraction)
+
+
+def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
+    """The timeline's values at sorted ``times``, asking only the realizations in control there."""
+    out = np.empty((times.size, np.size(timeline.initial.value)))
+    out[:] = timeline.initial.value
+    owner = np.searchsorted(timeline.starts, times, side="right") - 1
+    for index in range(max(int(owner[0]), 0), int(owner[-1]) + 1):
+        lo, hi = np.searchsorted(owner, index, side="left"), np.searchsorted(owner, index, side="right")
+        if hi > lo:
+            out[lo:hi] = timeline.realizations[index].sample(times[lo:hi])
+    return out
+
+
+def _path(avatar: Avatar, joint: int) -> tuple[int, ...]:
+    """The joints from the root down to ``joint``'s parent."""
+    chain = []
+    parent = int(avatar.parents[joint])
+    while parent >= 0:
+        chain.append(parent)
+        parent = int(avatar.parents[parent])
+    return tuple(reversed(chain))
+
+
+def _chain(avatar: Avatar, rotations: np.ndarray, path: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """World orientation ``(n, 4)`` and position ``(n, 3)`` of the last joint of ``path``
+    (root at the origin)."""
+    n = rotations.shape[0]
+    orientation = np.broadcast_to(quat.IDENTITY, (n, 4))
+    position = np.zeros((n, 3))
+    for joint in path:
+        position = position + quat.rotate(orientation, avatar.offsets[joint])
+        orientation = quat.multiply(orientation, rotations[:, joint])
+    return orientation, position

@@ -1,0 +1,95 @@
+"""β, jerk ratio and the movement segmentation on synthetic wrist paths with known answers."""
+
+import numpy as np
+import pytest
+
+from bench.motion_audit import movement, speed_laws
+
+from .synthetic import FPS, minimum_jerk
+
+
+def ellipse_with_power_law(a: float, b: float, beta: float, laps: float = 1.5, fps: float = FPS) -> np.ndarray:
+    """A synthetic wrist tracing an ellipse with speed ∝ R^beta, sampled at ``fps``."""
+    theta = np.linspace(0.0, 2.0 * np.pi * laps, 40001)
+    arc = np.hypot(a * np.sin(theta), b * np.cos(theta))
+    radius = arc**3 / (a * b)
+    speed = 0.6 * radius**beta / 0.1**beta
+    time = np.concatenate(([0.0], np.cumsum(np.diff(theta) * 0.5 * (arc[1:] / speed[1:] + arc[:-1] / speed[:-1]))))
+    angle = np.interp(np.arange(0.0, time[-1], 1.0 / fps), time, theta)
+    return np.stack((a * np.cos(angle), 1.3 + b * np.sin(angle), np.full_like(angle, 0.35)), axis=1)
+
+
+@pytest.mark.parametrize("beta", [0.15, 1 / 3, 0.45])
+@pytest.mark.parametrize("axes", [(0.15, 0.06), (0.12, 0.08)])
+def test_power_law_exponent_is_recovered(beta, axes):
+    path = ellipse_with_power_law(*axes, beta)
+    fit = speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic", 0.0)
+    assert fit is not None and fit.beta == pytest.approx(beta, abs=0.02)
+    assert fit.r_squared > 0.9
+
+
+def test_straight_stroke_is_not_curved():
+    path = np.outer(minimum_jerk(40), [0.3, 0.1, 0.0]) + [0.0, 1.2, 0.3]
+    assert speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic straight", 0.0) is None
+
+
+def test_circle_is_curved_but_has_no_exponent():
+    angle = np.linspace(0.0, 3 * np.pi, 90)
+    path = np.stack((0.1 * np.cos(angle), 1.2 + 0.1 * np.sin(angle), np.full_like(angle, 0.3)), axis=1)
+    fit = speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic circle", 0.0)
+    assert fit is not None and fit.beta is None and fit.turn_degrees > 400
+
+
+def rest_move_rest(progress: np.ndarray, before: int = 10, after: int = 10, span=(0.25, 0.05, 0.1)) -> np.ndarray:
+    """A synthetic wrist still, then moving along a line with ``progress`` (0 to 1), then still."""
+    full = np.concatenate((np.zeros(before), progress, np.ones(after)))
+    return np.outer(full, span) + [0.1, 1.0, 0.3]
+
+
+@pytest.mark.parametrize("frames", [20, 36, 61])
+@pytest.mark.parametrize("span", [(0.25, 0.05, 0.1), (0.0, 0.4, 0.0)])
+def test_minimum_jerk_movement_has_jerk_ratio_one(frames, span):
+    path = rest_move_rest(minimum_jerk(frames), span=span)
+    units = movement.segment(path, FPS).units
+    assert len(units) == 1 and units[0].from_rest and units[0].to_rest
+    assert speed_laws.jerk_ratio(path, units[0], FPS) == pytest.approx(1.0, abs=0.05)
+
+
+@pytest.mark.parametrize(
+    "profile, low",
+    [
+        (lambda tau: 3 * tau**2 - 2 * tau**3, 1.5),  # zero speed but a step in acceleration at both ends
+        (lambda tau: tau, 3.0),  # a step in speed
+        (lambda tau: np.where(tau < 0.5, 2 * tau**2, 1 - 2 * (1 - tau) ** 2), 1.5),
+    ],
+)
+def test_starts_with_a_step_in_acceleration_have_a_high_jerk_ratio(profile, low):
+    path = rest_move_rest(profile(np.linspace(0.0, 1.0, 40)))
+    unit = movement.segment(path, FPS).units[0]
+    assert unit.from_rest
+    assert speed_laws.jerk_ratio(path, unit, FPS) > low
+
+
+def two_movements(dip: float) -> np.ndarray:
+    """Two synthetic reaches whose speed dips to ``dip`` of the peak between them (at frame 50)."""
+    t = np.arange(101) / FPS
+    speed = 0.6 * np.abs(np.sin(np.pi * t / (50 / FPS))) * (1 - dip) + 0.6 * dip * (t > 0) * (t < 100 / FPS)
+    distance = np.concatenate(([0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) / FPS)))
+    return np.outer(distance, [1.0, 0.0, 0.0]) + [0.0, 1.2, 0.3]
+
+
+@pytest.mark.parametrize("dip, valleys", [(0.1, 1), (0.3, 1), (0.8, 0)])
+def test_deep_speed_valleys_split_movements(dip, valleys):
+    segmentation = movement.segment(two_movements(dip), FPS)
+    assert len(segmentation.valleys) == valleys
+    if valleys:
+        assert segmentation.valleys[0].at == pytest.approx(50.0, abs=0.5)
+        assert len(segmentation.units) == 2
+
+
+def test_holds_arrive_and_depart_on_the_right_frames():
+    path = np.concatenate((rest_move_rest(minimum_jerk(30), before=5, after=20), rest_move_rest(minimum_jerk(30), before=0, after=5)[1:] + [0.25, 0.05, 0.1]))
+    holds = movement.segment(path, FPS).holds
+    arrivals = [hold.first for hold in holds]
+    departures = [hold.last for hold in holds]
+    assert 34 in arrivals and 54 in departures  # moving frames 5..34, still to 54, then moving again
