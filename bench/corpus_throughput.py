@@ -13,7 +13,7 @@ avatar and options, once on one worker and once on every core of the machine (a
   one-worker rate. On a machine shared with other work these rates fall with its load, so
   items per processor-second of the workers (their user and system time) is given too:
   the rate of one worker with a core to itself.
-* **bytes per sign**: the per-sign files (BVH and the index's motion file) on average,
+* **bytes per sign**: the per-sign files (BVH, face weights and the index's motion file) on average,
   and with the index page and the avatar model's sidecar shared out over the signs.
 """
 
@@ -64,7 +64,9 @@ def run(quick: bool) -> dict:
 
 def _coverage_and_bytes(folder: Path, rendered: int, valid: int) -> dict:
     report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
-    per_sign = sum(p.stat().st_size for p in folder.iterdir() if p.suffix in (".bvh", ".js") and not p.name.startswith("mura-avatar-"))
+    per_sign = sum(p.stat().st_size for p in folder.iterdir()
+                   if (p.suffix in (".bvh", ".js") or p.name.endswith(".face.json")) and not p.name.startswith("mura-avatar-"))
+    face = sum(p.stat().st_size for p in folder.glob("*.face.json"))
     shared = sum(p.stat().st_size for p in folder.iterdir() if p.name == INDEX or p.name.startswith("mura-avatar-"))
     motion = sum(p.stat().st_size for p in folder.glob("*.motion.js"))
     return {
@@ -73,5 +75,6 @@ def _coverage_and_bytes(folder: Path, rendered: int, valid: int) -> dict:
         "failures_by_kind": {kind: group["count"] for kind, group in report["failures_by_kind"].items()},
         "bytes_per_sign": round(per_sign / max(rendered, 1)),
         "motion_file_bytes_per_sign": round(motion / max(rendered, 1)),
+        "face_file_bytes_per_sign": round(face / max(rendered, 1)),
         "bytes_per_sign_with_shared_pages": round((per_sign + shared) / max(rendered, 1)),
     }
