@@ -30,6 +30,7 @@ MODULES: tuple[str, ...] = (
     "bench.motion_speed",
     "bench.scheduler_speed",
     "bench.signing_speed",
+    "bench.corpus_throughput",
     "bench.motion_quality",
     "bench.head_face",
     "bench.motion_audit",
@@ -96,7 +97,7 @@ TARGETS: tuple[Target, ...] = (
     Target("motion audit: strokes with a visible onset landmark", "100 %", ("bench.motion_audit", "stroke_landmark_percent"), "min", 100.0, "%"),
     Target("motion audit: stroke onset lead vs acoustic onset (max error, espeak)", "200 ms ± 1 frame", ("bench.motion_audit", "stroke_onset_error_max_frames"), "max", 1.0, "frames"),
     Target("memory for one hour of speech", "< 500 MB", ("bench.memory", "one_hour_peak_rss_mb"), "below", 500.0, "MB"),
-    Target("real SiGML signs rendered", "≥ 99.5%", ("bench.signing_speed", "rendered_percent"), "min", 99.5, "%"),
+    Target("real SiGML signs rendered (of valid signs)", "≥ 99.5%", ("bench.corpus_throughput", "rendered_percent_of_valid"), "min", 99.5, "%"),
     Target("mouth opening vs audio energy, espeak (lowest example)", "r ≥ 0.5", ("bench.head_face", "lipsync_r_min"), "min", 0.5),
     Target("gaze direction error at the stroke (largest)", "< 5°", ("bench.head_face", "gaze_error_max_deg"), "below", 5.0, "°"),
 )
