@@ -51,6 +51,7 @@ from motor.body.avatar import Avatar, load_avatar
 from motor.control import MotorControl
 from mura.bml import BmlBlock
 from mura.errors import SourceLocation, SpecError
+from mura.lexicon import GestureLexicon
 from mura.limits import DEFAULT_LIMITS, Limits
 from tts import SpeechSynthesizer, make_synthesizer
 from tts.interruptible import CheckedSynthesizer, InterruptibleSynthesizer
@@ -71,6 +72,8 @@ class Agent:
         speedup: how much faster than real time the live clock runs (1: real time; more
             for previews and tests).
         limits: the input limits every utterance is read and performed against.
+        lexicon: the gesture lexicon functions are looked up in (the bundled one when None;
+            see :func:`mura.lexicon.load_lexicons`).
     """
 
     def __init__(
@@ -82,8 +85,10 @@ class Agent:
         rate: float = 1.0,
         speedup: float = 1.0,
         limits: Limits = DEFAULT_LIMITS,
+        lexicon: GestureLexicon | None = None,
     ) -> None:
         self.limits = limits
+        self.lexicon = lexicon
         self.fps = limits.check_fps(fps)
         self.config = SchedulerConfig(voice=voice, rate=limits.check_rate(rate), limits=limits)
         self.avatar = load_avatar(avatar) if isinstance(avatar, str) else avatar
@@ -101,7 +106,7 @@ class Agent:
         """Perform ``utterance`` offline; raises :class:`SpecError` for a bad spec and
         :class:`PerformanceError` (with the part performed) when a chunk fails. ``name``
         (the saved files' stem) must be a plain file name."""
-        model, default_name = read_utterance(utterance, self.limits)
+        model, default_name = read_utterance(utterance, self.limits, self.lexicon)
         name = check_stem(name) if name is not None else default_name
         scheduler = Scheduler(CheckedSynthesizer(self.tts), MotorControl(self.avatar, self.fps), VirtualClock(), self.config)
         try:
@@ -118,7 +123,7 @@ class Agent:
         length; the files equal ``render(...).save(directory)``'s. Raises as :meth:`render`
         does (``partial`` None). ``name`` must be a plain file name: nothing is ever written
         outside ``directory``."""
-        model, default_name = read_utterance(utterance, self.limits)
+        model, default_name = read_utterance(utterance, self.limits, self.lexicon)
         name = check_stem(name) if name is not None else default_name
         return render_to_files(model, directory, CheckedSynthesizer(self.tts), self.avatar, self.fps, self.config, name, glb=glb)
 
@@ -134,7 +139,7 @@ class Agent:
         at once with a handle to wait on or interrupt. A BML block keeps its id as its name
         (used once at a time); a MURML utterance whose name is still playing or queued is
         named ``NAME-2``, ``NAME-3`` …"""
-        model, default_name, block = read_spec(utterance, self.limits)
+        model, default_name, block = read_spec(utterance, self.limits, self.lexicon)
         name = block.id if block is not None else check_stem(name) if name is not None else default_name
         scheduler, speech = self._live_scheduler(audio)
         with self._live_lock:

@@ -43,11 +43,13 @@ class Symmetry:
 
     ``planes`` holds the mirror planes: ``S`` sagittal (left–right), ``T`` transversal
     (up–down), ``F`` frontal (front–back). Plain ``Sym`` names no plane; mura reads it as
-    the sagittal mirror, the symmetry of almost every two-handed gesture.
+    the sagittal mirror, the symmetry of almost every two-handed gesture. ``alternating``
+    makes the hands take turns (HamNoSys ``hamalternatingmotion`` after the operator).
     """
 
     planes: frozenset[str]
     name: str
+    alternating: bool = False
 
     @property
     def mirrors_sagittal(self) -> bool:
@@ -106,13 +108,46 @@ class Static:
 
 
 @dataclass(frozen=True)
+class KeyFrame:
+    """One frame of a keyframed movement (published MURML ``<frame ftime>``).
+
+    ``time`` is seconds from the start of the keyframing (phases laid end to end);
+    ``joints`` holds ``(name, values)`` as written in the ``<posture>``: a joint or morph
+    name (H-Anim joints such as ``vc4``, ``r_shoulder``; morph targets such as
+    ``dB_Smile``) and its degrees of freedom — three are roll, pitch and yaw in degrees
+    for a joint, as the published realizer reads them.
+    """
+
+    time: float
+    joints: tuple[tuple[str, tuple[float, ...]], ...]
+
+
+@dataclass(frozen=True)
+class Keyframing:
+    """A keyframed movement of named joints (published MURML ``<keyframing>``).
+
+    ``mode`` is the interpolation (``spline``, ``linear``, ``squad``, ``quaternion``,
+    ``raw``); ``easescale`` and ``easeturningpoint`` shape the ease in and out;
+    ``start_frame`` says whether the current posture is inserted as a first frame.
+    """
+
+    frames: tuple[KeyFrame, ...]
+    mode: str = "spline"
+    easescale: float = 1.0
+    easeturningpoint: float = 0.5
+    start_frame: bool = True
+
+
+@dataclass(frozen=True)
 class Dynamic:
-    """A feature performing a significant submovement: ``slot`` follows ``segments``."""
+    """A feature performing a significant submovement: ``slot`` follows ``segments``
+    (and, for keyframed movements, ``keyframes``)."""
 
     slot: str
     segments: tuple[Segment, ...]
     scope: Arm | str | None = None
     where: SourceLocation | None = field(default=None, compare=False)
+    keyframes: Keyframing | None = None
 
 
 @dataclass(frozen=True)
@@ -152,6 +187,9 @@ class Repetition:
     ``mode`` says where each repetition starts (HamNoSys): ``fromstart`` (back to the
     initial posture), ``continue`` (on from where the last one ended) or ``reverse``
     (back along the same path); ``alternating`` makes the two hands take turns.
+    ``displacement`` is a straight movement that shifts every pass after the first by
+    its direction and size once more (HamNoSys ``( move repeat move )``: a repetition
+    with displacement, such as shelves stacked downwards), None for repetition in place.
     """
 
     child: Constraint
@@ -159,6 +197,7 @@ class Repetition:
     where: SourceLocation | None = field(default=None, compare=False)
     mode: str = "fromstart"
     alternating: bool = False
+    displacement: Segment | None = None
 
 
 Constraint = Union[Static, Dynamic, Parallel, Sequence, Symmetrical, Repetition]

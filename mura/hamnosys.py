@@ -10,15 +10,18 @@ write it (``[…]`` optional, ``{…}`` any number, ``|`` choice)::
                   | nonipsi | fingerplay}
     posture     = group {group}
     group       = hand | parbegin hand plus (hand | nomotion) parend [contact] [location]
-    hand        = [nondominant] [etc] [shape] [etc] [extfinger] [palm] [etc] [location]
+    hand        = [nondominant] [etc] [shape] [etc] [extfinger] [palm] [etc]
+                  [location [bending | thumbmod | fingers bending]]
     shape       = handshape {thumbmod | bending | fingers bending | fingers
                   | fingers (handsite | between) fingers} [between shape]
     extfinger   = extfinger [orirelative] [extfinger] [between extfinger] [orirelative]
     palm        = palm [between palm] [orirelative]
-    location    = [contact] place [between place] [contact]
+    location    = {contact} place [between place] {contact}
+                  [seqbegin contact handpart seqend]
     place       = [side] (site | finger) {site | finger} [side]
-    action      = unit {repeat [alternatingmotion] | alternatingmotion | size | manner}
-                | (size | manner) unit
+    action      = unit {repeat [alternatingmotion] [move] | alternatingmotion | size | manner
+                        | (seqbegin | parbegin | fusionbegin) repeat [move] end}
+                | (size | manner) unit | repeat
     unit        = move {modifier} | circle {modifier} | local {modifier}
                 | replace {size | manner} posture | posture
                 | seqbegin {action} seqend | fusionbegin {action} fusionend
@@ -42,6 +45,25 @@ Decisions the real corpora force (documented because they change meaning):
 - A manner after a posture with no movement (``… hampalmd hamtense``) is the sign's
   :attr:`~mura.signs.Sign.manner`; ``hamnondominant`` before a one-hand posture makes the
   whole sign with the non-dominant arm.
+- Each part of a compound may write its own symmetry operator (``… hamplus hamsymmpar …``):
+  a part whose operator differs from the sign's is a :class:`~mura.constraints.Symmetrical`
+  node of the movement, both hands taking part in it.
+- A straight movement right after a repetition inside a bracket is the repetition's
+  *displacement* (``( move repeat move )``: each pass shifted, as shelves stacked
+  downwards); so is a bracket that opens with a repetition after a movement
+  (``move [ repeat move ]``). Outside brackets a movement after a repetition follows it.
+- A repetition with no movement before it, when the hand touches its location
+  (``shouldertop hambehind hamtouch hamrepeatfromstart``), repeats the contact: the hand
+  leaves the site (``close``) and touches it again.
+- A contact bracket after a location, ``seqbegin contact hand-part… seqend``
+  (``hamnose [hamtouch hamthumb hamfingertip]``), names the part of the moving hand that
+  makes the contact (:attr:`~mura.values.BodySite.hand_part`), in a one-handed location or
+  either hand's in a split one; a bracket holding anything else is a movement.
+- A finger bending (or thumb modifier) written after a location is the shape the hand
+  holds there (HamNoSys 4's qualifiers after the location); a run of contact symbols is
+  one contact, the last that is not ``hambehind`` (``hambehind hamtouch`` touches).
+- ``hamneutralspace`` is a location like any other (the motor reads it as neutral space),
+  for either hand.
 - ``hamfusionbegin … hamfusionend`` (movements fused into one) is read as a sequence; a
   location after a movement is its end, after a bracket a ``Static`` target.
 - Of alternatives ``hamaltbegin a hammetaalt b hamaltend`` the first is read.
@@ -68,6 +90,7 @@ from mura.constraints import (
     Segment,
     SegmentKind,
     Static,
+    Symmetrical,
 )
 from mura.constraints import Sequence as SequenceNode
 from mura.errors import SourceLocation, SpecError
@@ -132,12 +155,16 @@ _LOCAL_MOVES: dict[str, tuple[str, SegmentKind]] = {
     "hammovecross": ("HandLocation", SegmentKind.LINEAR),
     "hammovex": ("HandLocation", SegmentKind.LINEAR),
 }
+#: Contacts a repeated contact repeats (touching the site, not hovering near it).
+_TOUCHES = frozenset({"touch", "brushing", "interlock", "cross"})
 _OPENER_OF: dict[str, str] = {"hamseqend": "hamseqbegin", "hamparend": "hamparbegin", "hamfusionend": "hamfusionbegin"}
 #: Deepest nesting of brackets accepted (real signs nest three or four deep).
 MAX_NESTING = 32
 _FEATURE_STARTS = frozenset({"handshape", "extfinger", "palm"})
 _SITE_CATEGORIES = frozenset({"location-head", "location-body", "location-arm", "location-hand"})
 _HAND_SIDES = frozenset({"hampalm", "hamhandback", "hamthumbside", "hampinkyside"})
+#: Categories of the symbols that name a part of the moving hand in a contact bracket.
+_HAND_PART_CATEGORIES = frozenset({"finger", "location-hand", "location-arm", "side"})
 _POSTURE_STARTS = frozenset(
     {"handshape", "thumbmod", "extfinger", "palm", "side", "finger", "contact"} | _SITE_CATEGORIES
 )
@@ -376,13 +403,7 @@ class _Parser:
         self.current = _features(posture.dominant)
         actions = self.actions(stop=())
         while self.at("hamplus"):
-            # A compound: the next part of the sign starts from a posture of its own.
-            plus = self.take()
-            symmetry = symmetry or self.symmetry()
-            if self.peek() is None:
-                raise self.truncated("the posture of the next part after hamplus")
-            actions.append(self.posture_change(plus, self.posture()))
-            actions.extend(self.actions(stop=()))
+            actions.append(self.compound_part(symmetry))
         token = self.peek()
         if token is not None and token.name in _OPENER_OF:
             raise _misplaced(self.gloss, token, f"{token.name} without a matching {_OPENER_OF[token.name]}")
@@ -404,6 +425,26 @@ class _Parser:
             manner=manner,
             where=self.where,
         )
+
+    def compound_part(self, symmetry: SignSymmetry | None) -> Constraint:
+        """The next part of a compound (after a top-level ``hamplus``): a change to its own
+        posture and its movements. A part that writes its own symmetry operator is wrapped
+        in :class:`Symmetrical` with it (both hands take part from there on); a part
+        without one keeps the sign's."""
+        plus = self.take()
+        own = self.symmetry()
+        if self.peek() is None:
+            raise self.truncated("the posture of the next part after hamplus")
+        part = [self.posture_change(plus, self.posture())]
+        part.extend(self.actions(stop=()))
+        body = _sequence(part)
+        assert body is not None
+        if own is None or own == symmetry:
+            return body
+        self.two_handed = True
+        if own.alternating:
+            body = _alternating(body)
+        return Symmetrical(body, self.dominant, own.to_model(), where=plus.where)
 
     def symmetry(self) -> SignSymmetry | None:
         if not self.at("hamsymmlr", "hamsymmpar"):
@@ -511,6 +552,8 @@ class _Parser:
         hand.etc |= self.skip_etc()
         if self.at_location():
             hand.location = self.location()
+            if self.at_shape_modifier():
+                hand.shape = self.bending_at_location(hand)
         hand.etc |= self.skip_etc()
         if self.pos == start and not allow_empty:
             token = self.peek()
@@ -518,6 +561,14 @@ class _Parser:
                 raise self.truncated("a hand shape, orientation or location")
             raise self.unexpected(token, "a hand shape, orientation or location")
         return hand
+
+    def bending_at_location(self, hand: _Hand) -> HandShape:
+        """A finger bending (or thumb modifier) written after the location: the hand's
+        shape as it is held there, bent so."""
+        base = hand.shape or self.current.get("HandShape")
+        if not isinstance(base, HandShape):
+            raise self.unexpected(self.tokens[self.pos], "a hand shape before its bending")
+        return self.shape_modifiers(base)
 
     def skip_etc(self) -> bool:
         seen = False
@@ -632,7 +683,7 @@ class _Parser:
         return False
 
     def location(self) -> Location:
-        contact = _CONTACTS[self.take().name] if self.at_category("contact") else None
+        contact = self.contacts()
         if not self.at_place():
             if contact is None:
                 token = self.peek()
@@ -643,11 +694,43 @@ class _Parser:
             self.take()
             location = BetweenLocation(location, self.place())
         self.skip_etc()
-        if self.at_category("contact"):
-            contact = _CONTACTS[self.take().name]
+        contact = self.contacts() or contact
         if contact is not None:
             location = _with_contact(location, contact)
+        if self.at_contact_bracket():
+            location = self.contact_bracket(location)
         return location
+
+    def contacts(self) -> str | None:
+        """A run of contact symbols (``hambehind hamtouch``): the contact the hand makes;
+        ``behind`` (a side of the site, not a distance) only when it stands alone."""
+        names: list[str] = []
+        while self.at_category("contact"):
+            names.append(_CONTACTS[self.take().name])
+        made = [name for name in names if name != "behind"]
+        return made[-1] if made else (names[-1] if names else None)
+
+    def at_contact_bracket(self) -> bool:
+        """Whether a bracket ``hamseqbegin contact hand-part… hamseqend`` follows: the part
+        of the moving hand that makes the location's contact (HamNoSys 4)."""
+        if not self.at("hamseqbegin"):
+            return False
+        contact = self.peek(1)
+        if contact is None or contact.category != "contact":
+            return False
+        ahead = 2
+        while (token := self.peek(ahead)) is not None and token.category in _HAND_PART_CATEGORIES:
+            ahead += 1
+        token = self.peek(ahead)
+        return ahead > 2 and token is not None and token.name == "hamseqend"
+
+    def contact_bracket(self, location: Location) -> Location:
+        self.take()
+        contact = self.contacts()
+        assert contact is not None
+        part = self.place()
+        self.expect("hamseqend", "the contact bracket")
+        return _with_hand_part(_with_contact(location, contact), part)
 
     def at_place(self, ahead: int = 0) -> bool:
         token = self.peek(ahead)
@@ -676,6 +759,8 @@ class _Parser:
         actions: list[Constraint] = []
         while (token := self.peek()) is not None and token.name not in stop:
             if token.category == "repeat":
+                if not actions and token.name != "hamalternatingmotion" and not stop and self.touching():
+                    actions.append(self.tap(token))
                 if not actions:
                     raise self.unexpected(token, "a movement before the repetition")
                 if token.name == "hamalternatingmotion":
@@ -684,7 +769,10 @@ class _Parser:
                 else:
                     if _repetition_depth(actions[-1]) >= MAX_NESTING:
                         raise _misplaced(self.gloss, token, f"more than {MAX_NESTING} repetitions of one movement")
-                    actions[-1] = self.repetition(actions[-1])
+                    actions[-1] = self.repetition(actions[-1], displaced=bool(stop))
+                continue
+            if actions and self.at_bracketed_repetition():
+                actions[-1] = self.bracketed_repetition(actions[-1])
                 continue
             if token.category in ("size", "manner"):
                 following = self.peek(1)
@@ -705,14 +793,61 @@ class _Parser:
             actions.append(unit)
         return actions
 
-    def repetition(self, child: Constraint) -> Repetition:
+    def repetition(self, child: Constraint, displaced: bool = False) -> Repetition:
+        """The repetition symbol just ahead applied to ``child``. Inside a bracket
+        (``displaced``), a straight movement right after it is the displacement of the
+        passes: ``( move repeat move )``."""
         token = self.take()
         mode, count = _REPEATS[token.name]
         alternating = False
         if self.at("hamalternatingmotion"):
             self.take()
             alternating = True
-        return Repetition(child, count=count, where=token.where, mode=mode, alternating=alternating)
+        displacement = self.displacement() if displaced else None
+        return Repetition(child, count=count, where=token.where, mode=mode, alternating=alternating, displacement=displacement)
+
+    def displacement(self) -> Segment | None:
+        token = self.peek()
+        if token is None or token.category != "move-straight" or token.name.lower() in _LOCAL_MOVES:
+            return None
+        move = self.straight_move()
+        assert isinstance(move, Dynamic)
+        return move.segments[0]
+
+    def at_bracketed_repetition(self) -> bool:
+        """Whether a bracket that opens with a repetition follows (``move [ repeat move ]``)."""
+        token, following = self.peek(), self.peek(1)
+        return (
+            token is not None and token.name in _OPENER_OF.values() and following is not None
+            and following.category == "repeat" and following.name != "hamalternatingmotion"
+        )  # fmt: skip
+
+    def bracketed_repetition(self, child: Constraint) -> Repetition:
+        """``move [ repeat move ]``: the movement before the bracket repeated, each pass
+        displaced by the movement inside it."""
+        opening = self.take()
+        closing = next(close for close, open_ in _OPENER_OF.items() if open_ == opening.name)
+        if _repetition_depth(child) >= MAX_NESTING:
+            raise _misplaced(self.gloss, self.tokens[self.pos], f"more than {MAX_NESTING} repetitions of one movement")
+        repetition = self.repetition(child, displaced=True)
+        if repetition.displacement is None and not self.at(closing):
+            raise self.unexpected(self.tokens[self.pos], f"a straight movement (the displacement) or {closing}")
+        self.expect(closing, f"{opening.name} at position {opening.index}")
+        return repetition
+
+    def touching(self) -> bool:
+        """Whether the hand is at a location it touches (a repetition may then repeat the contact)."""
+        location = self.current.get("HandLocation")
+        return isinstance(location, BodySite) and location.site != "contact" and location.proximity in _TOUCHES
+
+    def tap(self, token: Token) -> Constraint:
+        """A repeated contact with no movement before it (``chest touch repeat``): the hand
+        leaves the site and touches it again, the unit the repetition repeats."""
+        location = self.current["HandLocation"]
+        assert isinstance(location, BodySite)
+        away = Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, end=replace(location, proximity="close"), where=token.where, manner="targetted"),), where=token.where)
+        back = Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, end=location, where=token.where, manner="targetted"),), where=token.where)
+        return SequenceNode((away, back), where=token.where)
 
     def unit(self) -> Constraint | None:
         token = self.peek()
@@ -794,7 +929,7 @@ class _Parser:
         self.expect("hamparend", context)
         if not first:
             raise SpecError(f"sign {self.gloss!r}: empty hamparbegin … hamparend at position {opening.index}", opening.where)
-        return Parallel(tuple(first), where=opening.where)
+        return first[0] if len(first) == 1 else Parallel(tuple(first), where=opening.where)
 
     def straight_move(self) -> Constraint:
         token = self.take()
@@ -988,6 +1123,14 @@ def _with_contact(location: Location, contact: str) -> Location:
         return replace(location, proximity=contact)
     if isinstance(location, BetweenLocation):
         return replace(location, second=_with_contact(location.second, contact))
+    return location
+
+
+def _with_hand_part(location: Location, part: BodySite) -> Location:
+    if isinstance(location, BodySite):
+        return replace(location, hand_part=part)
+    if isinstance(location, BetweenLocation):
+        return replace(location, second=_with_hand_part(location.second, part))
     return location
 
 

@@ -37,7 +37,13 @@ SYMBOLS_FILE: Path = SPECS_DIR / "hamnosys" / "symbols.tsv"
 #:   shapes, written without (or with) the digits the font names carry.
 #: - ``hamfingerhookedmod``, ``hamdoublebend``, ``hamdoublehook``: bending modifiers spelled
 #:   after the adjective.
-#: - ``hamnbs``: the font's non-breaking space, punctuation like ``hamspace``.
+#: - ``hamnbs``: the font's non-breaking space, punctuation like ``hamspace``; likewise
+#:   the font's layout characters ``hamtab``, ``hamlinefeed``, ``hampagebreak`` and
+#:   ``hamreturn``.
+#: - ``hamperiod``, ``hamclockplus``, ``hamsympar``, ``hamsymlr``, ``hamthumbout``,
+#:   ``hamthumbacross``, ``hamthumbopen``: older names of ``hamfullstop``,
+#:   ``hamclockfull``, ``hamsymmpar``, ``hamsymmlr`` and the thumb modifiers, which the
+#:   HamNoSys 4 font's conversion tables still accept.
 ALIASES: Mapping[str, str] = {
     "hampalmud": "hampalmd",
     "hammoveudl": "hammovedl",
@@ -47,6 +53,17 @@ ALIASES: Mapping[str, str] = {
     "hamdoublebend": "hamdoublebent",
     "hamdoublehook": "hamdoublehooked",
     "hamnbs": "hamspace",
+    "hamtab": "hamspace",
+    "hamlinefeed": "hamspace",
+    "hampagebreak": "hamspace",
+    "hamreturn": "hamspace",
+    "hamperiod": "hamfullstop",
+    "hamclockplus": "hamclockfull",
+    "hamsympar": "hamsymmpar",
+    "hamsymlr": "hamsymmlr",
+    "hamthumbout": "hamthumboutmod",
+    "hamthumbacross": "hamthumbacrossmod",
+    "hamthumbopen": "hamthumbopenmod",
 }
 
 

@@ -28,45 +28,39 @@ directions in that frame. Any other word (``Nod``, ``Listener``, ``RightHand`` �
 as a :class:`~mura.values.Symbol` for ``motor/`` to read; so is the value of the other
 non-arm slots (``FaceExpression``, ``Mouth``, ``Shoulders``, ``Torso``) when it is not a
 vector, a direction or a place.
+
+**Untimed gestures.** A gesture or sign with neither ``<affiliate>`` nor ``<timing>`` is
+performed as the realizers that read published MURML perform an unconstrained behaviour:
+from the start of the utterance, in document order, each in the first free time: its
+stroke keeps :data:`UNTIMED_GAP` seconds from every other stroke given in seconds (untimed
+or ``<timing>``; the first begins that long after the utterance starts, so that its
+preparation starts with the utterance), time for the arm to prepare any reach (Fitts' law of the design, ``0.24 · ln(100·A + 1)`` s, is 1.1 s for
+A = 1 m) — with a stroke of :data:`UNTIMED_STROKE` seconds (the motor slows a shorter
+stroke to fill it, or holds it). Its timing is an :class:`~mura.model.AbsoluteTiming`
+like any other. Gestures timed by the speech are placed only when the speech is known, so
+an untimed gesture may meet one of them; the scheduler then relaxes what it must.
+
+Constraint trees are read by :mod:`mura.murml_constraints`; gestures asked for by
+function are resolved by :func:`mura.gesture_functions.function_gesture` through the
+lexicon (``lexicon``: the bundled one unless given, see :func:`mura.lexicon.load_lexicons`).
 """
 
 from __future__ import annotations
 
-import math
 import re
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from lxml import etree
 
-from mura import murml_vocabulary as vocabulary
-from mura.constraints import (
-    ARM_SLOTS,
-    OTHER_SLOTS,
-    Arm,
-    Constraint,
-    Dynamic,
-    Parallel,
-    Repetition,
-    Segment,
-    SegmentKind,
-    Sequence,
-    Static,
-    Symmetrical,
-    Symmetry,
-)
+from collections.abc import Mapping
+
 from mura.errors import SourceLocation, SpecError, SpecErrors
 from mura.expansion import check_movements
+from mura.gesture_functions import function_gesture as lexicon_gesture
 from mura.hamnosys import parse_hamnosys
-from mura.lexicon import (
-    GestureLexicon,
-    SceneLocation,
-    bind_params,
-    load_lexicon,
-    read_scene,
-)
-from mura.limits import DEFAULT_LIMITS, LimitError, Limits, hint
+from mura.lexicon import GestureLexicon, SceneLocation, load_lexicons, read_scene
+from mura.limits import DEFAULT_LIMITS, LimitError, Limits
 from mura.model import (
     AbsoluteTiming,
     Affiliate,
@@ -77,33 +71,21 @@ from mura.model import (
     TimeTag,
     Utterance,
 )
+from mura.murml_constraints import UNIT_METRES, ConstraintReader, arm_or_none, float_or_none
 from mura.schema import validate_murml
 from mura.sigml import read_sign_element
 from mura.signs import Sign
 from mura.space import SpatialReference
 from mura.space_markup import is_spatial_sign, read_space, read_spatial_sign
-from mura.values import (
-    Direction,
-    Location,
-    PalmOrientation,
-    PointLocation,
-    SlotValue,
-    Symbol,
-    Vector,
-)
 from mura.xml_source import XmlSource
 
-_UNIT_METRES = {"mm": 0.001, "cm": 0.01, "m": 1.0}
-_NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(mm|cm|m)?\s*$")
+#: Stroke duration (s) given to a gesture written without timing, and the time (s) left
+#: between two such strokes (module docstring).
+UNTIMED_STROKE = 1.0
+UNTIMED_GAP = 1.2
+
 _NCNAME = re.compile(r"^[A-Za-z_][\w.\-]*$")
-_SYMMETRY = re.compile(r"^Sym(?:M([STF]+))?$")
-_EXTENTS = {"Flat": 0.25, "Normal": 0.5, "Large": 0.75}
-_ROUNDNESS = {"Sharpe": 0.9, "Sharp": 0.9, "Normal": 0.0, "Broad": -0.9}
-_SKEWEDNESS = {"Round": 0.0, "FunnelS": -0.9, "FunnelE": 0.9}
-_SEGMENT_VALUE_TYPES = ("start", "end", "direction", "distance", "normal", "shape", "extent", "extension", "roundness", "skewedness")
 _SIGN_FORMS = ("hamnosys", "hns_sign", "hamgestural_sign")
-#: Slots whose values aim the eyes or the head (see *Head and gaze values*).
-_HEAD_SLOTS = ("GazeDirection", "Neck", "HeadDirection")
 _TRUE = {"true", "1", "yes"}
 _FALSE = {"false", "0", "no"}
 
@@ -136,7 +118,7 @@ def read_utterances(source: XmlSource, lexicon: GestureLexicon | None = None, li
     validate_murml(source)
     root = source.root
     unit = _document_unit(source, root)
-    lexicon = lexicon if lexicon is not None else load_lexicon()
+    lexicon = lexicon if lexicon is not None else load_lexicons(())
     if root.tag == "utterance":
         return (_UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits, published=_is_published(root)).read(root),)
     scene = dict(lexicon.scene)
@@ -164,7 +146,7 @@ def _element_unit(source: XmlSource, element: etree._Element, default: str) -> s
     unit = element.get("unit")
     if unit is None:
         return default
-    if unit not in _UNIT_METRES:
+    if unit not in UNIT_METRES:
         raise source.error(f"unknown unit {unit!r} (expected mm, cm or m)", element, "unit")
     return unit
 
@@ -208,7 +190,7 @@ class _UtteranceReader:
             errors.append(self.source.error("utterance has neither spoken text nor behaviours", utterance))
         if errors:
             raise errors[0] if len(errors) == 1 else SpecErrors(errors)
-        return Utterance(tuple(chunks), tuple(behaviors), self.source.file, space=tuple(self.placed.values()))
+        return Utterance(tuple(chunks), tuple(_with_untimed_scheduled(behaviors)), self.source.file, space=tuple(self.placed.values()))
 
     # -- speech ---------------------------------------------------------------------
 
@@ -268,8 +250,6 @@ class _UtteranceReader:
         gesture = self._read_gesture(body, behavior_id) if body.tag == "gesture" else None
         spatial = read_spatial_sign(self.source, body, behavior_id, self.placed) if body.tag == "sign" and is_spatial_sign(body) else None
         sign = self._read_sign(body, behavior_id) if body.tag == "sign" and spatial is None else None
-        if (gesture is not None or sign is not None or spatial is not None) and timing is None:
-            raise self.source.error(f"{body.tag} {behavior_id!r} has neither an <affiliate> nor a <timing>", body)
         chunk = self.tags[timing.onset].chunk if isinstance(timing, Affiliate) else None
         return BehaviorSpec(behavior_id, body.tag, timing, gesture, chunk, self.source.where(element), sign, spatial=spatial)
 
@@ -295,7 +275,7 @@ class _UtteranceReader:
         onset_text, end_text = element.get("onset", ""), element.get("end", "")
         if element.tag == "timing":
             self._check_times(element, behavior_id, onset_text, end_text)
-        onset, end = _float_or_none(onset_text), _float_or_none(end_text)
+        onset, end = float_or_none(onset_text), float_or_none(end_text)
         if element.tag == "timing" and onset is not None and end is not None:
             if onset < 0:
                 raise self.source.error(f"timing of {behavior_id!r} starts before the utterance (onset {onset})", element, "onset")
@@ -341,23 +321,20 @@ class _UtteranceReader:
         scope = element.get("scope")
         function_element = element.find("function")
         if function_element is not None:
-            return self._read_function_gesture(function_element, element, behavior_id, scope)
+            name = function_element.get("name", "")
+            params = {param.get("name"): param.get("value") for param in function_element.iterchildren("param")}
+            call = FunctionCall(name, params, self.source.where(function_element))
+            if self.lexicon.entry(name) is None:
+                known = ", ".join(self.lexicon.functions) or "none"
+                raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function_element, "name")
+            return function_gesture(call, element.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(element), self.limits)
         constraints = element.find("constraints")
         if constraints is None:
             raise self.source.error(f"gesture {behavior_id!r} needs <function> or <constraints>", element)
-        reader = _ConstraintReader(self.source, self.unit, self.scene, {}, limits=self.limits, published=self.published)
-        tree = reader.read_root(constraints, _arm_or_none(scope))
+        reader = ConstraintReader(self.source, self.unit, self.scene, {}, symbols=self.lexicon.symbols, limits=self.limits, published=self.published)
+        tree = reader.read_root(constraints, arm_or_none(scope))
         check_movements(tree, self.limits, f"gesture {behavior_id!r}", self.source.where(element))
         return Gesture(element.get("id") or behavior_id, tree, None, scope, self.source.where(element))
-
-    def _read_function_gesture(self, function: etree._Element, gesture: etree._Element, behavior_id: str, scope: str | None) -> Gesture:
-        name = function.get("name", "")
-        params = {param.get("name"): param.get("value") for param in function.iterchildren("param")}
-        if self.lexicon.entry(name) is None:
-            known = ", ".join(sorted(self.lexicon.entries)) or "none"
-            raise self.source.error(f"unknown gesture function {name!r} (the lexicon has: {known})", function, "name")
-        call = FunctionCall(name, params, self.source.where(function))
-        return function_gesture(call, gesture.get("id") or behavior_id, scope, self.lexicon, self.scene, self.source.where(gesture), self.limits)
 
 
 def function_gesture(
@@ -370,19 +347,9 @@ def function_gesture(
     limits: Limits = DEFAULT_LIMITS,
 ) -> Gesture:
     """The gesture a lexicon function makes for ``call`` (raises :class:`SpecError` at the
-    call's place for an unknown function or a missing parameter); also read by BML."""
-    entry = lexicon.entry(call.name)
-    if entry is None:
-        known = ", ".join(sorted(lexicon.entries)) or "none"
-        raise SpecError(f"unknown gesture function {call.name!r} (the lexicon has: {known})", call.where)
-    try:
-        bound = bind_params(entry, call.params)
-    except ValueError as error:
-        raise SpecError(str(error), call.where) from None
-    reader = _ConstraintReader(entry.source, lexicon.unit, scene, bound, call_site=call.where, limits=limits)
-    tree = reader.read_root(entry.constraints, _arm_or_none(scope))
-    check_movements(tree, limits, f"gesture {gesture_id!r}", where)
-    return Gesture(gesture_id, tree, call, scope, where)
+    call's place for an unknown function, a missing parameter or a problem in the entry);
+    BML reads its function gestures with it. See :func:`mura.gesture_functions.function_gesture`."""
+    return lexicon_gesture(lexicon, call, scope, scene, gesture_id, where, limits)
 
 
 def read_gesture_element(
@@ -393,6 +360,32 @@ def read_gesture_element(
     names without a namespace) read as the MURML reader reads it; lengths without a unit are
     in ``unit``. BML reads the MURML gestures it embeds with it."""
     return _UtteranceReader(source, unit, dict(lexicon.scene), lexicon, limits)._read_gesture(element, behavior_id)
+
+
+def _with_untimed_scheduled(behaviors: list[BehaviorSpec]) -> list[BehaviorSpec]:
+    """Behaviours with every untimed gesture or sign given its absolute timing (module docstring)."""
+    taken = sorted((b.timing.onset, b.timing.end) for b in behaviors if isinstance(b.timing, AbsoluteTiming))
+    clock = UNTIMED_GAP
+    scheduled = []
+    for behavior in behaviors:
+        if behavior.moves_arms and behavior.timing is None:
+            clock = _free_slot(clock, taken)
+            behavior = replace(behavior, timing=AbsoluteTiming(clock, clock + UNTIMED_STROKE, behavior.where))
+            taken.append((clock, clock + UNTIMED_STROKE))
+            clock += UNTIMED_STROKE + UNTIMED_GAP
+        scheduled.append(behavior)
+    return scheduled
+
+
+def _free_slot(clock: float, taken: list[tuple[float, float]]) -> float:
+    """The earliest onset from ``clock`` whose stroke keeps :data:`UNTIMED_GAP` from every taken one."""
+    moved = True
+    while moved:
+        moved = False
+        for onset, end in taken:
+            if onset < clock + UNTIMED_STROKE + UNTIMED_GAP and end + UNTIMED_GAP > clock:
+                clock, moved = end + UNTIMED_GAP, True
+    return clock
 
 
 def _timing_element(behaviorspec: etree._Element, body: etree._Element) -> etree._Element | None:
@@ -438,320 +431,6 @@ class _TextBuffer:
         return offset
 
 
-@dataclass
-class _ConstraintReader:
-    """Reads a constraint tree, filling ``$param`` placeholders and resolving scene places."""
-
-    source: XmlSource
-    unit: str
-    scene: Mapping[str, SceneLocation]
-    params: Mapping[str, str]
-    call_site: SourceLocation | None = None
-    limits: Limits = DEFAULT_LIMITS
-    published: bool = False
-
-    def read_root(self, constraints: etree._Element, scope: Arm | None) -> Constraint:
-        children = list(constraints)
-        if len(children) != 1:
-            raise self._error(f"<{constraints.tag}> must hold exactly one constraint, found {len(children)}", constraints)
-        return self.read(children[0], self._scope(constraints) or scope)
-
-    def read(self, element: etree._Element, scope: Arm | None) -> Constraint:
-        scope = self._scope(element) or scope
-        where = self.source.where(element)
-        tag = element.tag
-        if tag in ("parallel", "sequence"):
-            children = tuple(self.read(child, scope) for child in element)
-            if not children:
-                raise self._error(f"<{tag}> is empty", element)
-            return Parallel(children, where) if tag == "parallel" else Sequence(children, where)
-        if tag == "symmetrical":
-            return self._symmetrical(element, where)
-        if tag == "repetition":
-            return self._repetition(element, scope, where)
-        if tag == "static":
-            return self._static(element, scope, where)
-        if tag == "dynamic":
-            return self._dynamic(element, scope, where)
-        raise self._error(f"unknown constraint <{tag}> (expected parallel, sequence, symmetrical, repetition, static or dynamic)", element)
-
-    def _symmetrical(self, element: etree._Element, where: SourceLocation) -> Symmetrical:
-        dominant = _arm_or_none(self._attr(element, "dominant"))
-        if dominant is None:
-            raise self._error(f"dominant {element.get('dominant')!r} is not an arm (expected right_arm or left_arm)", element, "dominant")
-        symmetry = self._symmetry(element)
-        center = None
-        if element.get("center") is not None:
-            center = self._numbers(element, "center", None)
-        children = list(element)
-        if len(children) != 1:
-            raise self._error(f"<symmetrical> must hold exactly one constraint, found {len(children)}", element)
-        return Symmetrical(self.read(children[0], dominant), dominant, symmetry, center, where)
-
-    def _symmetry(self, element: etree._Element) -> Symmetry:
-        name = self._attr(element, "symmetry")
-        match = _SYMMETRY.match(name)
-        if match is None or (match.group(1) and len(set(match.group(1))) != len(match.group(1))):
-            raise self._error(f"unknown symmetry {name!r} (expected Sym, SymMS, SymMT, SymMF or a combination such as SymMST)", element, "symmetry")
-        planes = frozenset(match.group(1) or "S")
-        return Symmetry(planes, name)
-
-    def _repetition(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Repetition:
-        attribute = "count" if element.get("count") is not None else "number"
-        text = element.get(attribute, "2")
-        digits = text.strip()
-        if not (digits.isascii() and digits.isdigit()) or not digits.strip("0"):
-            raise self._error(f"repetition {attribute} {text!r} is not a positive whole number", element, attribute)
-        significant = digits.lstrip("0")
-        if len(significant) > 18 or int(significant) > self.limits.max_movements:
-            raise self._error(f"repetition {attribute} {significant[:20]} is more than the limit of {self.limits.max_movements} "
-                              f"movements ({hint('max_movements')})", element, attribute)
-        children = list(element)
-        if len(children) != 1:
-            raise self._error(f"<repetition> must hold exactly one constraint, found {len(children)}", element)
-        return Repetition(self.read(children[0], scope), int(significant), where)
-
-    def _static(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Static:
-        slot = self._slot(element)
-        mode = element.get("mode")
-        value = self._slot_value(slot, self._attr(element, "value"), mode, element, "value")
-        return Static(slot, value, self._leaf_scope(element, slot, scope), mode, where)
-
-    def _dynamic(self, element: etree._Element, scope: Arm | None, where: SourceLocation) -> Dynamic:
-        slot = self._slot(element)
-        segments = tuple(self._segment(child, slot) for child in element)
-        if not segments:
-            raise self._error(f"dynamic {slot} has no segments", element)
-        return Dynamic(slot, segments, self._leaf_scope(element, slot, scope), where)
-
-    def _leaf_scope(self, element: etree._Element, slot: str, scope: Arm | None) -> Arm | str | None:
-        if slot in ARM_SLOTS:
-            return scope if scope is not None else Arm.RIGHT
-        return element.get("scope")
-
-    def _slot(self, element: etree._Element) -> str:
-        slot = self._attr(element, "slot")
-        if slot not in ARM_SLOTS and slot not in OTHER_SLOTS:
-            raise self._error(f"unknown slot {slot!r} (expected one of {', '.join(ARM_SLOTS + OTHER_SLOTS)})", element, "slot")
-        return slot
-
-    def _segment(self, element: etree._Element, slot: str) -> Segment:
-        if element.tag not in ("segment", "dynamicElement"):
-            raise self._error(f"unexpected <{element.tag}> in <dynamic> (expected <segment> or <dynamicElement>)", element)
-        kind_name = element.get("type", "linear")
-        try:
-            kind = SegmentKind(kind_name)
-        except ValueError:
-            raise self._error(f"unknown segment type {kind_name!r} (expected linear, curve or circle)", element, "type") from None
-        fields: dict[str, object] = {}
-        for value in element:
-            if value.tag != "value":
-                raise self._error(f"unexpected <{value.tag}> in <{element.tag}> (expected <value>)", value)
-            value_type = value.get("type", "")
-            if value_type not in _SEGMENT_VALUE_TYPES:
-                raise self._error(f"unknown segment value type {value_type!r} (expected one of {', '.join(_SEGMENT_VALUE_TYPES)})", value, "type")
-            key = "extent" if value_type == "extension" else value_type
-            if key in fields:
-                raise self._error(f"segment gives its {key} twice", value, "type")
-            attribute = "name" if value.get("name") is not None else "value"
-            fields[key] = self._segment_value(slot, key, self._attr(value, attribute), value, attribute)
-        segment = Segment(kind=kind, where=self.source.where(element), **fields)  # type: ignore[arg-type]
-        self._check_segment(segment, slot, element)
-        return segment
-
-    def _segment_value(self, slot: str, key: str, text: str, element: etree._Element, attribute: str) -> object:
-        if key in ("start", "end"):
-            return self._slot_value(slot, text, None, element, attribute)
-        if key in ("direction", "normal"):
-            return self._direction(text, element, attribute)
-        if key == "distance":
-            return self._distance(text, element, attribute)
-        if key == "shape":
-            if text not in vocabulary.CURVE_SHAPES:
-                raise self._error(f"unknown curve shape {text!r} (expected {', '.join(vocabulary.CURVE_SHAPES)})", element, attribute)
-            return text
-        table = {"extent": _EXTENTS, "roundness": _ROUNDNESS, "skewedness": _SKEWEDNESS}[key]
-        return self._scalar(text, table, key, element, attribute)
-
-    def _check_segment(self, segment: Segment, slot: str, element: etree._Element) -> None:
-        if slot != "HandLocation":
-            if segment.start is None and segment.end is None:
-                raise self._error(f"a {slot} segment needs a start or an end value", element)
-            return
-        has_path = segment.end is not None or (segment.direction is not None and segment.distance is not None)
-        if not has_path:
-            raise self._error("a HandLocation segment needs an end, or a direction and a distance", element)
-        if segment.kind is SegmentKind.CURVE and segment.end is None:
-            raise self._error("a curve segment needs an end", element)
-        if segment.distance is not None and segment.distance <= 0:
-            raise self._error(f"segment distance must be positive, got {segment.distance} m", element)
-
-    # -- values ---------------------------------------------------------------------
-
-    def _slot_value(self, slot: str, text: str, mode: str | None, element: etree._Element, attribute: str) -> SlotValue:
-        try:
-            return self._parse_slot_value(slot, text, mode, element, attribute)
-        except SpecError:
-            raise
-        except ValueError as error:
-            raise self._error(f"{slot}: {error}", element, attribute) from None
-
-    def _parse_slot_value(self, slot: str, text: str, mode: str | None, element: etree._Element, attribute: str) -> SlotValue:
-        if slot == "HandShape":
-            return vocabulary.parse_handshape(text)
-        if slot == "HandLocation" or (mode == "pointTo" and slot in ("ExtFingerOrientation", "PalmOrientation")):
-            return self._location(text, element, attribute)
-        if slot == "ExtFingerOrientation":
-            return self._direction(text, element, attribute)
-        if slot == "PalmOrientation":
-            if _is_numbers(text):
-                return PalmOrientation(self._direction(text, element, attribute).vector, text, mode == "relative")
-            palm = vocabulary.parse_palm_orientation(text)
-            return PalmOrientation(palm.direction, palm.name, mode == "relative")
-        if slot in _HEAD_SLOTS:
-            return self._head_value(text, mode, element, attribute)
-        if _is_numbers(text):
-            return Vector(tuple(float(part) for part in text.split()))
-        if text.startswith("Dir"):
-            return vocabulary.parse_direction(text)
-        if text.startswith("$"):
-            return self._location(text, element, attribute)
-        if not text.strip():
-            raise ValueError("empty value")
-        return Symbol(text.strip())
-
-    def _head_value(self, text: str, mode: str | None, element: etree._Element, attribute: str) -> SlotValue:
-        """A gaze or head value (module docstring, *Head and gaze values*)."""
-        if _is_numbers(text):
-            if self.published:
-                x, y, z = self._three(self._numbers(element, attribute, None, text), text)
-                return Direction(self._direction(f"{-z} {y} {x}", element, attribute).vector, text)
-            if mode == "pointTo":
-                return self._location(text, element, attribute)
-            return self._direction(text, element, attribute)
-        if text.startswith("Dir"):
-            return self._direction(text, element, attribute)
-        if text.startswith("$") or text.startswith("Loc"):
-            return self._location(text, element, attribute)
-        if not text.strip():
-            raise ValueError("empty value")
-        return Symbol(text.strip())
-
-    @staticmethod
-    def _three(values: tuple[float, ...], text: str) -> tuple[float, float, float]:
-        if len(values) != 3:
-            raise ValueError(f"a gaze or head vector needs three numbers, got {text!r}")
-        return values[0], values[1], values[2]
-
-    def _location(self, text: str, element: etree._Element, attribute: str) -> Location:
-        if text.startswith("$"):
-            return self._scene_location(text[1:], element, attribute)
-        if _is_numbers(text):
-            values = self._numbers_text(text, element, attribute, self.unit)
-            if len(values) != 3:
-                raise ValueError(f"a position needs three numbers, got {len(values)}")
-            return PointLocation(values)  # type: ignore[arg-type]
-        return vocabulary.parse_grid_location(text)
-
-    def _scene_location(self, name: str, element: etree._Element, attribute: str) -> Location:
-        place = self.scene.get(name)
-        if place is None:
-            known = ", ".join(sorted(self.scene)) or "none"
-            raise ValueError(f"unknown place ${name} (the scene has: {known})")
-        if not place.is_position:
-            return vocabulary.parse_grid_location(place.text)
-        values = self._numbers_text(place.text, place.element, "position", place.unit)
-        if len(values) != 3:
-            raise ValueError(f"place ${name} needs three numbers, got {len(values)}")
-        return PointLocation(values)  # type: ignore[arg-type]
-
-    def _direction(self, text: str, element: etree._Element, attribute: str) -> Direction:
-        if text.startswith("Dir"):
-            try:
-                return vocabulary.parse_direction(text)
-            except ValueError as error:
-                raise self._error(str(error), element, attribute) from None
-        values = self._numbers(element, attribute, None, text)
-        if len(values) != 3:
-            raise self._error(f"a direction needs three numbers or a Dir… name, got {text!r}", element, attribute)
-        norm = sum(v * v for v in values) ** 0.5
-        if norm < 1e-12:
-            raise self._error(f"direction {text!r} has zero length", element, attribute)
-        return Direction((values[0] / norm, values[1] / norm, values[2] / norm), text)
-
-    def _distance(self, text: str, element: etree._Element, attribute: str) -> float:
-        if text in vocabulary.DISTANCES:
-            return vocabulary.DISTANCES[text]
-        expected = f"a distance is one number or one of {', '.join(vocabulary.DISTANCES)}, not {text!r}"
-        if not _is_numbers(text) or len(text.split()) != 1:
-            raise self._error(expected, element, attribute)
-        return self._numbers(element, attribute, self.unit, text)[0]
-
-    def _scalar(self, text: str, names: Mapping[str, float], key: str, element: etree._Element, attribute: str) -> float:
-        if text in names:
-            return names[text]
-        value = _float_or_none(text)
-        if value is None:
-            raise self._error(f"{key} {text!r} is neither a number nor one of {', '.join(names)}", element, attribute)
-        return value
-
-    def _numbers(self, element: etree._Element, attribute: str, unit: str | None, text: str | None = None) -> tuple[float, ...]:
-        text = self._attr(element, attribute) if text is None else text
-        try:
-            return self._numbers_text(text, element, attribute, unit)
-        except ValueError as error:
-            raise self._error(str(error), element, attribute) from None
-
-    def _numbers_text(self, text: str, element: etree._Element, attribute: str, unit: str | None) -> tuple[float, ...]:
-        values = []
-        for part in text.split():
-            match = _NUMBER.match(part)
-            if match is None:
-                raise ValueError(f"{part!r} is not a number")
-            number = float(match.group(1))
-            if not math.isfinite(number):
-                raise ValueError(f"{part!r} is too large to be a number")
-            if unit is not None:
-                number *= _UNIT_METRES[match.group(2) or unit]
-                self.limits.check_length(number, f"length {part!r} =")
-            elif match.group(2):
-                raise ValueError(f"{part!r} takes no unit here")
-            values.append(number)
-        if not values:
-            raise ValueError("expected numbers, found none")
-        return tuple(values)
-
-    def _scope(self, element: etree._Element) -> Arm | None:
-        scope = element.get("scope")
-        if scope is not None and scope.startswith("$") and scope[1:] in self.params:
-            scope = self.params[scope[1:]]
-        return _arm_or_none(scope)
-
-    def _attr(self, element: etree._Element, name: str) -> str:
-        value = element.get(name)
-        if value is None:
-            raise self._error(f"<{element.tag}> needs a {name} attribute", element)
-        if value.startswith("$") and value[1:] in self.params:
-            return self.params[value[1:]]
-        return value
-
-    def _error(self, message: str, element: etree._Element, attribute: str | None = None) -> SpecError:
-        if self.call_site is not None:
-            where = self.source.where(element, attribute)
-            return SpecError(f"{message} (in the lexicon at {where})", self.call_site)
-        return self.source.error(message, element, attribute)
-
-
-def _arm_or_none(scope: str | None) -> Arm | None:
-    if scope is None:
-        return None
-    normalized = scope.strip().replace(" ", "_").lower()
-    for arm in Arm:
-        if normalized == arm.value:
-            return arm
-    return None
-
-
 def _boolean(source: XmlSource, element: etree._Element, attribute: str, default: bool) -> bool:
     text = element.get(attribute)
     if text is None:
@@ -761,16 +440,3 @@ def _boolean(source: XmlSource, element: etree._Element, attribute: str, default
     if text.lower() in _FALSE:
         return False
     raise source.error(f"{attribute} must be true or false, not {text!r}", element, attribute)
-
-
-def _float_or_none(text: str) -> float | None:
-    try:
-        value = float(text)
-    except ValueError:
-        return None
-    return value if value == value and abs(value) != float("inf") else None
-
-
-def _is_numbers(text: str) -> bool:
-    parts = text.split()
-    return bool(parts) and all(_NUMBER.match(part) for part in parts)

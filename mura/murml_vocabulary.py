@@ -7,18 +7,35 @@ MURML borrows its vocabulary from HamNoSys (seed 004, section 3): hand shapes (`
 of :mod:`mura.values`, so that the motor core sees one vocabulary for gestures and signs.
 
 The grid names are those of the published MURML symbol table (``billie_hns.xml``), plus
-``LocCenter``, which published utterances write for ``LocCCenter``.
+``LocCenter``, which published utterances write for ``LocCCenter``. Every avatar gives
+those *core* names coordinates. A :class:`SymbolTable` adds names beyond them — a few
+built in (:data:`EXTRA_HEIGHTS`: ``LocBelowHip`` …) and any a published symbol table
+(``<hns>`` file, read by :mod:`mura.lexicon`) lists, each by its published value in cm:
+such a location is read as the point on the line through the two nearest core names of
+its axis, at the published value (a :class:`~mura.values.BetweenLocation` whose fraction
+may lie outside [0, 1]), so it scales with the avatar as the core names do.
+
+Locations are read as the published realizer reads them: a height, then optionally a
+lateral position (``LocCCenter`` when left out) and a distance (``LocNorm`` when left
+out), in any order; a palm orientation may also be a single number, the published
+table's roll angle in degrees (``PalmR`` 0, ``PalmD`` 90, ``PalmL`` 180, ``PalmU`` -90).
 """
 
 from __future__ import annotations
 
+import math
 import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
 
 from mura.values import (
+    BetweenLocation,
     Direction,
     FingerBend,
     GridLocation,
     HandShape,
+    Location,
     PalmOrientation,
     direction_from_letters,
 )
@@ -79,8 +96,57 @@ GRID_ALIASES: dict[str, str] = {
     "LocForehead": "LocForeHead",
 }
 
+#: Heights beyond the core grid, cm above the hip, as published tables name them
+#: (mura's estimates where no published value is at hand: a hand's width below the hip).
+EXTRA_HEIGHTS: dict[str, float] = {"LocBelowHip": -10.0}
+
 #: Movement distances of the symbol table, metres.
 DISTANCES: dict[str, float] = {"DistShort": 0.10, "DistNorm": 0.20, "DistFar": 0.30, "DistFFar": 0.40}
+
+#: The grid's axes: (name, core table, default name when a location leaves the axis out).
+_AXES: tuple[tuple[str, Mapping[str, float], str | None], ...] = (
+    ("height", GRID_HEIGHTS, None),
+    ("lateral", GRID_LATERALS, "LocCCenter"),
+    ("distance", GRID_DISTANCES, "LocNorm"),
+)
+
+
+@dataclass(frozen=True)
+class SymbolTable:
+    """Names of a MURML symbol table beyond the core vocabulary.
+
+    ``heights``, ``laterals`` and ``distances`` map grid names to their published values
+    (cm, as in the core tables); ``movement_distances`` map ``Dist…`` names to metres;
+    ``palm_angles`` map palm-orientation names to roll angles in degrees. Core names listed
+    again keep their core meaning (the avatar's grid gives them coordinates).
+    """
+
+    heights: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    laterals: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    distances: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    movement_distances: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    palm_angles: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+
+    def merged(self, other: SymbolTable) -> SymbolTable:
+        """This table with ``other``'s names added (``other`` wins where both name one)."""
+        return SymbolTable(
+            MappingProxyType({**self.heights, **other.heights}),
+            MappingProxyType({**self.laterals, **other.laterals}),
+            MappingProxyType({**self.distances, **other.distances}),
+            MappingProxyType({**self.movement_distances, **other.movement_distances}),
+            MappingProxyType({**self.palm_angles, **other.palm_angles}),
+        )
+
+    def axis(self, index: int) -> Mapping[str, float]:
+        return (self.heights, self.laterals, self.distances)[index]
+
+    def movement_distance(self, name: str) -> float | None:
+        """A ``Dist…`` name in metres, None when neither table knows it."""
+        return DISTANCES.get(name, self.movement_distances.get(name))
+
+
+#: The table of the built-in names beyond the core.
+DEFAULT_SYMBOLS = SymbolTable(heights=MappingProxyType(dict(EXTRA_HEIGHTS)))
 
 #: Curve shapes: the side the curve bulges to, and whether it is an S (two bulges).
 CURVE_SHAPES: tuple[str, ...] = ("LeftC", "RightC", "LeftS", "RightS")
@@ -177,8 +243,11 @@ def parse_direction(name: str) -> Direction:
     return Direction(direction_from_letters(letters), name)
 
 
-def parse_palm_orientation(name: str) -> PalmOrientation:
-    """A palm orientation: ``PalmL``, ``PalmLU`` … or a direction name such as ``DirR``."""
+def parse_palm_orientation(name: str, symbols: SymbolTable = DEFAULT_SYMBOLS) -> PalmOrientation:
+    """A palm orientation: ``PalmL``, ``PalmLU`` …, a direction name such as ``DirR``, a
+    name of the symbol table, or a roll angle in degrees (``"90"`` is ``PalmD``)."""
+    if name in symbols.palm_angles:
+        return palm_from_angle(symbols.palm_angles[name], name)
     if name.startswith("Palm") and len(name) > 4:
         letters = name[4:]
         try:
@@ -187,32 +256,62 @@ def parse_palm_orientation(name: str) -> PalmOrientation:
             raise ValueError(f"unknown palm orientation {name!r} (expected Palm followed by U, D, L, R, A or T)") from None
     if name.startswith("Dir"):
         return PalmOrientation(parse_direction(name).vector, name)
-    raise ValueError(f"unknown palm orientation {name!r} (expected PalmL, PalmU, … or a Dir… name)")
+    try:
+        angle = float(name)
+    except ValueError:
+        angle = math.nan
+    if math.isfinite(angle):
+        return palm_from_angle(angle, name)
+    raise ValueError(f"unknown palm orientation {name!r} (expected PalmL, PalmU, …, a Dir… name or an angle in degrees)")
 
 
-def parse_grid_location(text: str) -> GridLocation:
+def palm_from_angle(degrees: float, name: str) -> PalmOrientation:
+    """The palm normal of the published table's roll angle: 0 faces right, 90 down,
+    180 left, -90 up (avatar frame, +x left, +y up)."""
+    radians = math.radians(degrees)
+    return PalmOrientation((-math.cos(radians), -math.sin(radians), 0.0), name)
+
+
+def parse_grid_location(text: str, symbols: SymbolTable = DEFAULT_SYMBOLS) -> Location:
     """A grid location ``"LocShoulder LocCenterRight LocNorm"`` (height, lateral, distance).
 
-    The three names may come in any order; each must belong to a different axis.
+    The names may come in any order, each on its own axis; the lateral position
+    (``LocCCenter``) and the distance (``LocNorm``) may be left out, as the published
+    realizer reads them. A name of ``symbols`` beyond the core grid makes the location a
+    :class:`~mura.values.BetweenLocation` of core ones (module docstring).
     """
     names = text.split()
-    if len(names) != 3:
-        raise ValueError(f"location {text!r} needs three names: a height, a lateral position and a distance")
-    height = lateral = distance = None
+    if not 1 <= len(names) <= 3:
+        raise ValueError(f"location {text!r} needs a height, a lateral position and a distance (three names at most)")
+    chosen: list[str | None] = [None, None, None]
     for raw in names:
         name = GRID_ALIASES.get(raw, raw)
-        if name in GRID_HEIGHTS and height is None:
-            height = name
-        elif name in GRID_LATERALS and lateral is None:
-            lateral = name
-        elif name in GRID_DISTANCES and distance is None:
-            distance = name
-        elif name in GRID_HEIGHTS or name in GRID_LATERALS or name in GRID_DISTANCES:
-            raise ValueError(f"location {text!r} names two values on the same axis ({raw!r})")
-        else:
+        axes = [i for i, (_, core, _) in enumerate(_AXES) if name in core or name in symbols.axis(i)]
+        if not axes:
             raise ValueError(f"unknown location name {raw!r} in {text!r}")
-    assert height is not None and lateral is not None and distance is not None
-    return GridLocation(height, lateral, distance)
+        if chosen[axes[0]] is not None:
+            raise ValueError(f"location {text!r} names two values on the same axis ({raw!r})")
+        chosen[axes[0]] = name
+    if chosen[0] is None:
+        raise ValueError(f"location {text!r} names no height (LocHip … LocAboveHead)")
+    resolved = [name if name is not None else _AXES[i][2] for i, name in enumerate(chosen)]
+    return _grid_point(resolved, symbols)  # type: ignore[arg-type]
+
+
+def _grid_point(names: list[str], symbols: SymbolTable) -> Location:
+    """The grid point of core names, or a line through core points for an extra name."""
+    for index, (_, core, _) in enumerate(_AXES):
+        if names[index] in core:
+            continue
+        value = symbols.axis(index)[names[index]]
+        near, far = sorted(core, key=lambda n: (abs(core[n] - value), n))[:2]
+        if core[far] == core[near]:
+            raise ValueError(f"cannot place {names[index]!r}: the core names {near!r} and {far!r} have the same value")
+        fraction = (value - core[near]) / (core[far] - core[near])
+        first = _grid_point([near if i == index else n for i, n in enumerate(names)], symbols)
+        second = _grid_point([far if i == index else n for i, n in enumerate(names)], symbols)
+        return BetweenLocation(first, second, fraction)
+    return GridLocation(names[0], names[1], names[2])
 
 
 def parse_handshape(text: str) -> HandShape:

@@ -33,6 +33,7 @@ from mura.constraints import (
 from mura.errors import SourceLocation, SpecError
 from mura.expansion import check_sign
 from mura.hamnosys import Token, parse_manual, scoped_to, tokens_from_names
+from mura.hamnosys_symbols import lookup as lookup_symbol
 from mura.limits import DEFAULT_LIMITS, Limits
 from mura.signs import (
     HandConstellation,
@@ -47,7 +48,6 @@ from mura.values import (
     BASIC_HANDSHAPES,
     FINGER_BENDINGS,
     FINGERS,
-    THUMB_POSITIONS,
     BetweenLocation,
     BodySite,
     Direction,
@@ -162,17 +162,32 @@ _HANDCONFIG_ATTRS = frozenset(
     {"handshape", "thumbpos", "mainbend", "second_handshape", "second_thumbpos", "second_mainbend", "ceeopening",
      "extfidir", "second_extfidir", "palmor", "second_palmor", "rel_palmor", "specialfingers",
      "bend1", "bend2", "bend3", "bend4", "bend5"}
+    # written by public tools, read and not realized: approximations and relative forms
+    | {"second_ceeopening", "approx_shape", "approx_extfidir", "approx_palmor", "rel_extfidir"}
 )
 _MOTION_TAGS = frozenset(
     {"directedmotion", "circularmotion", "wristmotion", "fingerplay", "nomotion", "tgt_motion", "rpt_motion",
      "seq_motion", "par_motion", "split_motion", "nonman_motion", "changeposture"}
 )
-_LOCATION_ATTRS = frozenset({"location", "second_location", "side", "contact", "digits"})
+_LOCATION_ATTRS = frozenset({"location", "second_location", "side", "second_side", "contact", "second_contact", "digits", "second_digits", "approx_location"})
+#: Hand shapes as gestural SiGML writes them, where the name differs from the HamNoSys tag.
+_HANDSHAPE_NAMES = {"flat": "flathand", "cee12open": "ceeopen", "pinchopen": "pinch12open"}
+#: Thumb positions as gestural SiGML writes them: ``opposed`` is HamNoSys's open thumb.
+_THUMB_NAMES = {"out": "out", "across": "across", "opposed": "open", "open": "open"}
+#: Finger parts written without ``finger`` (``location="midjoint"`` in ``<location_hand>``).
+_FINGER_PARTS = {"tip": "fingertip", "nail": "fingernail", "pad": "fingerpad", "midjoint": "fingermidjoint", "base": "fingerbase", "side": "fingerside"}
+#: Location names besides the HamNoSys location symbols (without ``ham``).
+_LOCATION_NAMES = {"neutral": "neutralspace", **_FINGER_PARTS}
+#: Sides of a hand site (palm side, back, thumb side, little-finger side, …): read, not
+#: realized (the motor places the site itself).
+_HAND_SITE_SIDES = frozenset({"palmar", "dorsal", "radial", "ulnar", "front", "back", "left", "right"})
+#: Contacts and distances a location may name.
+_CONTACT_NAMES = frozenset({"touch", "close", "medium", "near", "far", "armextended", "behind", "brushing", "interlock", "cross"})
 _QUALITIES = frozenset({"size", "manner"})
 #: Attributes each motion element may carry.
 _MOTION_ATTRS: dict[str, frozenset[str]] = {
-    "directedmotion": _QUALITIES | {"direction", "second_direction", "curve"},
-    "circularmotion": _QUALITIES | {"axis", "second_axis", "start", "end", "ellipse_direction"},
+    "directedmotion": _QUALITIES | {"direction", "second_direction", "curve", "curve_size", "zigzag_style", "second_size"},
+    "circularmotion": _QUALITIES | {"axis", "second_axis", "start", "end", "ellipse_direction", "ellipse_size", "zigzag_style", "second_size"},
     "wristmotion": _QUALITIES | {"motion"},
     "fingerplay": _QUALITIES | {"digits"},
     "nomotion": frozenset(),
@@ -180,7 +195,7 @@ _MOTION_ATTRS: dict[str, frozenset[str]] = {
     "seq_motion": frozenset({"fused"}),
     "par_motion": frozenset(),
     "split_motion": frozenset(),
-    "tgt_motion": frozenset(),
+    "tgt_motion": _QUALITIES,
     "changeposture": frozenset(),
 }
 _POSTURE_TAGS = frozenset({"handconfig", "split_handconfig", "location_bodyarm", "location_hand", "handconstellation", "split_location"})
@@ -289,12 +304,15 @@ class _GesturalReader:
         return features
 
     def handshape(self, element: etree._Element, prefix: str) -> HandShape:
-        basic = element.get(prefix + "handshape", "")
+        written = element.get(prefix + "handshape", "")
+        basic = _HANDSHAPE_NAMES.get(written, written)
         if basic not in BASIC_HANDSHAPES:
-            raise self.error(element, f"unknown {prefix}handshape {basic!r}")
+            known = ", ".join(sorted(set(BASIC_HANDSHAPES) | set(_HANDSHAPE_NAMES)))
+            raise self.error(element, f"unknown {prefix}handshape {written!r} (expected one of {known})")
         thumb = element.get(prefix + "thumbpos")
-        if thumb is not None and thumb not in THUMB_POSITIONS:
-            raise self.error(element, f"unknown {prefix}thumbpos {thumb!r} (expected one of {', '.join(THUMB_POSITIONS)})")
+        if thumb is not None and thumb not in _THUMB_NAMES:
+            raise self.error(element, f"unknown {prefix}thumbpos {thumb!r} (expected one of {', '.join(_THUMB_NAMES)})")
+        thumb = _THUMB_NAMES.get(thumb or "")
         bending = element.get(prefix + "mainbend")
         if bending is not None and bending not in FINGER_BENDINGS:
             raise self.error(element, f"unknown {prefix}mainbend {bending!r}")
@@ -339,25 +357,51 @@ class _GesturalReader:
         return self.location_part(element)["location"]  # type: ignore[return-value]
 
     def location_part(self, element: etree._Element) -> dict[str, object]:
+        """A ``<location_bodyarm>`` or ``<location_hand>``: the site (with its second site
+        halfway, side and contact) and, from a ``<location_hand>`` inside it, the part of the
+        moving hand that is there."""
         if element.tag not in ("location_bodyarm", "location_hand"):
             raise self.error(element, "expected <location_bodyarm> or <location_hand>")
         unknown = set(element.attrib) - _LOCATION_ATTRS
         if unknown:
             raise self.error(element, f"unknown attribute {sorted(unknown)[0]!r}")
-        site = element.get("location")
-        if not site:
-            raise self.error(element, "no location attribute")
-        side = element.get("side")
-        if side is not None and side not in _SIDES:
-            raise self.error(element, f"unknown side {side!r} (expected right_at, left_at, right_beside or left_beside)")
-        digits = element.get("digits")
-        finger = FINGERS[int(digits[0]) - 1] if digits and digits[0] in "12345" else None
         contact = element.get("contact")
-        place: Location = BodySite(site, _SIDES.get(side or ""), contact, finger)
-        second = element.get("second_location")
-        if second:
-            place = BetweenLocation(place, BodySite(second, None, contact))
+        if contact is not None and contact not in _CONTACT_NAMES:
+            raise self.error(element, f"unknown contact {contact!r} (expected one of {', '.join(sorted(_CONTACT_NAMES))})")
+        place: Location = self.site(element, "")
+        if element.get("second_location") or element.get("second_digits"):
+            place = BetweenLocation(place, self.site(element, "second_"))
+        parts = [child for child in element if isinstance(child.tag, str)]
+        for part in parts:
+            if part.tag != "location_hand":
+                raise self.error(part, f"inside <{element.tag}> only <location_hand> (the hand part that is there) may stand")
+        if parts:
+            hand_part = self.site(parts[0], "")
+            place = _with_hand_part(place, replace(hand_part, proximity=None))
         return {"location": place}
+
+    def site(self, element: etree._Element, prefix: str) -> BodySite:
+        """One site of a location element (``prefix`` ``second_`` for its second site)."""
+        written = element.get(prefix + "location")
+        digits = element.get(prefix + "digits") or (element.get("digits") if prefix else None)
+        if digits is not None and (not digits or any(c not in "12345" for c in digits)):
+            raise self.error(element, f"{prefix}digits={digits!r} (expected digits 1 to 5)")
+        finger = FINGERS[int(digits[0]) - 1] if digits else None
+        if not written:
+            if element.tag == "location_hand" and finger is not None:
+                return BodySite("finger", proximity=element.get("contact"), finger=finger)
+            raise self.error(element, f"no {prefix}location attribute")
+        name = _LOCATION_NAMES.get(written, written)
+        symbol = lookup_symbol("ham" + name)
+        if symbol is None or not (symbol.category.startswith("location") or symbol.category == "finger"):
+            raise self.error(element, f"unknown {prefix}location {written!r} (expected a HamNoSys location name such as chest, cheek, palm or midjoint)")
+        if symbol.category == "finger":
+            name, finger = "finger", FINGERS[("hamthumb", "hamindexfinger", "hammiddlefinger", "hamringfinger", "hampinky").index(symbol.name)]
+        side = element.get(prefix + "side") or (element.get("side") if prefix else None)
+        if side is not None and side not in _SIDES and not (element.tag == "location_hand" and side in _HAND_SITE_SIDES):
+            expected = ", ".join(sorted(set(_SIDES) | _HAND_SITE_SIDES)) if element.tag == "location_hand" else ", ".join(_SIDES)
+            raise self.error(element, f"unknown {prefix}side {side!r} (expected one of {expected})")
+        return BodySite(symbol.name[3:] if symbol.category != "finger" else name, _SIDES.get(side or ""), element.get("contact"), finger)
 
     def split(self, element: etree._Element, read: Callable[[etree._Element], dict[str, object]]) -> tuple[dict[str, object], dict[str, object]]:
         parts = [c for c in element if isinstance(c.tag, str)]
@@ -370,8 +414,11 @@ class _GesturalReader:
         body = [c for c in element if c.tag == "location_bodyarm"]
         if len(hands) not in (0, 2):
             raise self.error(element, f"has {len(hands)} <location_hand> (expected none or two)")
+        contact = element.get("contact")
+        if contact is not None and contact not in _CONTACT_NAMES:
+            raise self.error(element, f"unknown contact {contact!r} (expected one of {', '.join(sorted(_CONTACT_NAMES))})")
         first, second = (self.location(hands[0]), self.location(hands[1])) if hands else (None, None)
-        return HandConstellation(first, second, element.get("contact"), self.location(body[0]) if body else None)
+        return HandConstellation(first, second, contact, self.location(body[0]) if body else None)
 
     # -- motion ------------------------------------------------------------------------------
     def motion(self, element: etree._Element) -> Constraint:
@@ -454,19 +501,65 @@ class _GesturalReader:
         return Repetition(child, count, where=self.where_of(element), mode=mode, alternating=self.flag(element, "outofphase"))
 
     def target_motion(self, element: etree._Element) -> Constraint:
+        """A movement to a target posture (``<tgt_motion>``/``<changeposture>``): one
+        one-segment leaf per feature the targets name, in parallel with the motions inside.
+        ``<changeposture/>`` with nothing inside only marks a change of posture."""
         where = self.where_of(element)
         leaves: list[Constraint] = []
-        slots = {"shape": "HandShape", "ext_finger": "ExtFingerOrientation", "palm": "PalmOrientation", "location": "HandLocation"}
+        manner = element.get("manner", "targetted")
+        if manner not in _MANNERS:
+            raise self.error(element, f"unknown manner {manner!r} (expected one of {', '.join(_MANNERS)})")
         for child in (c for c in element if isinstance(c.tag, str)):
-            if child.tag == "handconfig" or child.tag in ("location_bodyarm", "location_hand"):
-                features = self.handconfig(child) if child.tag == "handconfig" else self.location_part(child)
-                for key, value in features.items():
-                    leaves.append(Dynamic(slots[key], (Segment(SegmentKind.LINEAR, end=value, where=where, manner="targetted"),), where=where))  # type: ignore[arg-type]
+            tag = child.tag
+            if tag == "changeposture" and not len(child):
+                continue
+            if tag in ("handconfig", "location_bodyarm", "location_hand"):
+                features = self.handconfig(child) if tag == "handconfig" else self.location_part(child)
+                leaves.extend(_target_leaves(features, None, where, manner))
+            elif tag in ("split_handconfig", "split_location"):
+                first, second = self.split(child, self.handconfig if tag == "split_handconfig" else self.location_part)
+                leaves.extend(_target_leaves(first, self.dominant, where, manner))
+                leaves.extend(_target_leaves(second, self.dominant.other, where, manner))
+            elif tag == "handconstellation":
+                leaves.append(self.constellation_target(child, manner))
+            elif tag == "nonman_motion":
+                self.keep_nonmanual(child)
             else:
                 leaves.append(self.motion(child))
         if not leaves:
             raise self.error(element, "has no target or motion inside")
         return leaves[0] if len(leaves) == 1 else Parallel(tuple(leaves), where=where)
+
+    def constellation_target(self, element: etree._Element, manner: str) -> Constraint:
+        """The dominant hand moving to meet the other hand as a ``<handconstellation>`` says:
+        to the other hand's site, with the contact, its own site as the part that is there."""
+        constellation = self.constellation(element)
+        where = self.where_of(element)
+        target: Location = constellation.nondominant or BodySite("palm")
+        if isinstance(target, BodySite):
+            target = replace(target, proximity=constellation.contact or target.proximity)
+            if isinstance(constellation.dominant, BodySite):
+                target = replace(target, hand_part=constellation.dominant)
+        return Dynamic("HandLocation", (Segment(SegmentKind.LINEAR, end=target, where=where, manner=manner),), scope=self.dominant, where=where)
+
+
+_SLOTS_OF_FEATURES = {"shape": "HandShape", "ext_finger": "ExtFingerOrientation", "palm": "PalmOrientation", "location": "HandLocation"}
+
+
+def _target_leaves(features: dict[str, object], scope: Arm | None, where: SourceLocation, manner: str) -> list[Constraint]:
+    """One one-segment leaf per feature a target names (scoped to one arm, or to both under symmetry)."""
+    return [
+        Dynamic(_SLOTS_OF_FEATURES[key], (Segment(SegmentKind.LINEAR, end=value, where=where, manner=manner),), scope=scope, where=where)  # type: ignore[arg-type]
+        for key, value in features.items()
+    ]
+
+
+def _with_hand_part(location: Location, part: BodySite) -> Location:
+    if isinstance(location, BodySite):
+        return replace(location, hand_part=part)
+    if isinstance(location, BetweenLocation):
+        return replace(location, first=_with_hand_part(location.first, part))
+    return location
 
 
 def _posture(features: dict[str, object]) -> HandPosture:

@@ -77,8 +77,8 @@ class SignSymmetry:
     def to_model(self) -> Symmetry:
         """The symmetry as the shared model's :class:`~mura.model.Symmetry`."""
         if self.kind == "par":
-            return Symmetry(frozenset(), "par")
-        return Symmetry(self.planes, "Sym" + "".join(sorted(self.planes)))
+            return Symmetry(frozenset(), "par", self.alternating)
+        return Symmetry(self.planes, "Sym" + "".join(sorted(self.planes)), self.alternating)
 
 
 @dataclass(frozen=True)

@@ -175,12 +175,16 @@ class BodySite:
         proximity: ``touch``, ``close``, ``near``, ``far`` … distance from the site, or None
             for the default distance.
         finger: for hand sites, which finger (:data:`FINGERS`), or None.
+        hand_part: the part of the moving hand that is at the site (HamNoSys 4's contact
+            bracket ``site [touch thumb fingertip]``, gestural SiGML's ``<location_hand>``
+            inside ``<location_bodyarm>``), or None for the hand as a whole.
     """
 
     site: str
     side: str | None = None
     proximity: str | None = None
     finger: str | None = None
+    hand_part: BodySite | None = None
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
 """Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
 
-from agent.commands import avatar, bench, check, demo, play, plot, render, say, serve, sign, verbs
+from agent.commands import avatar, batch, bench, check, demo, play, plot, render, say, serve, sign, verbs
 
-COMMANDS = (check, say, render, play, plot, demo, bench, sign, avatar, serve, verbs)
+COMMANDS = (check, say, render, play, plot, demo, bench, sign, batch, avatar, serve, verbs)

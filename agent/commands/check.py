@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
+from agent.commands.options import add_lexicon_option, add_limit_option, describe_failure, lexicon_of, limits_from, refuse
 from mura.check import check_file
+from mura.errors import SpecError
 from mura.limits import LimitError
 
 
@@ -20,18 +21,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("files", nargs="+", metavar="FILE", help="spec files to check")
     add_limit_option(parser)
+    add_lexicon_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     try:
         limits = limits_from(args)
-    except LimitError as error:
+        lexicon = lexicon_of(args)
+    except (LimitError, SpecError) as error:
         return refuse("check", error)
     invalid = 0
     for path in args.files:
         try:
-            result = check_file(path, limits)
+            result = check_file(path, limits, lexicon)
         except Exception as error:  # noqa: BLE001 - one file never stops the others
             invalid += 1
             print(f"{path}: {describe_failure(error)}")

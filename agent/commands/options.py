@@ -1,10 +1,11 @@
-"""Options and messages every subcommand shares: ``--limit NAME=VALUE`` and one-line failures."""
+"""Options and messages every subcommand shares: ``--limit NAME=VALUE``, ``--lexicon FILE`` and one-line failures."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
+from mura.lexicon import GestureLexicon, load_lexicons
 from mura.limits import DEFAULT_LIMITS, LIMIT_INFO, Limits
 
 _LIMIT_HELP = "raise or lower an input limit for this run (repeatable); NAME is one of " + ", ".join(
@@ -35,3 +36,17 @@ def describe_failure(error: BaseException) -> str:
     if isinstance(error, RecursionError):
         return "nested too deeply to process"
     return f"{type(error).__name__}: {error}"
+
+
+def add_lexicon_option(parser: argparse.ArgumentParser) -> None:
+    """``--lexicon FILE`` (repeatable): gesture lexicons or symbol tables layered over the bundled lexicon."""
+    parser.add_argument("--lexicon", action="append", default=[], metavar="FILE",
+                        help="a gesture lexicon (<lexicon> or the published <gestures>) or symbol table (<hns>) whose "
+                        "functions and names utterances may use; repeatable, later files win")  # fmt: skip
+
+
+def lexicon_of(args: argparse.Namespace) -> GestureLexicon | None:
+    """The lexicon the command's ``--lexicon`` files make (None: the bundled one); raises
+    :class:`~mura.errors.SpecError` for a malformed file."""
+    paths = getattr(args, "lexicon", []) or []
+    return load_lexicons(paths) if paths else None

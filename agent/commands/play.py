@@ -15,7 +15,7 @@ import time
 import webbrowser
 
 from agent.agent import LiveUtterance
-from agent.commands.options import describe_failure, refuse
+from agent.commands.options import add_lexicon_option, describe_failure, refuse
 from agent.commands.render import add_agent_options, make_agent
 from agent.live_server import LiveServer
 from agent.performance import PerformanceError, rest_motion
@@ -36,6 +36,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("file", metavar="FILE", help="MURML utterance file")
     add_agent_options(parser, default_tts="default")
+    add_lexicon_option(parser)
     parser.add_argument("--port", type=int, default=0, help="port of the page on 127.0.0.1 (default: any free port)")
     parser.add_argument("--no-browser", action="store_true", help="print the page's address instead of opening a browser")
     parser.add_argument("--linger", type=float, default=3.0, metavar="SECONDS",
@@ -46,7 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     try:
         agent = make_agent(args)
-    except (AvatarError, SpeechError, LimitError) as error:
+    except (AvatarError, SpeechError, LimitError, SpecError) as error:
         return refuse("play", error)
     try:
         server = LiveServer(rest_motion(agent.avatar, agent.fps), name=args.file, port=args.port)

@@ -16,7 +16,8 @@ from pathlib import Path
 from tqdm import tqdm
 
 from agent.agent import Agent, PerformanceError
-from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
+from agent.batch.report import summarize_warnings
+from agent.commands.options import add_lexicon_option, add_limit_option, describe_failure, lexicon_of, limits_from, refuse
 from agent.export.names import OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError
@@ -39,11 +40,14 @@ def add_agent_options(parser: argparse.ArgumentParser, default_tts: str = "fake"
 
 
 def make_agent(args: argparse.Namespace) -> Agent:
-    """The agent the options ask for; raises AvatarError, SpeechError or LimitError. A
+    """The agent the options ask for (with the ``--lexicon`` files, when the command has
+    them); raises AvatarError, SpeechError, LimitError or SpecError (a bad lexicon). A
     fallback (``--tts default`` without espeak-ng) is said in one line on stderr."""
+    lexicon = lexicon_of(args)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        agent = Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, limits=limits_from(args))
+        agent = Agent(avatar=args.avatar, tts=args.tts, fps=args.fps, voice=args.voice, rate=args.rate, limits=limits_from(args),
+                      lexicon=lexicon)
     for warning in caught:
         print(f"mura {args.command}: {warning.message}", file=sys.stderr)
     return agent
@@ -61,13 +65,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
     parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write NAME.glb")
     add_agent_options(parser)
+    add_lexicon_option(parser)
     parser.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     try:
         agent = make_agent(args)
-    except (AvatarError, SpeechError, LimitError) as error:
+    except (AvatarError, SpeechError, LimitError, SpecError) as error:
         return refuse("render", error)
     output = Path(args.output)
     plan = OutputPlan(output, args.files)
@@ -105,7 +110,7 @@ def render_one(agent: Agent, path: Path, folder: Path, output: Path, plan: Outpu
         print(f"{path}: {describe_failure(error)}", file=sys.stderr)
         return 1
     print(f"{path}: {files.duration:.2f} s -> {output / files.html.name}")
-    for warning in files.warnings:
+    for warning in summarize_warnings(files.warnings):  # each said once, with its subjects and count
         located = warning.startswith(f"{path}:")  # a reader's warning names its own place
         print(warning if located else f"{path}: warning: {warning}", file=sys.stderr)
     return 0

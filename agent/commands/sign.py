@@ -1,28 +1,39 @@
-"""``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and avatar pages.
+"""``mura sign FILE.sigml... -o DIR``: render SiGML (or HamNoSys) signs to BVH and the corpus viewer.
 
-Every sign is rendered on its own (``<gloss>.bvh``, ``<gloss>.face.json`` — the
-non-manuals' morph weights — and ``<gloss>.html``), or with ``--sequence`` all signs of
-all files in order as one performance (``sequence.bvh`` …) with transitions between them. A sign that cannot be read or realized
-fails alone with its reason; the others still render. ``--report`` writes a JSON record
-of every sign: whether it rendered, its duration, and why not when it did not.
+Every sign is rendered on its own — ``NAME.bvh``, ``NAME.face.json`` (the non-manuals'
+morph weights), ``NAME.motion.js`` for ``DIR/index.html`` (one viewer for all the signs:
+search by gloss, play, step through), ``NAME.glb`` unless ``--no-glb``, ``NAME.html`` with
+``--pages`` — or with ``--sequence`` all signs of all files in order as one performance
+(``sequence.bvh``, ``sequence.html`` …) with transitions between them. ``NAME`` is the
+gloss with its letters of any script kept (:mod:`agent.batch.naming`); ``--gloss`` picks
+signs by gloss. A sign that cannot be read or realized fails alone with its reason (any
+exception, running out of memory included); the others still render. ``--report`` writes
+a JSON record of every sign (whether it rendered, its duration, its warnings said once,
+why not when it did not) and the failures and warnings grouped by kind. For a corpus on
+many cores, resumably, see ``mura batch``.
 
 A sign is refused when its repetitions expand to more than ``--limit max_movements``
-movements; any failure of one sign (whatever the exception, running out of memory
-included) is that sign's alone. The files are staged and moved into the output folder
-when the run ends, so an interrupted run leaves the folder (and the report) as they were.
+movements. The files are staged and moved into the output folder when the run ends, so an
+interrupted run leaves the folder (and the report) as they were.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
-import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 from tqdm import tqdm
 
+from agent.batch.items import SIGN, Corpus, CorpusItem, chunks_of, corpus_title, read_corpus
+from agent.batch.manifest import Entry, entry_of
+from agent.batch.naming import unique_stem
+from agent.batch.outputs import report_of, write_corpus_pages
+from agent.batch.report import summarize_warnings
+from agent.batch.render import RenderOptions, planning_reason, render_chunk, timeline_of
 from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.face import face_json, page_face_json
@@ -32,21 +43,17 @@ from agent.export.names import OutputNameError, OutputPlan
 from agent.export.page_model import page_model
 from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, load_avatar
-from motor.signing.plan import SignPlan
+from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_sign
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
 from mura.limits import Limits
-from mura.sigml import read_sigml
-from mura.signs import Sign
-from mura.xml_source import XmlSource
 
-#: The files one rendered sign is written as.
-SIGN_SUFFIXES = (".bvh", ".face.json", ".html", ".glb")
+#: The files one rendered sign may be written as.
+SIGN_SUFFIXES = (".bvh", ".face.json", ".motion.js", ".html", ".glb")
 
-#: Longest file name stem derived from a gloss.
-MAX_STEM = 80
+__all__ = ["SignRecord", "register", "run", "safe_stem", "timeline_of"]
 
 
 @dataclass
@@ -71,19 +78,22 @@ class SignRecord:
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "sign",
-        help="render SiGML/HamNoSys signs to BVH and avatar pages",
-        description="Render every sign of SiGML files (or a HamNoSys string) to BVH and an avatar page; "
-        "each sign fails alone with its reason.",
+        help="render SiGML/HamNoSys signs to BVH and the corpus viewer",
+        description="Render every sign of SiGML files (or a HamNoSys string) to BVH and DIR/index.html, the viewer "
+        "of all the signs; each sign fails alone with its reason.",
     )
     parser.add_argument("files", nargs="*", metavar="FILE.sigml", help="SiGML documents")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created if missing)")
     parser.add_argument("--avatar", default=DEFAULT_AVATAR, help=f"avatar name or file, or your own .vrm/.glb/.gltf (default: {DEFAULT_AVATAR})")
     parser.add_argument("--no-glb", dest="glb", action="store_false", help="do not write <gloss>.glb")
+    parser.add_argument("--pages", action="store_true", help="also write a stand-alone page <gloss>.html per sign")
     parser.add_argument("--fps", type=float, default=25.0, help="frames per second (default: 25)")
     parser.add_argument("--sequence", action="store_true", help="render all signs in order as one performance")
-    parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign")
+    parser.add_argument("--report", metavar="report.json", help="write a JSON record of every sign, failures and warnings by kind")
     parser.add_argument("--hamnosys", metavar="TEXT", help="a HamNoSys 4 Unicode string to render as a sign")
-    parser.add_argument("--gloss", default="sign", help="the gloss of the --hamnosys sign (default: sign)")
+    parser.add_argument("--gloss", action="append", default=[], metavar="NAME",
+                        help="render only the signs with this gloss (wildcards * ? allowed); repeatable. "
+                        "With --hamnosys, the first names that sign (default: sign)")  # fmt: skip
     add_limit_option(parser)
     parser.set_defaults(func=run)
 
@@ -99,95 +109,116 @@ def run(args: argparse.Namespace) -> int:
         return refuse("sign", error)
     if args.report and Path(args.report).is_dir():
         return refuse("sign", f"--report {args.report}: is a folder; give the report file's name")
+    corpus, records = _read_signs(args, limits)
+    if not corpus.items and not records:
+        print(f"mura sign: no sign with gloss {', '.join(args.gloss)}", file=sys.stderr)
+        return 1
     output = Path(args.output)
     try:
         with StagedRun(output) as staged:
-            report = staged.beside(args.report) if args.report else None
-            records = _render_all(args, avatar, limits, fps, staged.folder, OutputPlan(output, args.files))
-            if report is not None:
-                report.write_text(json.dumps(_report(records), indent=1, ensure_ascii=False), encoding="utf-8")
+            report_path = staged.beside(args.report) if args.report else None
+            outputs = OutputPlan(output, args.files)
+            if args.sequence:
+                records.extend(_sequence(avatar, corpus, staged.folder, fps, outputs, args.glb))
+            else:
+                options = RenderOptions(args.avatar, fps, args.glb, args.pages, limits=tuple(args.limit))
+                records.extend(_render_signs(corpus, staged.folder, output, options, outputs))
+            report = _report(records)
+            if report_path is not None:
+                report_path.write_text(json.dumps(report, indent=1, ensure_ascii=False), encoding="utf-8")
             staged.commit()
     except OutputFolderError as error:
         return refuse("sign", error)
     rendered = sum(record.rendered for record in records)
-    print(f"{rendered} of {len(records)} signs rendered to {output}" + (f"; {len(records) - rendered} failed" if rendered < len(records) else ""))
+    viewer = "" if args.sequence or not rendered else f" (viewer: {output / 'index.html'})"
+    print(f"{rendered} of {len(records)} signs rendered to {output}{viewer}"
+          + (f"; {len(records) - rendered} failed" if rendered < len(records) else ""))  # fmt: skip
     for record in records:
         if not record.rendered:
             print(f"{record.source}: {record.gloss}: {record.reason}")
+    for kind, group in report["failures_by_kind"].items():
+        print(f"{group['count']:5d} × {kind}")
     return 0 if rendered == len(records) else 1
 
 
-def _render_all(args: argparse.Namespace, avatar, limits: Limits, fps: float, folder: Path, outputs: OutputPlan) -> list[SignRecord]:
-    """Read, plan and render every sign into ``folder``; one record per sign, failures included."""
-    records: list[SignRecord] = []
-    signs = _read_signs(args, records, limits)
-    plans: list[tuple[SignRecord, SignPlan]] = []
-    for source, sign in tqdm(signs, desc="planning", unit="sign", file=sys.stderr, disable=len(signs) < 20):
-        record = SignRecord(source, sign.gloss)
-        records.append(record)
+def _read_signs(args: argparse.Namespace, limits: Limits) -> tuple[Corpus, list[SignRecord]]:
+    """The signs of every file (a file that is no SiGML, or that cannot be read, is a
+    failed record) and the HamNoSys sign."""
+    glosses = args.gloss if args.files else ()
+    corpus = read_corpus(args.files, glosses, limits)
+    records = [SignRecord(source, "*", reason=f"cannot read the document: {reason}") for source, reason in corpus.unreadable]
+    items = []
+    for item in corpus.items:
+        if item.kind == SIGN:
+            items.append(item)
+        else:
+            records.append(SignRecord(item.source, "*", reason="cannot read the document: not a SiGML document (<sigml> or <sigml_collection>)"))
+    if args.hamnosys is not None:
+        gloss = args.gloss[0] if args.gloss and not args.files else "sign"
+        name = unique_stem(gloss, {item.name.casefold() for item in items})
         try:
-            plans.append((record, plan_sign(avatar, sign)))
-        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
-            record.reason = describe_failure(error)
-    if args.sequence:
-        _render_sequence(avatar, plans, folder, fps, outputs, args.glb)
-        return records
-    names: set[str] = set()
-    for record, plan in tqdm(plans, desc="rendering", unit="sign", file=sys.stderr, disable=len(plans) < 20):
-        _render_one(avatar, record, plan, folder, fps, names, outputs, args.glb)
+            sign = parse_hamnosys(args.hamnosys, gloss=gloss, file="--hamnosys", limits=limits)
+            items.append(CorpusItem(len(corpus.items), name, SIGN, gloss, "--hamnosys", "", sign))
+        except SpecError as error:
+            records.append(SignRecord("--hamnosys", gloss, reason=str(error)))
+        except Exception as error:  # noqa: BLE001 - the sign's failure is its own
+            records.append(SignRecord("--hamnosys", gloss, reason=describe_failure(error)))
+    return Corpus(tuple(items), corpus.unreadable), records
+
+
+def _render_signs(corpus: Corpus, folder: Path, output: Path, options: RenderOptions, outputs: OutputPlan) -> list[SignRecord]:
+    """Every sign rendered on its own into ``folder`` (chunk by chunk, as ``mura batch``
+    renders them), then the corpus viewer for all of them; files are named as they end
+    up, in ``output``."""
+    records, entries = [], []
+    items = [_claimed(item, outputs) for item in corpus.items]
+    bar = tqdm(total=len(items), desc="rendering", unit="sign", file=sys.stderr, disable=len(items) < 20)
+    for chunk in chunks_of(items):
+        by_index = {item.index: item for item in chunk}
+        for result in render_chunk(chunk, options, folder):
+            item = by_index[result.index]
+            files = tuple(str(output / f.name) for f in result.files)
+            records.append(SignRecord(item.source, item.label, result.rendered, result.duration, files, result.reason, result.warnings))
+            entries.append(entry_of(item, result, options.key()))
+        bar.update(len(chunk))
+    bar.close()
+    if any(entry.rendered for entry in entries):
+        write_corpus_pages(folder, entries, options, corpus_title(corpus))
     return records
 
 
-def _read_signs(args: argparse.Namespace, records: list[SignRecord], limits: Limits) -> list[tuple[str, Sign]]:
-    """Signs of every file (failures go straight into the records) and the HamNoSys sign."""
-    signs: list[tuple[str, Sign]] = []
-    for path in args.files:
-        try:
-            result = read_sigml(XmlSource.from_path(path, limits=limits), limits)
-        except SpecError as error:
-            records.append(SignRecord(path, "*", reason=f"cannot read the document: {error}"))
-            continue
-        except Exception as error:  # noqa: BLE001 - one document's failure is its own
-            records.append(SignRecord(path, "*", reason=f"cannot read the document: {describe_failure(error)}"))
-            continue
-        signs.extend((path, sign) for sign in result.signs)
-        records.extend(SignRecord(path, failure.gloss, reason=str(failure.error)) for failure in result.failures)
-    if args.hamnosys is not None:
-        try:
-            signs.append(("--hamnosys", parse_hamnosys(args.hamnosys, gloss=args.gloss, file="--hamnosys", limits=limits)))
-        except SpecError as error:
-            records.append(SignRecord("--hamnosys", args.gloss, reason=str(error)))
-    return signs
+def _claimed(item: CorpusItem, outputs: OutputPlan) -> CorpusItem:
+    """``item``, failed when its files would overwrite an input of the run."""
+    try:
+        outputs.claim(f"sign {item.label!r}", item.name, SIGN_SUFFIXES)
+    except OutputNameError as error:
+        return dataclasses.replace(item, sign=None, error=f"{item.source}: {item.label}: {error}")
+    return item
 
 
 def safe_stem(gloss: str, taken: set[str]) -> str:
-    """A file name stem from a gloss: letters, digits, ``-`` and ``_`` only, unique in
-    ``taken`` (which it joins)."""
-    stem = re.sub(r"[^A-Za-z0-9_-]+", "_", gloss).strip("_")[:MAX_STEM] or "sign"
-    candidate, number = stem, 2
-    while candidate.lower() in taken:
-        candidate = f"{stem}_{number}"
-        number += 1
-    taken.add(candidate.lower())
-    return candidate
+    """A file name stem from a gloss (letters of every script kept), unique in ``taken``
+    (which it joins; see :mod:`agent.batch.naming`)."""
+    return unique_stem(gloss, taken)
 
 
-def _render_one(avatar, record: SignRecord, plan: SignPlan, folder: Path, fps: float, names: set[str], outputs: OutputPlan,
-                glb: bool = True) -> None:
-    try:
-        stem = safe_stem(plan.gloss, names)
-        outputs.claim(f"sign {plan.gloss!r}", stem, SIGN_SUFFIXES)
-        signed = realize_signs(avatar, [plan], fps)
-        record.files = _write_performance(signed, folder, stem, plan.gloss, outputs.folder, avatar if glb else None, avatar)
-    except OutputNameError as error:
-        record.reason = str(error)
-        return
-    except Exception as error:  # noqa: BLE001 - one sign's failure is its own
-        record.reason = describe_failure(error)
-        return
-    record.rendered = True
-    record.duration = round(signed.duration, 4)
-    record.warnings = signed.warnings
+def _sequence(avatar, corpus: Corpus, folder: Path, fps: float, outputs: OutputPlan, glb: bool) -> list[SignRecord]:
+    """All signs planned one by one, then realized in order as one performance."""
+    records: list[SignRecord] = []
+    plans: list[tuple[SignRecord, SignPlan]] = []
+    for item in corpus.items:
+        record = SignRecord(item.source, item.label, reason=item.error)
+        records.append(record)
+        if item.sign is None:
+            continue
+        try:
+            plans.append((record, plan_sign(avatar, item.sign)))
+        except SignPlanningError as error:
+            record.reason = planning_reason(item.sign, error)
+        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
+            record.reason = describe_failure(error)
+    _render_sequence(avatar, plans, folder, fps, outputs, glb)
+    return records
 
 
 def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan,
@@ -206,32 +237,14 @@ def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: P
         record.rendered = True
         record.duration = round(timing.end - timing.ready, 4)
         record.files = files
-        record.warnings = plan.warnings
-
-
-def timeline_of(signed: SignedMotion, name: str) -> dict:
-    """The avatar page's timeline: one behaviour per sign with its phases."""
-    arms = ["right_arm", "left_arm"]
-    behaviors = [
-        {
-            "id": timing.gloss, "chunk": 0, "arms": arms,
-            "phases": {
-                "start": timing.start, "ready": timing.ready, "stroke_start": timing.ready,
-                "stroke": 0.5 * (timing.ready + timing.end), "stroke_end": timing.end, "relax": timing.end, "end": timing.end,
-            },
-        }
-        for timing in signed.timings
-    ]  # fmt: skip
-    return {
-        "version": 1, "name": name, "duration": signed.duration, "fps": signed.motion.fps, "chunks": [],
-        "behaviors": behaviors, "words": [], "phonemes": [], "time_tags": {},
-    }  # fmt: skip
+        record.warnings = summarize_warnings(plan.warnings)
 
 
 def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str, output: Path, glb_avatar=None,
                        page_avatar=None) -> tuple[str, ...]:
-    """BVH, page (drawing ``page_avatar``'s own model) and, with ``glb_avatar``, the GLB,
-    written into ``folder``; returns their paths in ``output``, where they end up."""
+    """BVH, face weights, page (drawing ``page_avatar``'s own model) and, with
+    ``glb_avatar``, the GLB, written into ``folder``; returns their paths in ``output``,
+    where they end up."""
     write_bvh(signed.motion, folder / f"{stem}.bvh")
     (folder / f"{stem}.face.json").write_text(face_json(signed.motion), encoding="ascii")
     files = [str(output / f"{stem}.bvh"), str(output / f"{stem}.face.json")]
@@ -249,15 +262,16 @@ def _write_performance(signed: SignedMotion, folder: Path, stem: str, name: str,
 
 
 def _report(records: list[SignRecord]) -> dict:
-    failures: dict[str, int] = {}
-    for record in records:
-        if not record.rendered:
-            key = (record.reason or "unknown").split(":")[-1].strip()[:80]
-            failures[key] = failures.get(key, 0) + 1
+    """Totals, the failures and warnings grouped by kind, and every sign's record."""
+    entries = [
+        Entry({"label": r.gloss, "source": r.source, "status": "rendered" if r.rendered else "failed", "reason": r.reason or "unknown", "warnings": list(r.warnings)})
+        for r in records
+    ]  # fmt: skip
+    grouped = report_of(entries)
     return {
         "total": len(records),
         "rendered": sum(r.rendered for r in records),
-        "failures_by_reason": failures,
+        "failures_by_kind": grouped["failures_by_kind"],
+        "warnings_by_kind": grouped["warnings_by_kind"],
         "signs": [record.as_json() for record in records],
     }
-

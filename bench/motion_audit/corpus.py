@@ -105,7 +105,7 @@ def _sign_job(inputs: Path, quick: bool, avatar: tuple[str, ...]) -> RenderJob |
     if not SIGML.is_dir():
         return None
     files = sample_signs(inputs, QUICK["signs"] if quick else SIGN_SAMPLE)
-    return RenderJob("signs", ("sign", *map(str, files), "--fps", str(FPS), "--report", str(inputs / "signs_report.json"), *avatar), {})
+    return RenderJob("signs", ("sign", *map(str, files), "--fps", str(FPS), "--pages", "--report", str(inputs / "signs_report.json"), *avatar), {})
 
 
 def _run(job: RenderJob, output: Path) -> tuple[list[str], str]:

@@ -405,6 +405,8 @@ class Compiler:
         return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
 
     def dynamic(self, leaf: Dynamic, origin: Mapping[str, np.ndarray]) -> Fragment:
+        if leaf.keyframes is not None and not leaf.segments:  # joint keyframes: neither the arm nor the neck planner reads them
+            return Fragment(0.0, {}, (f"{self.behavior}: keyframed {leaf.slot} ({len(leaf.keyframes.frames)} frames of named joints) is not realized by the motor programs",))
         feature = _FEATURES.get(leaf.slot)
         if feature is None:
             return Fragment(0.0, {}, self.unrealized(leaf.slot))

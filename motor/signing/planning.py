@@ -39,6 +39,10 @@ the fast/slow/tense tables for those manners. A static sign holds its posture fo
 
 **Repetition.** ``fromstart``: back to the start (lax) and again; ``continue``: on from
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
+A displaced repetition shifts each further pass by the displacement's direction and size
+(small by default) once more. A ``Symmetrical`` node inside the movement (a part of a
+compound sign with its own symmetry operator) makes both hands take part, mirrored or in
+parallel as it says, for that part; ``neutralspace`` is neutral space.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
 :data:`motor.body.collision.TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
@@ -342,6 +346,8 @@ class _SignCompiler:
         site = _normalized(location)
         if site.site == "contact":
             return self.neutral(arm) if here is None else here
+        if site.site == "neutralspace":
+            return self.neutral(arm)
         if _on_other_hand(site):
             other_arm = "left" if arm == "right" else "right"
             other_hand = other or self.hands.get(other_arm)
@@ -418,7 +424,7 @@ class _SignCompiler:
         elif isinstance(node, Repetition):
             self.repetition(node)
         elif isinstance(node, Symmetrical):
-            self.compile(node.child)
+            self.symmetrical(node)
         elif isinstance(node, Dynamic) and len(node.segments) > 1:
             for segment in node.segments:
                 self.apply(self.leaf(replace(node, segments=(segment,))))
@@ -437,6 +443,17 @@ class _SignCompiler:
         steps = [self.leaf(leaf) for leaf in leaves]
         self.apply(_merge_steps(steps, base))
 
+    def symmetrical(self, node: Symmetrical) -> None:
+        """A part of a compound sign with a symmetry of its own: both hands, mirrored (or
+        in parallel) as it says, for that part only."""
+        saved = (self.symmetric, self.alternating, self.path_mirror)
+        planes = frozenset() if node.symmetry.name == "par" else node.symmetry.planes | {"S"}
+        self.symmetric, self.alternating, self.path_mirror = True, node.symmetry.alternating, Symmetry(planes, "path")
+        try:
+            self.compile(node.child)
+        finally:
+            self.symmetric, self.alternating, self.path_mirror = saved
+
     def repetition(self, node: Repetition) -> None:
         if node.alternating and self.other in self.hands:
             self.alternating = True
@@ -447,28 +464,49 @@ class _SignCompiler:
         end_hands, length = dict(self.hands), self.clock - start_clock
         if length <= 0.0:
             return
+        shift = self.shift_of(node.displacement)
         for index in range(1, node.count):
             if node.mode == "continue":
+                if shift is not None:
+                    self.apply(_Step(movement_duration("straight", "targetted"), "lax", self.shifted(self.hands, shift)))
                 self.compile(node.child)
             elif node.mode == "reverse" and index % 2 == 1:
                 backward = {arm: [_reversed(m, start_clock, start_clock + length) for m in reversed(moves)] for arm, moves in passed.items()}
                 self.replay(backward, length)
                 self.hands = dict(start_hands)
             else:
-                if node.mode == "reverse":
-                    self.replay(passed, length)
-                else:
-                    back = {arm: _Change(hand) for arm, hand in start_hands.items()}
+                offset = None if shift is None else {arm: index * vector for arm, vector in shift.items()}
+                if node.mode != "reverse":
+                    back = self.shifted(start_hands, offset) if offset is not None else {arm: _Change(hand) for arm, hand in start_hands.items()}
                     self.apply(_Step(movement_duration("straight", "targetted"), "lax", back))
-                    self.replay(passed, length)
-                self.hands = dict(end_hands)
+                self.replay(passed, length, offset)
+                self.hands = dict(end_hands) if offset is None else {arm: change.hand for arm, change in self.shifted(end_hands, offset).items()}
 
-    def replay(self, moves: Mapping[str, list[_HandMove]], length: float) -> None:
-        """The recorded moves of one pass again, from the current clock."""
+    def shift_of(self, displacement: Segment | None) -> dict[str, np.ndarray] | None:
+        """Each hand's shift between passes of a displaced repetition (the dominant hand's
+        along the displacement, the other hand's mirrored under symmetry), None without one."""
+        if displacement is None or displacement.direction is None:
+            return None
+        size = displacement.size if displacement.size in SIZE_FRACTIONS else "small"
+        vector = _unit(displacement.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
+        shifts = {self.dominant: vector}
+        if self.symmetric and self.other in self.hands:
+            shifts[self.other] = mirror_directions(vector, self.path_mirror)
+        return shifts
+
+    def shifted(self, hands: Mapping[str, _Hand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
+        """Changes that put ``hands`` where they are, moved by ``offset`` (hands without one stay)."""
+        return {arm: _Change(replace(hand, location=hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
+
+    def replay(self, moves: Mapping[str, list[_HandMove]], length: float, offset: Mapping[str, np.ndarray] | None = None) -> None:
+        """The recorded moves of one pass again, from the current clock (moved by ``offset``)."""
         starts = [m.start for ms in moves.values() for m in ms]
         origin = min(starts) if starts else self.clock
         for arm, ms in moves.items():
-            self.moves.setdefault(arm, []).extend(replace(m, start=m.start - origin + self.clock, end=m.end - origin + self.clock) for m in ms)
+            shift = 0.0 if offset is None else offset.get(arm, 0.0)
+            self.moves.setdefault(arm, []).extend(
+                replace(m, start=m.start - origin + self.clock, end=m.end - origin + self.clock, locations=m.locations + shift) for m in ms
+            )
         self.clock += length
 
     def apply(self, step: _Step) -> None:

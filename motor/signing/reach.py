@@ -50,6 +50,10 @@ REFINEMENTS = 4
 REFINE_SPACING = 0.06
 
 
+#: A path moved by more than this (m) is named in the plan's warnings, with the amount.
+REACH_NOTE_THRESHOLD = 0.01
+
+
 def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
     """Plans with every wrist position moved within reach (:func:`within_reach`)."""
     plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
@@ -75,9 +79,13 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             record = fixed[id(plan)]
             parts = [next(pieces) for _ in range(count)]
             before = [next(originals) for _ in range(count)]
-            changed = sum(int(len(a) != len(b) or np.any(np.abs(a - b) > 1e-12)) for a, b in zip(parts, before))
+            shifts = [path_shift(a, b) for a, b in zip(parts, before)]
+            changed = [shift for shift in shifts if shift > REACH_NOTE_THRESHOLD]
             if changed:
-                record["notes"].append(f"{plan.gloss}: {changed} path(s) of the {arm} hand moved within reach or out of the body")
+                record["notes"].append(
+                    f"{plan.gloss}: {len(changed)} path(s) of the {arm} hand moved within reach or out of the body, "
+                    f"by up to {100.0 * max(changed):.1f} cm"
+                )
             first = plan.first[arm]
             record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
             moves = plan.moves[(arm, "wrist_position")]
@@ -198,6 +206,19 @@ def _clear_points(
         moved.append(flags)
         start += count
     return out, rotations, moved, int(changed.sum())
+
+
+def path_shift(moved: np.ndarray, original: np.ndarray) -> float:
+    """How far (m) a path was moved: the largest distance of a point of ``moved`` ``(m, 3)``
+    from the polyline ``original`` ``(n, 3)`` (midpoints may have been inserted)."""
+    if len(original) == 1:
+        return float(np.max(np.linalg.norm(moved - original[0], axis=1)))
+    a, b = original[:-1], original[1:]
+    chord = b - a
+    lengths = np.maximum(np.einsum("ij,ij->i", chord, chord), 1e-18)
+    t = np.clip(np.einsum("mij,ij->mi", moved[:, None, :] - a[None], chord) / lengths, 0.0, 1.0)
+    nearest = a[None] + t[..., None] * chord[None]
+    return float(np.max(np.min(np.linalg.norm(moved[:, None, :] - nearest, axis=2), axis=1)))
 
 
 def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:

@@ -85,7 +85,8 @@ def test_readme_without_markers_is_refused(tmp_path):
 
 
 def test_default_targets_name_real_rows():
-    assert len(runner.TARGETS) == 27
+    names = [t.what for t in runner.TARGETS]
+    assert len(names) == len(set(names))
     assert all(t.path[0] in runner.MODULES for t in runner.TARGETS)
 
 

@@ -92,7 +92,7 @@ def test_sign_batch_renders_the_good_signs_and_reports_the_bombs(write, tmp_path
     out, report = tmp_path / "out", tmp_path / "report.json"
     signed = run_mura("sign", str(document), "-o", str(out), "--report", str(report), *LIGHT)
     assert signed.status == 1
-    assert all_files(out) == ["GOOD.bvh", "GOOD.face.json", "GOOD.html"]
+    assert all_files(out) == ["GOOD.bvh", "GOOD.face.json", "GOOD.motion.js", "index.html"]
     records = {record["gloss"]: record for record in json.loads(report.read_text())["signs"]}
     assert records["GOOD"]["rendered"]
     assert records["REPEATS"]["reason"] == f"{document}:3:1: sign 'REPEATS' expands to 1073741824 movements once its repetitions are performed, more than the limit of 1000 (raise with --limit max_movements=N)"

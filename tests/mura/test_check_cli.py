@@ -29,7 +29,7 @@ def test_unknown_document_type(tmp_path, capsys):
     path = tmp_path / "song.xml"
     path.write_text("<song/>")
     assert main(["check", str(path)]) == 1
-    assert capsys.readouterr().out.strip() == f"{path}:1:1: unknown document type <song> (expected <definition>, <utterance>, <bml>, <lexicon>, <sigml> or <sigml_collection>)"
+    assert capsys.readouterr().out.strip() == f"{path}:1:1: unknown document type <song> (expected <definition>, <utterance>, <bml>, <lexicon>, <gestures>, <hns>, <sigml> or <sigml_collection>)"
 
 
 def test_sigml_lists_each_broken_sign(tmp_path, capsys):

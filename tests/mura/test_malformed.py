@@ -20,7 +20,7 @@ CASES = [
     ("missing_function_param.xml", 6, 7, "function 'refer_to_loc' needs parameter 'refloc'"),
     ("not_well_formed.xml", 4, 13, "malformed XML: Opening and ending tag mismatch: behaviorspec line 3 and utterance"),
     ("schema_violation.xml", 6, 7, "does not fit the MURML schema: Did not expect element wobble there"),
-    ("segment_without_path.xml", 8, 11, "a HandLocation segment needs an end, or a direction and a distance"),
+    ("segment_without_path.xml", 8, 11, "a HandLocation segment needs an end, a direction and a distance, or a start to hold"),
     ("slot_value_mismatch.xml", 7, 40, "PalmOrientation: unknown palm orientation 'BSflat'"),
     ("time_tag_inside_word.xml", 2, 25, "time tag 't1' stands inside a word; put it between words"),
     ("timing_end_before_onset.xml", 5, 29, "timing of 'behavior_1' ends at 1.0 s, not after its onset 3.0 s"),

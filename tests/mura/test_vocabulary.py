@@ -80,8 +80,22 @@ def test_grid_location_names_in_any_order_and_aliases():
     assert parse_grid_location("LocNorm LocCenter LocHip") == GridLocation("LocHip", "LocCCenter", "LocNorm")
     with pytest.raises(ValueError, match="same axis"):
         parse_grid_location("LocHip LocChest LocNorm")
-    with pytest.raises(ValueError, match="three names"):
-        parse_grid_location("LocHip LocNorm")
+    with pytest.raises(ValueError, match="names no height"):
+        parse_grid_location("LocCenter LocNorm")
+    with pytest.raises(ValueError, match="three names at most"):
+        parse_grid_location("LocHip LocCenter LocNorm LocFar")
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("LocHip LocNorm", GridLocation("LocHip", "LocCCenter", "LocNorm")),  # the published realizer's two-name form
+        ("LocChest LocCenterRight", GridLocation("LocChest", "LocCenterRight", "LocNorm")),
+        ("LocShoulder", GridLocation("LocShoulder", "LocCCenter", "LocNorm")),
+    ],
+)
+def test_grid_location_axes_left_out_take_their_defaults(text, expected):
+    assert parse_grid_location(text) == expected
 
 
 SEGMENT = """<utterance {unit}><specification>Take <time id="t1"/> this <time id="t2"/></specification>

@@ -48,6 +48,13 @@ def sources() -> dict[str, tuple[Path, float]]:
     return cases
 
 
+def portable_timeline(timeline: dict) -> dict:
+    """The timeline as JSON data with the checkout's own folders written as ``<repo>``
+    and ``<shared>``, so that a golden record compares equal from any clone."""
+    text = json.dumps(timeline).replace(str(SHARED), "<shared>").replace(str(REPO), "<repo>")
+    return json.loads(text)
+
+
 def projections(joints: int) -> np.ndarray:
     """Three fixed random weightings ``(J * 4, 3)`` of a frame's rotations."""
     return np.random.default_rng(20240611).standard_normal((joints * 4, 3))
@@ -92,7 +99,7 @@ def main() -> None:
     for name, case in sources().items():
         performance = render(case)
         np.savez_compressed(GOLDEN / f"{name}.npz", **record(performance))
-        (GOLDEN / f"{name}.timeline.json").write_text(json.dumps(performance.timeline, indent=1, sort_keys=True))
+        (GOLDEN / f"{name}.timeline.json").write_text(json.dumps(portable_timeline(performance.timeline), indent=1, sort_keys=True))
         print(name, performance.motion.frame_count)
 
 

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from golden_cases import GOLDEN, record, render, sources
+from golden_cases import GOLDEN, portable_timeline, record, render, sources
 
 TOLERANCE = 1e-6
 CASES = sources()
@@ -68,7 +68,7 @@ def test_same_rotations(rendered, key):
 def test_same_timeline(rendered):
     name, performance, _, _ = rendered
     expected = json.loads((GOLDEN / f"{name}.timeline.json").read_text())
-    actual = json.loads(json.dumps(performance.timeline))
+    actual = portable_timeline(performance.timeline)
     _close(actual, expected, f"{name} timeline")
 
 

@@ -83,3 +83,26 @@ def test_safe_stem(gloss, stem):
 def test_safe_stem_is_unique():
     taken: set[str] = set()
     assert [safe_stem("a", taken) for _ in range(3)] == ["a", "a_2", "a_3"]
+
+
+@pytest.mark.parametrize(("glosses", "stems"), [(["three"], ["three"]), (["one*", "thr?e"], ["one_two", "three"]), (["nothing"], [])])
+def test_gloss_picks_signs(tmp_path, sigml, capsys, glosses, stems):
+    out = tmp_path / "out"
+    options = [option for gloss in glosses for option in ("--gloss", gloss)]
+    status = main(["sign", str(sigml), "-o", str(out), "--no-glb", *options])
+    assert sorted(p.stem for p in out.glob("*.bvh")) == stems
+    assert status == (0 if stems else 1)
+    if not stems:
+        assert "no sign with gloss nothing" in capsys.readouterr().err
+
+
+def test_unicode_glosses_name_files(tmp_path):
+    document = "<sigml>" + "".join(
+        f'<hns_sign gloss="{gloss}"><hamnosys_manual>{GOOD}</hamnosys_manual></hns_sign>' for gloss in ("नमस्ते", "Straße", "STRASSE", "straße")
+    ) + "</sigml>"
+    path = tmp_path / "signs.sigml"
+    path.write_text(document, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["sign", str(path), "-o", str(out), "--no-glb"]) == 0
+    assert sorted(p.stem for p in out.glob("*.bvh")) == sorted(["नमस्ते", "Straße", "STRASSE_2", "straße_3"])  # full case folding: ß is ss
+    assert (out / "index.html").is_file()

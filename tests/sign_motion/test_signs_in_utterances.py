@@ -10,7 +10,8 @@ import pytest
 from agent import Agent
 from motor.body.kinematics import forward_kinematics
 from mura.errors import SpecError
-from mura.murml import load_utterance, parse_utterance
+from mura.model import AbsoluteTiming
+from mura.murml import UNTIMED_GAP, UNTIMED_STROKE, load_utterance, parse_utterance
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLE = REPO / "specs" / "utterances" / "sign_here.xml"
@@ -36,7 +37,6 @@ def test_both_written_forms_parse_to_signs():
         (AFFILIATE, "sign 's' needs exactly one of <hamnosys>, <hns_sign>, <hamgestural_sign>"),
         (AFFILIATE + "<hamnosys> </hamnosys>", "sign 's': <hamnosys> is empty"),
         (AFFILIATE + "<hamnosys>&#xE002;&#xE0F9;</hamnosys>", "sign 's'"),
-        ("<hamnosys>&#xE002;&#xE020;&#xE03E;&#xE051;</hamnosys>", "sign 's' has neither an <affiliate> nor a <timing>"),
     ],
 )
 def test_bad_sign_behaviours_are_spec_errors(body, message):
@@ -44,6 +44,19 @@ def test_bad_sign_behaviours_are_spec_errors(body, message):
         parse_utterance(TEMPLATE.format(body=body), file="signs.xml")
     assert message in str(caught.value)
     assert caught.value.file == "signs.xml" and caught.value.line >= 1
+
+
+def test_a_sign_without_timing_is_performed_from_the_start():
+    utterance = parse_utterance(TEMPLATE.format(body="<hamnosys>&#xE002;&#xE020;&#xE03E;&#xE051;</hamnosys>"), file="signs.xml")
+    (sign,) = [b for b in utterance.behaviors if b.kind == "sign"]
+    assert sign.timing == AbsoluteTiming(UNTIMED_GAP, UNTIMED_GAP + UNTIMED_STROKE)
+
+
+def test_a_pointing_sign_without_timing_is_performed_from_the_start_too():
+    text = ('<utterance><space><place entity="john" arc="0.9"/></space><specification>Look there.</specification>'
+            '<behaviorspec id="b1"><sign point="john"/></behaviorspec></utterance>')
+    (pointing,) = parse_utterance(text, file="point.xml").behaviors
+    assert pointing.spatial is not None and pointing.timing == AbsoluteTiming(UNTIMED_GAP, UNTIMED_GAP + UNTIMED_STROKE)
 
 
 @pytest.fixture(scope="module")

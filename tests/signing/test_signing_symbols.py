@@ -65,6 +65,12 @@ def test_symbol_codepoint_and_category(name: str, codepoint: int, category: str)
         ("hampinchopen", "hampinch12open"),
         ("hamcee12open", "hamceeopen"),
         ("hamfingerhookedmod", "hamfingerhookmod"),
+        ("hamsymlr", "hamsymmlr"),
+        ("hamSymPar", "hamsymmpar"),
+        ("hamclockplus", "hamclockfull"),
+        ("hamthumbout", "hamthumboutmod"),
+        ("hamperiod", "hamfullstop"),
+        ("hamtab", "hamspace"),
     ],
 )
 def test_aliases_and_case(written: str, canonical: str) -> None:

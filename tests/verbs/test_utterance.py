@@ -72,7 +72,6 @@ def test_space_of_a_definition_serves_its_utterances():
         (SPACE, '<sign verb="GIVE" subject="john"><affiliate onset="t1" end="t2"/></sign>', "needs an object", 5),
         (SPACE, '<sign verb="GIVE" subject="john" object="mary" model="spline"><affiliate onset="t1" end="t2"/></sign>', "model 'spline'", 5),
         (SPACE, '<sign point="john" verb="ASK"><affiliate onset="t1" end="t2"/></sign>', "either point or verb", 5),
-        (SPACE, '<sign point="john"/>', "neither an <affiliate> nor a <timing>", 5),
         ('<space><place entity="john" arc="2"/></space>', '<sign point="john"><affiliate onset="t1" end="t2"/></sign>', "outside [-1, 1]", 2),
         ('<space><place entity="john" arc="0.1"/><place entity="john" arc="0.2"/></space>', '<sign point="john"><affiliate onset="t1" end="t2"/></sign>', "placed twice", 2),
     ],

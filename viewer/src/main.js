@@ -22,6 +22,7 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { buildAvatar } from './avatar.js';
 import { Clock } from './clock.js';
+import { corpusSpec, startCorpus } from './corpus.js';
 import { faceAt, morphDriver, readFace, vrmDriver } from './face.js';
 import { loadModel, modelSpec } from './model.js';
 import { PLACE_COLOUR, addPlaces } from './places.js';
@@ -442,7 +443,8 @@ function boot() {
   const timelineView = new TimelineView(ui.strip, ui.list, () => {});
   try {
     const view = buildScene(ui.stage);
-    if (params.get('live') === '1') startLive(ui, view, timelineView);
+    if (corpusSpec()) startCorpus(ui, view, params, { measurePoses, frameView, addFloor });
+    else if (params.get('live') === '1') startLive(ui, view, timelineView);
     else if (params.get('live') === 'ws') startLive(ui, view, timelineView, 'ws');
     else startFile(ui, view, timelineView, params);
   } catch (error) {

@@ -21,6 +21,15 @@ html, body { margin: 0; background: #101317; color: #dfe3ea; font: 14px/1.4 syst
 #mura-timeline-list ol, #mura-timeline-list ul { margin: 0; padding-left: 22px; }
 #mura-timeline-list li.active { color: #ffd27f; }
 #mura-timeline-list p { margin: 0; font-size: 12px; color: #b8bec8; }
+#mura-corpus-panel { margin: 8px 0; }
+#mura-search { width: 60%; padding: 4px 8px; background: #1a1f26; color: #dfe3ea; border: 1px solid #4a5866; border-radius: 4px; }
+#mura-count { margin-left: 10px; font-size: 12px; color: #aab4c2; }
+#mura-items { max-height: 240px; overflow-y: auto; margin: 6px 0; padding-left: 28px; columns: 3 180px; font-size: 13px; }
+#mura-items li { cursor: pointer; }
+#mura-items li.failed { color: #6b7380; cursor: default; text-decoration: line-through; }
+#mura-items li.active { color: #ffd27f; }
+#mura-more { font-size: 12px; color: #aab4c2; margin: 0; }
+#mura-play-all { font-size: 12px; white-space: nowrap; }
 #mura-send { display: flex; gap: 8px; margin: 8px 0; }
 #mura-send textarea { flex: 1; background: #1a1f26; color: #dfe3ea; border: 1px solid #4a5866; border-radius: 4px; font: 12px/1.3 monospace; }
 `;
