@@ -53,6 +53,34 @@ def test_arms_hanging_at_rest_stay_clear_of_the_torso(avatar, side):
     assert capsule_distance(torso, upper.a, upper.b, upper.radius) >= -1e-9
 
 
+@pytest.mark.parametrize("name", ["max", "kim", "makehuman"])
+def test_no_arm_volume_overlaps_the_body_in_its_own_rest_pose(name):
+    """At rest (arms hanging) every arm capsule is clear of every volume of the body and of
+    the other arm — the shipped avatars and the default skinned one, whose volumes are
+    measured on its skin: a volume inside the body at rest would count every pose of the
+    arm as a penetration."""
+    collision = load_avatar(name).collision
+    arms = [v for v in collision.volumes if v.name[2:] in ("upper_arm", "forearm", "hand")]
+    for arm in arms:
+        for other in collision.volumes:
+            if other.name[:2] == arm.name[:2] and other in arms:
+                continue
+            if isinstance(other, Capsule):
+                gap = float(segment_distance(arm.a, arm.b, other.a, other.b)) - arm.radius - other.radius
+            else:
+                gap = float(capsule_distance(other, arm.a, arm.b, arm.radius))
+            assert gap >= -1e-3, f"{name}: {arm.name} {100 * -gap:.1f} cm into {other.name} at rest"
+
+
+@pytest.mark.parametrize("name", ["max", "kim", "makehuman"])
+def test_hands_placed_palm_to_palm_do_not_overlap(name):
+    """Hands placed a palm thickness apart (midline to midline) touch: their capsules are
+    no thicker than the palm."""
+    collision = load_avatar(name).collision
+    for side in "lr":
+        assert 2.0 * collision.arm(side, "hand").radius <= collision.palm_thickness + 1e-3
+
+
 def _edit(tmp_path: Path, edit) -> Path:
     data = json.loads((AVATAR_DIR / "kim.json").read_text())
     edit(data["collision"])
