@@ -1,7 +1,8 @@
 """Arm-continuity figures over the example utterances, the published MURML files and a
 sample of real signs (not a test: prints a table; the tests assert the properties).
 
-Run from the repository root: ``python tests/arm_continuity/measure.py [--signs N]``.
+Run from the repository root: ``python tests/arm_continuity/measure.py [--signs N]
+[--avatar NAME ...]`` (by default on ``max`` and on the default avatar, ``makehuman``).
 Every input is rendered at 60 fps (utterances with fake speech through the agent, each
 sign alone as ``mura sign`` renders it) and measured with :mod:`checks`.
 """
@@ -26,12 +27,12 @@ _TIMING = re.compile(r'<timing onset="([0-9.]+)" end="([0-9.]+)"')
 _SIGN = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.DOTALL)
 
 
-def utterance_motions():
+def utterance_motions(avatar: str):
     """(name, avatar, motion) of every example utterance and published MURML file; a
     published file whose absolute timing is too early for the preparation is retried 1 s later."""
     from agent.agent import Agent
 
-    agent = Agent(avatar="max", tts="fake", fps=FPS)
+    agent = Agent(avatar=avatar, tts="fake", fps=FPS)
     paths = sorted((REPO / "specs" / "utterances").glob("*.xml")) + sorted((SHARED / "corpora" / "murml").glob("*.us"))
     for path in paths:
         for delay in (0.0, 1.0):
@@ -56,13 +57,13 @@ def sign_sample(count: int):
     return signs
 
 
-def sign_motions(count: int):
+def sign_motions(avatar_name: str, count: int):
     from motor.body.avatar import load_avatar
     from motor.signing.plan import SignPlan
     from motor.signing.planning import plan_signs
     from motor.signing.sequence import realize_signs
 
-    avatar = load_avatar("max")
+    avatar = load_avatar(avatar_name)
     signs = sign_sample(count)
     for sign, plan in zip(signs, plan_signs(avatar, signs)):
         if isinstance(plan, SignPlan):
@@ -90,16 +91,20 @@ def summary(label: str, rows: list) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--signs", type=int, default=100)
+    parser.add_argument("--avatar", action="append", help="avatar to measure (repeatable; default: max and the default avatar)")
     parser.add_argument("--verbose", action="store_true")
     args = parser.parse_args()
-    for label, source in (("utterances (examples + published MURML)", utterance_motions()), (f"signs (sample of {args.signs})", sign_motions(args.signs))):
-        started = time.perf_counter()
-        rows = [(name, figures(avatar, motion)) for name, avatar, motion in source]
-        if args.verbose:
-            for name, f in rows:
-                print(f"  {name}: {f}")
-        summary(label, rows)
-        print(f"  ({time.perf_counter() - started:.1f} s)")
+    from motor.body.avatar import DEFAULT_AVATAR
+
+    for avatar in args.avatar or ["max", DEFAULT_AVATAR]:
+        for label, source in (("utterances (examples + published MURML)", utterance_motions(avatar)), (f"signs (sample of {args.signs})", sign_motions(avatar, args.signs))):
+            started = time.perf_counter()
+            rows = [(name, figures(body, motion)) for name, body, motion in source]
+            if args.verbose:
+                for name, f in rows:
+                    print(f"  {name}: {f}")
+            summary(f"{avatar}, {label}", rows)
+            print(f"  ({time.perf_counter() - started:.1f} s)")
 
 
 if __name__ == "__main__":
