@@ -62,13 +62,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.hand_orientation import hand_rotations_from_vectors
-from motor.arm.ik import solve_arm
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
-from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
-from motor.hand.shape import hand_rotations, handshape_params
+from motor.signing.hand_geometry import HandGeometry
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
@@ -203,15 +201,19 @@ def plan_sign(avatar: Avatar, sign: Sign) -> SignPlan:
     return result
 
 
-def plan_signs(avatar: Avatar, signs: Sequence[Sign]) -> list[SignPlan | SignPlanningError]:
+def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> list[SignPlan | SignPlanningError]:
     """Each sign's plan, or the error saying why it cannot be realized, in order.
 
-    Planning many signs at once is faster: the reach of every wrist position of all the
-    signs is checked in one vectorized IK call per arm."""
+    Planning many signs at once is faster: the hand geometry the signs share (rotations,
+    hand shapes, locations, site offsets, arm poses) is computed once for the collection
+    (:class:`motor.signing.hand_geometry.HandGeometry`; ``memoize=False`` computes it
+    afresh every time, the plain path the tests compare with), and the reach of every
+    wrist position of all the signs is checked in one vectorized IK call per arm."""
+    geometry = HandGeometry(avatar, memoize)
     drafts: list[SignPlan | SignPlanningError] = []
     for sign in signs:
         try:
-            drafts.append(_SignCompiler(avatar, sign).plan())
+            drafts.append(_SignCompiler(geometry, sign).plan())
         except SignPlanningError as error:
             drafts.append(error)
         except (SpecError, ValueError, KeyError) as error:
@@ -222,12 +224,13 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign]) -> list[SignPlan | SignPla
 
 
 class _SignCompiler:
-    def __init__(self, avatar: Avatar, sign: Sign) -> None:
-        self.avatar = avatar
+    def __init__(self, geometry: HandGeometry, sign: Sign) -> None:
+        self.geometry = geometry
+        self.avatar = geometry.avatar
         self.sign = sign
         self.dominant = sign.dominant.side
         self.other = sign.dominant.other.side
-        self.arm_length = avatar.arm_length("r")
+        self.arm_length = self.avatar.arm_length("r")
         self.warnings: list[str] = []
         self.hands: dict[str, _Hand] = {}
         self.moves: dict[str, list[_HandMove]] = {}
@@ -316,7 +319,7 @@ class _SignCompiler:
         shape = posture.shape or HandShape("flathand")
         fingers = np.asarray(posture.ext_finger.vector if posture.ext_finger else NEUTRAL_FINGERS, dtype=float)
         palm = self.palm_vector(arm, fingers, posture.palm)
-        params = handshape_params(shape)
+        params = self.geometry.params(shape)
         hand = _Hand(np.zeros(3), fingers, palm, shape, params)
         return replace(hand, location=self.locate(arm, posture.location, hand, other))
 
@@ -331,7 +334,7 @@ class _SignCompiler:
 
     def neutral(self, arm: str) -> np.ndarray:
         location = NEUTRAL_LOCATION if arm == "right" else replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
-        return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
+        return self.geometry.location(location, AVATAR_SIDE[arm])
 
     def locate(self, arm: str, location: Location | None, hand: _Hand, other: _Hand | None, here: np.ndarray | None = None) -> np.ndarray:
         """Palm-centre point ``(3,)`` for ``location`` (see the module docstring)."""
@@ -342,7 +345,7 @@ class _SignCompiler:
             second = self.locate(arm, location.second, hand, other, here)
             return (1.0 - location.fraction) * first + location.fraction * second
         if not isinstance(location, BodySite):
-            return resolve_location(self.avatar, location, AVATAR_SIDE[arm])
+            return self.geometry.location(location, AVATAR_SIDE[arm])
         site = _normalized(location)
         if site.site == "contact":
             return self.neutral(arm) if here is None else here
@@ -356,7 +359,7 @@ class _SignCompiler:
                 return self.neutral(arm) if here is None else here
             pose = self.arm_pose(other_arm, other_hand)
             return resolve_location(self.avatar, site, AVATAR_SIDE[arm], pose)
-        return resolve_location(self.avatar, site, AVATAR_SIDE[arm])
+        return self.geometry.location(site, AVATAR_SIDE[arm])
 
     def side_by_side(self) -> None:
         """Symmetric hands sent to the same central site go to either side of it."""
@@ -391,7 +394,7 @@ class _SignCompiler:
     # -- the hand's geometry -------------------------------------------------------------
 
     def rotation(self, arm: str, hand: _Hand) -> np.ndarray:
-        return hand_rotations_from_vectors(self.avatar, AVATAR_SIDE[arm], hand.fingers[None], hand.palm[None])[0]
+        return self.geometry.rotation(AVATAR_SIDE[arm], hand.fingers, hand.palm)
 
     def offset(self, arm: str, hand: _Hand, site: BodySite) -> np.ndarray:
         """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
@@ -402,16 +405,10 @@ class _SignCompiler:
 
     def arm_pose(self, arm: str, hand: _Hand) -> Pose:
         """The whole body with this arm in the hand's posture (rest elsewhere), one frame."""
-        side = AVATAR_SIDE[arm]
-        rotation = self.rotation(arm, hand)
-        solution = solve_arm(self.avatar, side, self.wrist(arm, hand)[None], rotation[None])
-        rotations = identity_rotations(self.avatar, 1)
-        rotations[0, self.avatar.arm_joints(side)] = solution.rotations[0]
-        rotations[0, self.avatar.hand_joints(side)] = hand_rotations(self.avatar, side, hand.params[None])[0]
-        return forward_kinematics(self.avatar, rotations)
+        return self.geometry.arm_pose(AVATAR_SIDE[arm], self.wrist(arm, hand), self.rotation(arm, hand), hand.params)
 
     def pose(self, arm: str, hand: _Hand) -> HandPose:
-        return HandPose(self.wrist(arm, hand), self.rotation(arm, hand), hand.params)
+        return HandPose(self.wrist(arm, hand), self.rotation(arm, hand).copy(), hand.params.copy())
 
     # -- the movement tree ---------------------------------------------------------------
 
@@ -661,7 +658,7 @@ class _SignCompiler:
         if slot == "HandShape":
             if not isinstance(value, HandShape):
                 raise SignPlanningError(f"sign {self.sign.gloss!r}: HandShape change to {value!r}")
-            return _Change(replace(hand, shape=value, params=handshape_params(value)))
+            return _Change(replace(hand, shape=value, params=self.geometry.params(value)))
         if slot == "ExtFingerOrientation":
             if not isinstance(value, Direction):
                 raise SignPlanningError(f"sign {self.sign.gloss!r}: extended-finger change to {value!r}")
@@ -690,8 +687,8 @@ class _SignCompiler:
     def fingerplay(self, hand: _Hand) -> _Change:
         """Fingers bending in turn: index and ring, then middle and pinky, then back."""
         shape = hand.shape
-        first = handshape_params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("index", "ring"), "halfbent"),)))
-        second = handshape_params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("middle", "pinky"), "halfbent"),)))
+        first = self.geometry.params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("index", "ring"), "halfbent"),)))
+        second = self.geometry.params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("middle", "pinky"), "halfbent"),)))
         return _Change(hand, shapes=np.stack([hand.params, first, second, first, hand.params]))
 
     # -- from hand moves to channel moves ------------------------------------------------
@@ -713,15 +710,9 @@ class _SignCompiler:
         return result
 
     def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
-        side = AVATAR_SIDE[arm]
         key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
         if key not in self._offsets:
-            rotations = identity_rotations(self.avatar, 1)
-            rotations[0, self.avatar.joint_index(f"{side}_wrist")] = rotation
-            rotations[0, self.avatar.hand_joints(side)] = hand_rotations(self.avatar, side, np.asarray(params)[None])[0]
-            pose = forward_kinematics(self.avatar, rotations)
-            wrist = pose.positions[0, self.avatar.joint_index(f"{side}_wrist")]
-            self._offsets[key] = resolve_location(self.avatar, site, "l" if side == "r" else "r", pose) - wrist
+            self._offsets[key] = self.geometry.site_offset(AVATAR_SIDE[arm], site, rotation, params)
         return self._offsets[key]
 
 

@@ -1,0 +1,106 @@
+"""The hand geometry that sign planning asks for again and again, memoized per avatar.
+
+Planning a collection of signs asks many times for the same few things, each of which
+depends only on the avatar and on a hand's values: the global hand rotation of an
+extended-finger direction and a palm direction, the joint parameters of a hand shape,
+the point a location names on the body at rest, the offset from the wrist to a site of
+the hand in a rotation and shape, and the whole-body pose with one arm holding a hand
+posture (IK and forward kinematics). :class:`HandGeometry` computes each once per
+planning run and hands the same (read-only) arrays back afterwards; with
+``memoize=False`` it computes every answer afresh, which is how the tests check that the
+memo changes nothing.
+
+Keys are the exact values asked for (the bytes of float arrays, the frozen symbol values
+of :mod:`mura.values`), so a remembered answer is the one the computation gives for
+those inputs, bit for bit. Errors are not remembered: asking again raises again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable
+from typing import TypeVar
+
+import numpy as np
+
+from motor.arm.hand_orientation import hand_rotations_from_vectors
+from motor.arm.ik import solve_arm
+from motor.body.avatar import Avatar
+from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.body.locations import resolve_location
+from motor.hand.shape import hand_rotations, handshape_params
+from mura.values import BodySite, HandShape, Location
+
+_Value = TypeVar("_Value")
+
+
+class HandGeometry:
+    """Memoized hand geometry of one avatar (module docstring); units metres, quaternions
+    scalar-last. Not shared between avatars: make one per avatar and planning run."""
+
+    def __init__(self, avatar: Avatar, memoize: bool = True) -> None:
+        self.avatar = avatar
+        self.memoize = memoize
+        self._memo: dict[Hashable, object] = {}
+
+    def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
+        if not self.memoize:
+            return compute()
+        if key not in self._memo:
+            value = compute()
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+            self._memo[key] = value
+        return self._memo[key]  # type: ignore[return-value]
+
+    def rotation(self, side: str, fingers: np.ndarray, palm: np.ndarray) -> np.ndarray:
+        """Global hand rotation ``(4,)`` of the hand on ``side`` (``"l"``/``"r"``) whose
+        extended fingers point along ``fingers`` ``(3,)`` with the palm toward ``palm``."""
+        return self._recall(
+            ("rotation", side, _bytes(fingers), _bytes(palm)),
+            lambda: hand_rotations_from_vectors(self.avatar, side, fingers[None], palm[None])[0],
+        )
+
+    def params(self, shape: HandShape) -> np.ndarray:
+        """Joint parameters of a hand shape (:func:`motor.hand.shape.handshape_params`)."""
+        return self._recall(("params", shape), lambda: handshape_params(shape))
+
+    def location(self, location: Location, side: str) -> np.ndarray:
+        """The point ``(3,)`` m a location names for the hand on ``side``, body at rest."""
+        return self._recall(("location", location, side), lambda: resolve_location(self.avatar, location, side))
+
+    def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
+        """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
+        global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
+        return self._recall(
+            ("offset", side, site, _bytes(rotation), _bytes(params)),
+            lambda: self._site_offset(side, site, rotation, params),
+        )
+
+    def _site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
+        avatar = self.avatar
+        wrist_joint = avatar.joint_index(f"{side}_wrist")
+        rotations = identity_rotations(avatar, 1)
+        rotations[0, wrist_joint] = rotation
+        rotations[0, avatar.hand_joints(side)] = hand_rotations(avatar, side, np.asarray(params)[None])[0]
+        pose = forward_kinematics(avatar, rotations)
+        return resolve_location(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[0, wrist_joint]
+
+    def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
+        """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
+        with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
+        return self._recall(
+            ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params)),
+            lambda: self._arm_pose(side, wrist, rotation, params),
+        )
+
+    def _arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
+        avatar = self.avatar
+        solution = solve_arm(avatar, side, wrist[None], rotation[None])
+        rotations = identity_rotations(avatar, 1)
+        rotations[0, avatar.arm_joints(side)] = solution.rotations[0]
+        rotations[0, avatar.hand_joints(side)] = hand_rotations(avatar, side, params[None])[0]
+        return forward_kinematics(avatar, rotations)
+
+
+def _bytes(values: np.ndarray) -> bytes:
+    return np.asarray(values, dtype=float).tobytes()
