@@ -100,7 +100,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
 
 
 def within_reach(
-    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None, unique: bool = True
 ) -> tuple[np.ndarray, int, float]:
     """Wrist positions ``(n, 3)`` the arm reaches, with its upper arm out of the torso.
 
@@ -112,7 +112,27 @@ def within_reach(
     that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
     back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
     many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
-    hand's global rotations there, which change the swivel the IK picks."""
+    hand's global rotations there, which change the swivel the IK picks.
+
+    Each position is moved on its own (the IK solves every row apart), so with ``unique``
+    a position that occurs again with the same rotation, bit for bit, is solved once (a
+    collection of signs repeats many postures); ``unique=False`` solves every row."""
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    if not unique or len(points) < 2:
+        fixed, moved, worst = _within_reach(avatar, arm, points, rotations)
+        return fixed, int(moved.sum()), worst
+    rows = points if rotations is None else np.concatenate([points, np.asarray(rotations, dtype=float)], axis=1)
+    keys = np.ascontiguousarray(rows).view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))[:, 0]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    turns = None if rotations is None else np.asarray(rotations, dtype=float)[first]
+    fixed, moved, worst = _within_reach(avatar, arm, points[first], turns)
+    return fixed[inverse], int(moved[inverse].sum()), worst
+
+
+def _within_reach(
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """:func:`within_reach` of every row: positions, which moved, the largest shortfall."""
     side = AVATAR_SIDE[arm]
     shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
     outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
@@ -146,7 +166,7 @@ def within_reach(
         fixed[open_] = here
         moved[open_[bad]] = True
         open_ = open_[bad]
-    return fixed, int(moved.sum()), max(worst, 0.0)
+    return fixed, moved, max(worst, 0.0)
 
 
 def clear_paths(
