@@ -179,53 +179,51 @@ def clear_paths(
     Moving a point can open a chord to its neighbour that cuts the unreachable core around
     the shoulder or the torso, so for :data:`REFINEMENTS` rounds each pair of neighbours of
     which one moved (or that lie more than :data:`REFINE_SPACING` apart) gets its checked
-    midpoint inserted. Also returns how many points moved."""
-    masks = []
-    for path in paths:
-        mask = np.ones(len(path), dtype=bool)
-        if keep_ends:
-            mask[[0, -1]] = False
-        masks.append(mask)
-    paths, rotations, moved, total = _clear_points(avatar, arm, paths, rotations, masks)
+    midpoint inserted. Also returns how many points moved. All paths are handled as one
+    array of points (each round is a few vectorized passes over the collection)."""
+    if not paths:
+        return [], 0
+    lengths = np.array([len(path) for path in paths])
+    points = np.concatenate([np.asarray(path, dtype=float).reshape(-1, 3) for path in paths])
+    turns = np.concatenate([np.asarray(turn, dtype=float).reshape(-1, 4) for turn in rotations])
+    mask = np.ones(len(points), dtype=bool)
+    if keep_ends:
+        ends = np.cumsum(lengths)[lengths > 0]
+        mask[ends - lengths[lengths > 0]] = False
+        mask[ends - 1] = False
+    points, moved, total = _clear_points(avatar, arm, points, turns, mask)
     for _ in range(REFINEMENTS):
-        new_paths, new_rotations, new_masks = [], [], []
-        for path, turn, change in zip(paths, rotations, moved):
-            gap = np.linalg.norm(np.diff(path, axis=0), axis=1)
-            split = (change[1:] | change[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
-            middles = 0.5 * (path[1:] + path[:-1])[split]
-            turns = quat.slerp(turn[:-1][split], turn[1:][split], 0.5)
-            order = np.argsort(np.concatenate([np.arange(len(path)), np.flatnonzero(split) + 0.5]), kind="stable")
-            new_paths.append(np.concatenate([path, middles])[order])
-            new_rotations.append(np.concatenate([turn, turns])[order])
-            new_masks.append(np.concatenate([np.zeros(len(path), dtype=bool), np.ones(len(middles), dtype=bool)])[order])
-        if not any(mask.any() for mask in new_masks):
+        owner = np.repeat(np.arange(len(lengths)), lengths)
+        gap = np.linalg.norm(np.diff(points, axis=0), axis=1)
+        split = (owner[1:] == owner[:-1]) & (moved[1:] | moved[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
+        if not split.any():
             break
-        paths, rotations, moved, more = _clear_points(avatar, arm, new_paths, new_rotations, new_masks)
+        middles = 0.5 * (points[1:] + points[:-1])[split]
+        middle_turns = quat.slerp(turns[:-1][split], turns[1:][split], 0.5)
+        order = np.argsort(np.concatenate([np.arange(len(points)), np.flatnonzero(split) + 0.5]), kind="stable")
+        points = np.concatenate([points, middles])[order]
+        turns = np.concatenate([turns, middle_turns])[order]
+        mask = np.concatenate([np.zeros(len(moved), dtype=bool), np.ones(len(middles), dtype=bool)])[order]
+        lengths = lengths + np.bincount(owner[:-1][split], minlength=len(lengths))
+        points, moved, more = _clear_points(avatar, arm, points, turns, mask)
         total += more
-    return paths, total
+    return np.split(points, np.cumsum(lengths)[:-1]), total
 
 
 def _clear_points(
-    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], masks: list[np.ndarray]
-) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], int]:
-    """The masked points of every path checked at once; which points moved."""
-    chosen = np.concatenate([path[mask] for path, mask in zip(paths, masks)])
+    avatar: Avatar, arm: str, points: np.ndarray, turns: np.ndarray, mask: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """The masked points ``(n, 3)`` checked at once; which points moved."""
+    chosen = points[mask]
     if chosen.size == 0:
-        return paths, rotations, [np.zeros(len(p), dtype=bool) for p in paths], 0
-    turns = np.concatenate([turn[mask] for turn, mask in zip(rotations, masks)])
-    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns)[0]
+        return points, np.zeros(len(points), dtype=bool), 0
+    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns[mask])[0]
     changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
-    out, moved, start = [], [], 0
-    for path, mask in zip(paths, masks):
-        count = int(mask.sum())
-        path = path.copy()
-        path[mask] = fixed[start : start + count]
-        flags = np.zeros(len(path), dtype=bool)
-        flags[mask] = changed[start : start + count]
-        out.append(path)
-        moved.append(flags)
-        start += count
-    return out, rotations, moved, int(changed.sum())
+    points = points.copy()
+    points[mask] = fixed
+    moved = np.zeros(len(points), dtype=bool)
+    moved[mask] = changed
+    return points, moved, int(changed.sum())
 
 
 def path_shift(moved: np.ndarray, original: np.ndarray) -> float:
