@@ -703,7 +703,9 @@ class _SignCompiler:
                 start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
                 end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
                 fractions = arc_fractions(move.locations)[:, None]
-                wrists.append(outside_torso(self.avatar, move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset)))
+                wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
+            if wrists:  # one pass over all the moves' points: outside_torso moves each on its own
+                wrists = np.split(outside_torso(self.avatar, np.concatenate(wrists)), np.cumsum([len(w) for w in wrists])[:-1])
             result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
             result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
@@ -744,11 +746,11 @@ def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
             before = base[arm]
             current = merged.get(arm, _Change(before))
             hand = current.hand
-            if not np.allclose(change.hand.location, before.location):
+            if not _close(change.hand.location, before.location):
                 hand = replace(hand, location=change.hand.location)
-            if not (np.allclose(change.hand.fingers, before.fingers) and np.allclose(change.hand.palm, before.palm)):
+            if not (_close(change.hand.fingers, before.fingers) and _close(change.hand.palm, before.palm)):
                 hand = replace(hand, fingers=change.hand.fingers, palm=change.hand.palm)
-            if not np.allclose(change.hand.params, before.params):
+            if not _close(change.hand.params, before.params):
                 hand = replace(hand, shape=change.hand.shape, params=change.hand.params)
             merged[arm] = _Change(
                 hand,
@@ -757,6 +759,12 @@ def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
                 change.shapes if change.shapes is not None else current.shapes,
             )
     return _Step(longest.duration, longest.manner, merged)
+
+
+def _close(a: np.ndarray, b: np.ndarray) -> bool:
+    """:func:`numpy.allclose` with its default tolerances, for finite values, without its
+    overhead (it is asked thousands of times per collection)."""
+    return bool(np.all(np.abs(a - b) <= 1e-8 + 1e-5 * np.abs(b)))
 
 
 def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
