@@ -59,19 +59,20 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
     plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
     fixed: dict[int, dict] = {id(plan): {"first": dict(plan.first), "moves": dict(plan.moves), "notes": []} for plan in plans}
     for arm in ARMS:
-        points, turns, owners = [], [], []
+        points, keys, owners = [], [], []
         for plan in plans:
             if arm not in plan.first:
                 continue
             first = plan.first[arm]
             points.append(first.wrist[None])
-            turns.append(first.rotation[None])
+            keys.append(first.rotation[None])
             for move, turn in zip(plan.moves[(arm, "wrist_position")], plan.moves[(arm, "hand_rotation")]):
                 points.append(move.values)
-                turns.append(rotations_along(turn.values, arc_fractions(move.values)))
+                keys.append(turn.values)
             owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
         if not points:
             continue
+        turns = rotations_along_paths(keys, points)
         cleared, _ = clear_paths(avatar, arm, points, turns)
         pieces = iter(cleared)
         originals = iter(points)
@@ -79,7 +80,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             record = fixed[id(plan)]
             parts = [next(pieces) for _ in range(count)]
             before = [next(originals) for _ in range(count)]
-            shifts = [path_shift(a, b) for a, b in zip(parts, before)]
+            shifts = [0.0 if _same(a, b) else path_shift(a, b) for a, b in zip(parts, before)]
             changed = [shift for shift in shifts if shift > REACH_NOTE_THRESHOLD]
             if changed:
                 record["notes"].append(
@@ -245,6 +246,50 @@ def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
     index = np.minimum(position.astype(int), len(keys) - 2)
     return quat.slerp(keys[index], keys[index + 1], position - index)
 
+
+
+def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> list[np.ndarray]:
+    """For every path ``(n_k, 3)``: the rotations ``(n_k, 4)`` at its points' fractions of
+    the way (:func:`arc_fractions`) through its evenly spaced keys ``(m_k, 4)``
+    (:func:`rotations_along`); a path of one point takes its only key. All paths in a few
+    vectorized passes, each row computed as those functions compute it."""
+    counts = np.array([len(path) for path in paths])
+    key_counts = np.array([len(key) for key in keys])
+    flat_keys = np.concatenate(keys)
+    single = np.repeat(key_counts == 1, counts)
+    spans = np.repeat(key_counts, counts)
+    base = np.repeat(np.cumsum(key_counts) - key_counts, counts)
+    fractions = arc_fractions_of_paths(paths)
+    position = np.clip(fractions, 0.0, 1.0) * (spans - 1)
+    index = np.where(single, 0, np.minimum(position.astype(int), spans - 2))
+    following = np.where(single, 0, index + 1)
+    turns = quat.slerp(flat_keys[base + index], flat_keys[base + following], position - index)
+    turns[single] = flat_keys[base[single]]
+    return np.split(turns, np.cumsum(counts)[:-1])
+
+
+def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
+    """:func:`arc_fractions` of every path, concatenated ``(sum n_k,)``, in vectorized passes."""
+    counts = np.array([len(path) for path in paths])
+    points = np.concatenate(paths)
+    starts = np.cumsum(counts) - counts
+    owner = np.repeat(np.arange(len(paths)), counts)
+    column = np.arange(len(points)) - starts[owner]
+    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    within = column[1:] > 0
+    table = np.zeros((len(paths), int(counts.max())))
+    table[owner[1:][within], column[1:][within]] = steps[within]
+    travelled = np.cumsum(table, axis=1)
+    lengths = travelled[owner, column]
+    totals = travelled[np.arange(len(paths)), counts - 1]
+    fractions = lengths / np.where(totals > _SAME, totals, 1.0)[owner]
+    for path in np.flatnonzero(totals <= _SAME):
+        fractions[starts[path] : starts[path] + counts[path]] = np.linspace(0.0, 1.0, counts[path])
+    return fractions
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> bool:
+    return a.shape == b.shape and bool(np.array_equal(a, b))
 
 
 def arc_fractions(points: np.ndarray) -> np.ndarray:
