@@ -17,7 +17,7 @@ those inputs, bit for bit. Errors are not remembered: asking again raises again.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable
+from collections.abc import Callable, Hashable, Sequence
 from typing import TypeVar
 
 import numpy as np
@@ -26,7 +26,7 @@ from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.ik import solve_arm
 from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
-from motor.body.locations import resolve_location
+from motor.body.locations import resolve_location, site_points
 from motor.hand.shape import hand_rotations, handshape_params
 from mura.values import BodySite, HandShape, Location
 
@@ -81,9 +81,40 @@ class HandGeometry:
         wrist_joint = avatar.joint_index(f"{side}_wrist")
         rotations = identity_rotations(avatar, 1)
         rotations[0, wrist_joint] = rotation
-        rotations[0, avatar.hand_joints(side)] = hand_rotations(avatar, side, np.asarray(params)[None])[0]
+        rotations[0, avatar.hand_joints(side)] = self.finger_rotations(side, params)
         pose = forward_kinematics(avatar, rotations)
         return resolve_location(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[0, wrist_joint]
+
+    def prefetch_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
+        """Compute the :meth:`site_offset` of every ``(side, site, rotation, params)``
+        not yet known in one forward-kinematics pass per side and site (a collection of
+        signs asks for thousands); each row's arithmetic is that of :meth:`site_offset`,
+        so the answers are the same, bit for bit. Does nothing without ``memoize``."""
+        if not self.memoize:
+            return
+        missing: dict[tuple[str, BodySite], dict[Hashable, tuple[np.ndarray, np.ndarray]]] = {}
+        for side, site, rotation, params in requests:
+            key = ("offset", side, site, _bytes(rotation), _bytes(params))
+            if key not in self._memo:
+                missing.setdefault((side, site), {})[key] = (rotation, params)
+        avatar = self.avatar
+        for (side, site), wanted in missing.items():
+            wrist_joint = avatar.joint_index(f"{side}_wrist")
+            rotations = identity_rotations(avatar, len(wanted))
+            rotations[:, wrist_joint] = [rotation for rotation, _ in wanted.values()]
+            rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, params) for _, params in wanted.values()]
+            pose = forward_kinematics(avatar, rotations)
+            offsets = site_points(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[:, wrist_joint]
+            offsets.setflags(write=False)
+            self._memo.update(zip(wanted, offsets))
+
+    def finger_rotations(self, side: str, params: np.ndarray) -> np.ndarray:
+        """Local rotations ``(17, 4)`` of the hand's joints for the shape ``params``
+        (:func:`motor.hand.shape.hand_rotations` of one row)."""
+        return self._recall(
+            ("fingers", side, _bytes(params)),
+            lambda: hand_rotations(self.avatar, side, np.asarray(params, dtype=float)[None])[0],
+        )
 
     def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
@@ -98,7 +129,7 @@ class HandGeometry:
         solution = solve_arm(avatar, side, wrist[None], rotation[None])
         rotations = identity_rotations(avatar, 1)
         rotations[0, avatar.arm_joints(side)] = solution.rotations[0]
-        rotations[0, avatar.hand_joints(side)] = hand_rotations(avatar, side, params[None])[0]
+        rotations[0, avatar.hand_joints(side)] = self.finger_rotations(side, params)
         return forward_kinematics(avatar, rotations)
 
 

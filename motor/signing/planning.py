@@ -56,8 +56,9 @@ is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`).
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import TypeVar
 
 import numpy as np
 
@@ -144,6 +145,8 @@ _PATH_POINTS = 8
 _CIRCLE_POINTS = 32
 _SAME = 1e-6
 _CHANNELS = ("wrist_position", "hand_rotation", "handshape")
+_PALM = BodySite("palm", proximity="touch")
+_Result = TypeVar("_Result")
 
 
 
@@ -210,15 +213,22 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     afresh every time, the plain path the tests compare with), and the reach of every
     wrist position of all the signs is checked in one vectorized IK call per arm."""
     geometry = HandGeometry(avatar, memoize)
-    drafts: list[SignPlan | SignPlanningError] = []
+    compiled: list[_SignCompiler | SignPlanningError] = []
     for sign in signs:
-        try:
-            drafts.append(_SignCompiler(geometry, sign).plan())
-        except SignPlanningError as error:
-            drafts.append(error)
-        except (SpecError, ValueError, KeyError) as error:
-            drafts.append(SignPlanningError(f"sign {sign.gloss!r}: {error}"))
+        compiled.append(_attempt(sign, lambda: _SignCompiler(geometry, sign).compile_sign()))
+    geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
+    drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
     return within_reach_all(avatar, drafts)
+
+
+def _attempt(sign: Sign, work: Callable[[], _Result]) -> _Result | SignPlanningError:
+    """What ``work`` gives, or the planning error naming the sign."""
+    try:
+        return work()
+    except SignPlanningError as error:
+        return error
+    except (SpecError, ValueError, KeyError) as error:
+        return SignPlanningError(f"sign {sign.gloss!r}: {error}")
 
 
 
@@ -241,27 +251,47 @@ class _SignCompiler:
         planes = frozenset() if symmetry is None or symmetry.kind == "par" else symmetry.planes | {"S"}
         self.path_mirror = Symmetry(planes, "path")
         self.sagittal = Symmetry(frozenset({"S"}), "SymMS")
-        self._offsets: dict[tuple, np.ndarray] = {}
+        self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
+        self.start: dict[str, _Hand] = {}
+        self.static = False
 
     def note(self, message: str) -> None:
         self.warnings.append(f"{self.sign.gloss}: {message}")
 
     # -- the whole sign ----------------------------------------------------------------
 
-    def plan(self) -> SignPlan:
+    def compile_sign(self) -> _SignCompiler:
+        """Walk the sign's movement into hand moves (the first half of planning)."""
         self.initial_postures()
-        start = {arm: hand for arm, hand in self.hands.items()}
-        static = self.sign.movement is None
-        if static:
+        self.start = dict(self.hands)
+        self.static = self.sign.movement is None
+        if self.static:
             self.hold(STATIC_HOLD, self.sign.manner if self.sign.manner in MANNERS else "targetted")
         else:
             self.compile(self.sign.movement)
             if self.clock <= 0.0:
                 self.hold(STATIC_HOLD, "targetted")
-        first = {arm: self.pose(arm, hand) for arm, hand in start.items()}
+        return self
+
+    def palm_offset_requests(self) -> list[tuple[str, BodySite, np.ndarray, np.ndarray]]:
+        """The wrist-to-palm offsets :meth:`plan` will ask for, as ``(side, site,
+        rotation, params)``, in the order it asks, so that they can be computed for the
+        whole collection at once."""
+        requests = []
+        for arm, hand in self.start.items():
+            requests.append(self.offset_request(arm, self.rotation(arm, hand), hand.params, _PALM))
+        for arm in self.start:
+            for move in self.moves.get(arm, []):
+                requests.append(self.offset_request(arm, move.rotations[0], move.shapes[0], _PALM))
+                requests.append(self.offset_request(arm, move.rotations[-1], move.shapes[-1], _PALM))
+        return requests
+
+    def plan(self) -> SignPlan:
+        """The sign's plan from its compiled hand moves (the second half of planning)."""
+        first = {arm: self.pose(arm, hand) for arm, hand in self.start.items()}
         first = {arm: replace(pose, wrist=outside_torso(self.avatar, pose.wrist[None])[0]) for arm, pose in first.items()}
         moves = self.channel_moves(first)
-        return SignPlan(self.sign.gloss, self.clock, first, moves, static, dict(self.sign.nonmanual), tuple(self.warnings))
+        return SignPlan(self.sign.gloss, self.clock, first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
 
     def hold(self, duration: float, manner: str) -> None:
         scale = movement_duration("straight", MANNERS.get(manner, "targetted")) / movement_duration("straight")
@@ -386,7 +416,7 @@ class _SignCompiler:
         else:
             meeting = other.location
         dominant = self.hands[self.dominant]
-        palm = self.offset(self.dominant, dominant, BodySite("palm", proximity="touch"))
+        palm = self.offset(self.dominant, dominant, _PALM)
         own = self.offset(self.dominant, dominant, own_site) if _is_hand_site(own_site) else palm
         self.hands[self.other] = other
         self.hands[self.dominant] = replace(dominant, location=meeting - own + palm)
@@ -401,7 +431,7 @@ class _SignCompiler:
         return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
 
     def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
-        return hand.location - self.offset(arm, hand, BodySite("palm", proximity="touch"))
+        return hand.location - self.offset(arm, hand, _PALM)
 
     def arm_pose(self, arm: str, hand: _Hand) -> Pose:
         """The whole body with this arm in the hand's posture (rest elsewhere), one frame."""
@@ -697,7 +727,7 @@ class _SignCompiler:
         result: dict[tuple[str, str], tuple[Move, ...]] = {}
         for arm in first:
             moves = self.moves.get(arm, [])
-            palm = BodySite("palm", proximity="touch")
+            palm = _PALM
             wrists = []
             for move in moves:
                 start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
@@ -712,9 +742,14 @@ class _SignCompiler:
         return result
 
     def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
+        return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))
+
+    def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
+        """The offset this sign takes for a hand posture: that of the first posture it
+        asked for within 1e-9 of it (rounded to 9 decimals)."""
         key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
         if key not in self._offsets:
-            self._offsets[key] = self.geometry.site_offset(AVATAR_SIDE[arm], site, rotation, params)
+            self._offsets[key] = (AVATAR_SIDE[arm], site, rotation, params)
         return self._offsets[key]
 
 
