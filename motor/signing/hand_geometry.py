@@ -33,14 +33,28 @@ from mura.values import BodySite, HandShape, Location
 _Value = TypeVar("_Value")
 
 
+class GeometryPending(Exception):
+    """Raised by a deferring :class:`HandGeometry` asked for an arm pose or a site offset
+    it does not know yet: the request is kept for :meth:`HandGeometry.resolve_pending`."""
+
+
 class HandGeometry:
     """Memoized hand geometry of one avatar (module docstring); units metres, quaternions
-    scalar-last. Not shared between avatars: make one per avatar and planning run."""
+    scalar-last. Not shared between avatars: make one per avatar and planning run.
+
+    With ``deferring`` set, the two costly answers (:meth:`site_offset`, :meth:`arm_pose`)
+    are not computed one by one: an unknown one is noted and :class:`GeometryPending`
+    raised, so that a caller planning many signs can set aside the signs that asked,
+    compute all the noted answers in one vectorized pass (:meth:`resolve_pending`) and
+    plan those signs again."""
 
     def __init__(self, avatar: Avatar, memoize: bool = True) -> None:
         self.avatar = avatar
         self.memoize = memoize
+        self.deferring = False
         self._memo: dict[Hashable, object] = {}
+        self._pending_offsets: list[tuple[str, BodySite, np.ndarray, np.ndarray]] = []
+        self._pending_poses: dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]] = {}
 
     def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
         if not self.memoize:
@@ -71,10 +85,11 @@ class HandGeometry:
     def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
         global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
-        return self._recall(
-            ("offset", side, site, _bytes(rotation), _bytes(params)),
-            lambda: self._site_offset(side, site, rotation, params),
-        )
+        key = ("offset", side, site, _bytes(rotation), _bytes(params))
+        if self.memoize and self.deferring and key not in self._memo:
+            self._pending_offsets.append((side, site, rotation, params))
+            raise GeometryPending(key)
+        return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
 
     def _site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         avatar = self.avatar
@@ -119,10 +134,33 @@ class HandGeometry:
     def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
         with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
-        return self._recall(
-            ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params)),
-            lambda: self._arm_pose(side, wrist, rotation, params),
-        )
+        key = ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params))
+        if self.memoize and self.deferring and key not in self._memo:
+            self._pending_poses[key] = (side, wrist, rotation, params)
+            raise GeometryPending(key)
+        return self._recall(key, lambda: self._arm_pose(side, wrist, rotation, params))
+
+    def resolve_pending(self) -> None:
+        """Compute every noted site offset and arm pose: one forward-kinematics pass per
+        side and site for the offsets (:meth:`prefetch_site_offsets`), one IK and one
+        forward-kinematics pass per side for the poses; each row's arithmetic is that of
+        the one-by-one computation, so the answers are the same, bit for bit."""
+        self.prefetch_site_offsets(self._pending_offsets)
+        self._pending_offsets = []
+        by_side: dict[str, dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]]] = {}
+        for key, request in self._pending_poses.items():
+            by_side.setdefault(request[0], {})[key] = request
+        self._pending_poses = {}
+        avatar = self.avatar
+        for side, wanted in by_side.items():
+            requests = list(wanted.values())
+            solution = solve_arm(avatar, side, np.array([r[1] for r in requests]), np.array([r[2] for r in requests]))
+            rotations = identity_rotations(avatar, len(requests))
+            rotations[:, avatar.arm_joints(side)] = solution.rotations
+            rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, r[3]) for r in requests]
+            pose = forward_kinematics(avatar, rotations)
+            for index, key in enumerate(wanted):
+                self._memo[key] = Pose(pose.positions[index : index + 1], pose.orientations[index : index + 1])
 
     def _arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         avatar = self.avatar

@@ -67,7 +67,7 @@ from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
-from motor.signing.hand_geometry import HandGeometry
+from motor.signing.hand_geometry import GeometryPending, HandGeometry
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
@@ -213,12 +213,34 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     afresh every time, the plain path the tests compare with), and the reach of every
     wrist position of all the signs is checked in one vectorized IK call per arm."""
     geometry = HandGeometry(avatar, memoize)
-    compiled: list[_SignCompiler | SignPlanningError] = []
-    for sign in signs:
-        compiled.append(_attempt(sign, lambda: _SignCompiler(geometry, sign).compile_sign()))
+    compiled = _compile_all(geometry, signs)
     geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
     drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
     return within_reach_all(avatar, drafts)
+
+
+def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCompiler | SignPlanningError]:
+    """Every sign compiled into hand moves, in rounds: a sign that asks for an arm pose or
+    a site offset not yet known is set aside, the round's requests of all signs are
+    computed in one vectorized pass, and the signs set aside are compiled again (a sign
+    asking for k such answers in turn takes k + 1 rounds)."""
+    compiled: list[_SignCompiler | SignPlanningError | None] = [None] * len(signs)
+    waiting = list(range(len(signs)))
+    geometry.deferring = geometry.memoize
+    try:
+        while waiting:
+            again = []
+            for index in waiting:
+                sign = signs[index]
+                try:
+                    compiled[index] = _attempt(sign, lambda: _SignCompiler(geometry, sign).compile_sign())
+                except GeometryPending:
+                    again.append(index)
+            geometry.resolve_pending()
+            waiting = again
+    finally:
+        geometry.deferring = False
+    return [c for c in compiled if c is not None]  # every sign is compiled once no sign waits
 
 
 def _attempt(sign: Sign, work: Callable[[], _Result]) -> _Result | SignPlanningError:
