@@ -156,8 +156,12 @@ def _within_reach(
         turns = None if rotations is None else np.asarray(rotations)[open_]
         away = here - shoulder
         away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
-        far = _solve_in_chunks(avatar, side, here + REACH_MARGIN * away, turns)
-        near = _solve_in_chunks(avatar, side, here - REACH_MARGIN * away, turns)
+        # beyond and short of each position, in the same IK calls
+        both = _solve_in_chunks(
+            avatar, side, np.concatenate([here + REACH_MARGIN * away, here - REACH_MARGIN * away]),
+            None if turns is None else np.concatenate([turns, turns]),
+        )
+        far, near = (_Reached(*(column[rows] for column in both)) for rows in (slice(0, len(here)), slice(len(here), None)))
         # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
         outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
         short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
