@@ -17,7 +17,7 @@ those inputs, bit for bit. Errors are not remembered: asking again raises again.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable, Sequence
+from collections.abc import Callable, Hashable, Iterable, Sequence
 from typing import TypeVar
 
 import numpy as np
@@ -28,6 +28,7 @@ from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
 from motor.body.locations import resolve_location, site_points
 from motor.hand.shape import hand_rotations, handshape_params
+from mura.errors import SpecError
 from mura.values import BodySite, HandShape, Location
 
 _Value = TypeVar("_Value")
@@ -55,6 +56,7 @@ class HandGeometry:
         self._memo: dict[Hashable, object] = {}
         self._pending_offsets: list[tuple[str, BodySite, np.ndarray, np.ndarray]] = []
         self._pending_poses: dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._alone: set[Hashable] = set()
 
     def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
         if not self.memoize:
@@ -86,7 +88,7 @@ class HandGeometry:
         """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
         global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
         key = ("offset", side, site, _bytes(rotation), _bytes(params))
-        if self.memoize and self.deferring and key not in self._memo:
+        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
             self._pending_offsets.append((side, site, rotation, params))
             raise GeometryPending(key)
         return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
@@ -112,16 +114,24 @@ class HandGeometry:
             key = ("offset", side, site, _bytes(rotation), _bytes(params))
             if key not in self._memo:
                 missing.setdefault((side, site), {})[key] = (rotation, params)
-        avatar = self.avatar
         for (side, site), wanted in missing.items():
-            wrist_joint = avatar.joint_index(f"{side}_wrist")
-            rotations = identity_rotations(avatar, len(wanted))
-            rotations[:, wrist_joint] = [rotation for rotation, _ in wanted.values()]
-            rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, params) for _, params in wanted.values()]
-            pose = forward_kinematics(avatar, rotations)
-            offsets = site_points(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[:, wrist_joint]
+            try:
+                offsets = self._site_offsets(side, site, wanted.values())
+            except (SpecError, ValueError, KeyError):
+                self._alone.update(wanted)  # asked again, each is computed alone and raises there
+                continue
             offsets.setflags(write=False)
             self._memo.update(zip(wanted, offsets))
+
+    def _site_offsets(self, side: str, site: BodySite, postures: Iterable[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+        avatar = self.avatar
+        postures = list(postures)
+        wrist_joint = avatar.joint_index(f"{side}_wrist")
+        rotations = identity_rotations(avatar, len(postures))
+        rotations[:, wrist_joint] = [rotation for rotation, _ in postures]
+        rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, params) for _, params in postures]
+        pose = forward_kinematics(avatar, rotations)
+        return site_points(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[:, wrist_joint]
 
     def finger_rotations(self, side: str, params: np.ndarray) -> np.ndarray:
         """Local rotations ``(17, 4)`` of the hand's joints for the shape ``params``
@@ -135,16 +145,20 @@ class HandGeometry:
         """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
         with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
         key = ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params))
-        if self.memoize and self.deferring and key not in self._memo:
+        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
             self._pending_poses[key] = (side, wrist, rotation, params)
             raise GeometryPending(key)
         return self._recall(key, lambda: self._arm_pose(side, wrist, rotation, params))
 
-    def resolve_pending(self) -> None:
+    def resolve_pending(self) -> bool:
         """Compute every noted site offset and arm pose: one forward-kinematics pass per
         side and site for the offsets (:meth:`prefetch_site_offsets`), one IK and one
         forward-kinematics pass per side for the poses; each row's arithmetic is that of
-        the one-by-one computation, so the answers are the same, bit for bit."""
+        the one-by-one computation, so the answers are the same, bit for bit. A pass that
+        fails (an avatar without the site, say) leaves its requests to be computed one by
+        one when asked again, where each raises for its own sign. Returns whether
+        anything was noted."""
+        noted = bool(self._pending_offsets or self._pending_poses)
         self.prefetch_site_offsets(self._pending_offsets)
         self._pending_offsets = []
         by_side: dict[str, dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]]] = {}
@@ -154,13 +168,18 @@ class HandGeometry:
         avatar = self.avatar
         for side, wanted in by_side.items():
             requests = list(wanted.values())
-            solution = solve_arm(avatar, side, np.array([r[1] for r in requests]), np.array([r[2] for r in requests]))
-            rotations = identity_rotations(avatar, len(requests))
-            rotations[:, avatar.arm_joints(side)] = solution.rotations
-            rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, r[3]) for r in requests]
+            try:
+                solution = solve_arm(avatar, side, np.array([r[1] for r in requests]), np.array([r[2] for r in requests]))
+                rotations = identity_rotations(avatar, len(requests))
+                rotations[:, avatar.arm_joints(side)] = solution.rotations
+                rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, r[3]) for r in requests]
+            except (SpecError, ValueError, KeyError):
+                self._alone.update(wanted)
+                continue
             pose = forward_kinematics(avatar, rotations)
             for index, key in enumerate(wanted):
                 self._memo[key] = Pose(pose.positions[index : index + 1], pose.orientations[index : index + 1])
+        return noted
 
     def _arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         avatar = self.avatar

@@ -52,6 +52,15 @@ IK reports the upper arm in the torso step back toward the arm's side
 (:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
 (:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
 is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`).
+
+**Many signs at once.** :func:`plan_signs` plans a collection in passes: every sign is
+compiled into hand moves, and the costly geometry the signs ask for (arm poses for sites on
+the other hand, wrist-to-site offsets) is computed for all of them together in vectorized
+rounds (:class:`motor.signing.hand_geometry.HandGeometry`, which also remembers hand
+rotations, shapes and rest locations for the collection); then the wrist offsets of all
+moves, then the reach of every distinct wrist position of the collection
+(:func:`motor.signing.reach.within_reach_all`). The plans are those of planning each sign
+alone, bit for bit (``tests/signing_speed``).
 """
 
 from __future__ import annotations
@@ -236,7 +245,8 @@ def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCom
                     compiled[index] = _attempt(sign, lambda: _SignCompiler(geometry, sign).compile_sign())
                 except GeometryPending:
                     again.append(index)
-            geometry.resolve_pending()
+            if not geometry.resolve_pending():
+                geometry.deferring = False  # nothing noted: the next round computes as asked
             waiting = again
     finally:
         geometry.deferring = False

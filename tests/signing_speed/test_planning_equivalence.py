@@ -95,3 +95,17 @@ def test_collection_plans_equal_plain_plans(part, parts, table, fast_and_plain):
 def test_order_of_the_collection_does_not_change_a_plan(avatar, table, fast_and_plain):
     fast, _ = fast_and_plain
     assert differences(plan_signs(avatar, table[::-1])[::-1], fast) == []
+
+
+@pytest.mark.parametrize("missing", ["palm", "elbow"])
+def test_an_avatar_without_a_site_fails_sign_by_sign_as_the_plain_path(avatar, written_signs, missing):
+    """The vectorized geometry passes fail for a whole group when the avatar lacks a site;
+    each sign then fails alone, with the plain path's error, and the others still plan."""
+    sites = {name: site for name, site in avatar.sites.items() if not name.endswith(f"_{missing}")}
+    lacking = replace(avatar, sites=sites)
+    fast, slow = plan_signs(lacking, written_signs), plain(lacking, written_signs)
+    assert differences(fast, slow) == []
+    errors = [p for p in fast if isinstance(p, SignPlanningError)]
+    assert errors and all(missing in str(e) for e in errors)
+    if missing == "elbow":
+        assert len(errors) < len(fast)

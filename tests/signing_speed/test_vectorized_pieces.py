@@ -112,3 +112,20 @@ def test_prefetched_and_pending_geometry_equals_one_by_one(avatar, side):
         assert same(batched.site_offset(side, palm, q, p), plain.site_offset(side, palm, q, p))
         fast, slow = batched.arm_pose(side, wrist, q, p), plain.arm_pose(side, wrist, q, p)
         assert same(fast.positions, slow.positions) and same(fast.orientations, slow.orientations)
+
+
+def test_a_failing_pose_pass_leaves_each_request_to_fail_alone(avatar):
+    """One bad request (hand parameters of the wrong length) in a pass of pending arm
+    poses: the good ones are still answered, as one by one; the bad one raises alone."""
+    geometry, plain = HandGeometry(avatar), HandGeometry(avatar, memoize=False)
+    rotation, wrist = np.array([0.0, 0.0, 0.0, 1.0]), np.array([-0.2, 1.2, 0.35])
+    good, bad = np.zeros(PARAMETER_COUNT), np.zeros(PARAMETER_COUNT + 1)
+    geometry.deferring = True
+    for params in (good, bad):
+        with pytest.raises(GeometryPending):
+            geometry.arm_pose("r", wrist, rotation, params)
+    assert geometry.resolve_pending()
+    fast, slow = geometry.arm_pose("r", wrist, rotation, good), plain.arm_pose("r", wrist, rotation, good)
+    assert same(fast.positions, slow.positions)
+    with pytest.raises(ValueError, match="columns"):
+        geometry.arm_pose("r", wrist, rotation, bad)
