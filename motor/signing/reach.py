@@ -240,7 +240,7 @@ def clear_paths(
         lengths = lengths + np.bincount(owner[:-1][split], minlength=len(lengths))
         points, moved, more = _clear_points(avatar, arm, points, turns, mask)
         total += more
-    return np.split(points, np.cumsum(lengths)[:-1]), total
+    return [path.copy() for path in np.split(points, np.cumsum(lengths)[:-1])], total  # each path its own array
 
 
 def _clear_points(
