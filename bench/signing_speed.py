@@ -9,6 +9,9 @@ sequence at 25 fps, and checks every frame (NaN, wrist reach, upper arm in the t
 * **frames per second**: frames of the sequence over the time to synthesize them
   (activation, sampling, IK and hands, the elbow check); planning is reported apart, per
   sign. The seed reports 15,000 frames/s for about 50 bone rotations per frame.
+* **planning per sign**: one :func:`motor.signing.planning.plan_signs` call over all the
+  parsed signs, divided by the signs it planned: wall-clock (``planning_ms_per_sign``) and
+  this process's CPU time (``planning_process_ms_per_sign``, steadier on a shared machine).
 * **compression**: bytes of SiGML per second of animation against raw motion data,
   50 rotations × 3 floats × 4 bytes per frame at 25 fps (the seed reports 37-fold).
 """
@@ -57,9 +60,9 @@ def run(quick: bool) -> dict:
         taken_failures = result.failures[::stride]
         total += len(result.signs[::stride]) + len(taken_failures)
         failures.extend({"sign": f.gloss, "reason": str(f.error)} for f in taken_failures)
-    started = time.perf_counter()
+    started, started_cpu = time.perf_counter(), time.process_time()
     results = plan_signs(avatar, signs)
-    planning = time.perf_counter() - started
+    planning, planning_cpu = time.perf_counter() - started, time.process_time() - started_cpu
     plans = []
     for sign, result, size in zip(signs, results, sizes):
         if isinstance(result, SignPlanningError):
@@ -98,6 +101,8 @@ def run(quick: bool) -> dict:
         "failures_by_reason": dict(reasons.most_common()),
         "failures": failures,
         "planning_ms_per_sign": round(1e3 * planning / max(len(plans), 1), 2),
+        "planning_process_ms_per_sign": round(1e3 * planning_cpu / max(len(plans), 1), 3),
+        "planned_signs": len(plans),
         "frames": signed.motion.frame_count,
         "animation_seconds": round(signed.duration, 1),
         "synthesis_frames_per_second": round(signed.motion.frame_count / synthesis),

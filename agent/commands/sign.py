@@ -44,7 +44,7 @@ from agent.export.page_model import page_model
 from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, load_avatar
 from motor.signing.plan import SignPlan, SignPlanningError
-from motor.signing.planning import plan_sign
+from motor.signing.planning import plan_signs
 from motor.signing.sequence import SignedMotion, realize_signs
 from mura.errors import SpecError
 from mura.hamnosys import parse_hamnosys
@@ -203,22 +203,33 @@ def safe_stem(gloss: str, taken: set[str]) -> str:
 
 
 def _sequence(avatar, corpus: Corpus, folder: Path, fps: float, outputs: OutputPlan, glb: bool) -> list[SignRecord]:
-    """All signs planned one by one, then realized in order as one performance."""
-    records: list[SignRecord] = []
+    """All signs planned together (one by one if that fails), then realized in order as
+    one performance."""
+    records = [SignRecord(item.source, item.label, reason=item.error) for item in corpus.items]
+    planned = [(record, item.sign) for record, item in zip(records, corpus.items) if item.sign is not None]
+    try:
+        results = plan_signs(avatar, [sign for _, sign in planned])
+    except Exception:  # noqa: BLE001 - planned again one by one, where each failure stays with its sign
+        results = [_plan_alone(avatar, sign) for _, sign in planned]
     plans: list[tuple[SignRecord, SignPlan]] = []
-    for item in corpus.items:
-        record = SignRecord(item.source, item.label, reason=item.error)
-        records.append(record)
-        if item.sign is None:
-            continue
-        try:
-            plans.append((record, plan_sign(avatar, item.sign)))
-        except SignPlanningError as error:
-            record.reason = planning_reason(item.sign, error)
-        except Exception as error:  # noqa: BLE001 - one sign's failure is its own
-            record.reason = describe_failure(error)
+    for (record, sign), result in zip(planned, results):
+        if isinstance(result, SignPlanningError):
+            record.reason = planning_reason(sign, result)
+        elif isinstance(result, Exception):
+            record.reason = describe_failure(result)
+        else:
+            plans.append((record, result))
     _render_sequence(avatar, plans, folder, fps, outputs, glb)
     return records
+
+
+def _plan_alone(avatar, sign) -> SignPlan | Exception:
+    """One sign's plan, or whatever stopped it (one sign's failure is its own)."""
+    try:
+        (result,) = plan_signs(avatar, [sign])
+    except Exception as error:  # noqa: BLE001 - reported on this sign alone
+        return error
+    return result
 
 
 def _render_sequence(avatar, plans: list[tuple[SignRecord, SignPlan]], folder: Path, fps: float, outputs: OutputPlan,

@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from motor import quaternion as quat
-from motor.body.avatar import Avatar, check_side
+from motor.body.avatar import Avatar, Site, check_side
 from motor.body.kinematics import Pose
 from mura.errors import SpecError
 from mura.murml_vocabulary import GRID_ALIASES
@@ -113,16 +113,34 @@ def site_name(location: BodySite, side: str) -> str:
 
 
 def _site_point(avatar: Avatar, location: BodySite, side: str, pose: Pose | None) -> np.ndarray:
-    name = site_name(location, side)
-    if name not in avatar.sites:
-        raise SpecError(f"avatar {avatar.name!r} does not define body location {name!r}")
-    site = avatar.sites[name]
+    site = _site(avatar, location, side)
     if pose is None:
         origin, normal = avatar.rest_positions[site.bone] + site.offset, site.normal
     else:
         orientation = pose.orientations[0, site.bone]
         origin = pose.positions[0, site.bone] + quat.rotate(orientation, site.offset)
         normal = quat.rotate(orientation, site.normal)
+    return _off_surface(avatar, location, side, origin, normal)
+
+
+def site_points(avatar: Avatar, location: BodySite, side: str, pose: Pose) -> np.ndarray:
+    """The point a body site names in every frame of ``pose`` ``(n, 3)``, each as
+    :func:`resolve_location` gives it for a one-frame pose; raises SpecError likewise."""
+    site = _site(avatar, location, side)
+    orientation = pose.orientations[:, site.bone]
+    origin = pose.positions[:, site.bone] + quat.rotate(orientation, site.offset)
+    return _off_surface(avatar, location, side, origin, quat.rotate(orientation, site.normal))
+
+
+def _site(avatar: Avatar, location: BodySite, side: str) -> Site:
+    name = site_name(location, side)
+    if name not in avatar.sites:
+        raise SpecError(f"avatar {avatar.name!r} does not define body location {name!r}")
+    return avatar.sites[name]
+
+
+def _off_surface(avatar: Avatar, location: BodySite, side: str, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """The site's surface point(s) moved along the normal by the proximity, and sideways."""
     proximity = location.proximity or DEFAULT_PROXIMITY
     if proximity not in PROXIMITIES:
         raise SpecError(f"unknown proximity {proximity!r} at {location.site!r} (expected one of {', '.join(PROXIMITIES)})")

@@ -1,0 +1,194 @@
+"""The hand geometry that sign planning asks for again and again, memoized per avatar.
+
+Planning a collection of signs asks many times for the same few things, each of which
+depends only on the avatar and on a hand's values: the global hand rotation of an
+extended-finger direction and a palm direction, the joint parameters of a hand shape,
+the point a location names on the body at rest, the offset from the wrist to a site of
+the hand in a rotation and shape, and the whole-body pose with one arm holding a hand
+posture (IK and forward kinematics). :class:`HandGeometry` computes each once per
+planning run and hands the same (read-only) arrays back afterwards; with
+``memoize=False`` it computes every answer afresh, which is how the tests check that the
+memo changes nothing.
+
+Keys are the exact values asked for (the bytes of float arrays, the frozen symbol values
+of :mod:`mura.values`), so a remembered answer is the one the computation gives for
+those inputs, bit for bit. Errors are not remembered: asking again raises again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable, Iterable, Sequence
+from typing import TypeVar
+
+import numpy as np
+
+from motor.arm.hand_orientation import hand_rotations_from_vectors
+from motor.arm.ik import solve_arm
+from motor.body.avatar import Avatar
+from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
+from motor.body.locations import resolve_location, site_points
+from motor.hand.shape import hand_rotations, handshape_params
+from mura.errors import SpecError
+from mura.values import BodySite, HandShape, Location
+
+_Value = TypeVar("_Value")
+
+
+class GeometryPending(Exception):
+    """Raised by a deferring :class:`HandGeometry` asked for an arm pose or a site offset
+    it does not know yet: the request is kept for :meth:`HandGeometry.resolve_pending`."""
+
+
+class HandGeometry:
+    """Memoized hand geometry of one avatar (module docstring); units metres, quaternions
+    scalar-last. Not shared between avatars: make one per avatar and planning run.
+
+    With ``deferring`` set, the two costly answers (:meth:`site_offset`, :meth:`arm_pose`)
+    are not computed one by one: an unknown one is noted and :class:`GeometryPending`
+    raised, so that a caller planning many signs can set aside the signs that asked,
+    compute all the noted answers in one vectorized pass (:meth:`resolve_pending`) and
+    plan those signs again."""
+
+    def __init__(self, avatar: Avatar, memoize: bool = True) -> None:
+        self.avatar = avatar
+        self.memoize = memoize
+        self.deferring = False
+        self._memo: dict[Hashable, object] = {}
+        self._pending_offsets: list[tuple[str, BodySite, np.ndarray, np.ndarray]] = []
+        self._pending_poses: dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._alone: set[Hashable] = set()
+
+    def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
+        if not self.memoize:
+            return compute()
+        if key not in self._memo:
+            value = compute()
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+            self._memo[key] = value
+        return self._memo[key]  # type: ignore[return-value]
+
+    def rotation(self, side: str, fingers: np.ndarray, palm: np.ndarray) -> np.ndarray:
+        """Global hand rotation ``(4,)`` of the hand on ``side`` (``"l"``/``"r"``) whose
+        extended fingers point along ``fingers`` ``(3,)`` with the palm toward ``palm``."""
+        return self._recall(
+            ("rotation", side, _bytes(fingers), _bytes(palm)),
+            lambda: hand_rotations_from_vectors(self.avatar, side, fingers[None], palm[None])[0],
+        )
+
+    def params(self, shape: HandShape) -> np.ndarray:
+        """Joint parameters of a hand shape (:func:`motor.hand.shape.handshape_params`)."""
+        return self._recall(("params", shape), lambda: handshape_params(shape))
+
+    def location(self, location: Location, side: str) -> np.ndarray:
+        """The point ``(3,)`` m a location names for the hand on ``side``, body at rest."""
+        return self._recall(("location", location, side), lambda: resolve_location(self.avatar, location, side))
+
+    def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
+        """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
+        global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
+        key = ("offset", side, site, _bytes(rotation), _bytes(params))
+        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+            self._pending_offsets.append((side, site, rotation, params))
+            raise GeometryPending(key)
+        return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
+
+    def _site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
+        avatar = self.avatar
+        wrist_joint = avatar.joint_index(f"{side}_wrist")
+        rotations = identity_rotations(avatar, 1)
+        rotations[0, wrist_joint] = rotation
+        rotations[0, avatar.hand_joints(side)] = self.finger_rotations(side, params)
+        pose = forward_kinematics(avatar, rotations)
+        return resolve_location(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[0, wrist_joint]
+
+    def prefetch_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
+        """Compute the :meth:`site_offset` of every ``(side, site, rotation, params)``
+        not yet known in one forward-kinematics pass per side and site (a collection of
+        signs asks for thousands); each row's arithmetic is that of :meth:`site_offset`,
+        so the answers are the same, bit for bit. Does nothing without ``memoize``."""
+        if not self.memoize:
+            return
+        missing: dict[tuple[str, BodySite], dict[Hashable, tuple[np.ndarray, np.ndarray]]] = {}
+        for side, site, rotation, params in requests:
+            key = ("offset", side, site, _bytes(rotation), _bytes(params))
+            if key not in self._memo:
+                missing.setdefault((side, site), {})[key] = (rotation, params)
+        for (side, site), wanted in missing.items():
+            try:
+                offsets = self._site_offsets(side, site, wanted.values())
+            except (SpecError, ValueError, KeyError):
+                self._alone.update(wanted)  # asked again, each is computed alone and raises there
+                continue
+            offsets.setflags(write=False)
+            self._memo.update(zip(wanted, offsets))
+
+    def _site_offsets(self, side: str, site: BodySite, postures: Iterable[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+        avatar = self.avatar
+        postures = list(postures)
+        wrist_joint = avatar.joint_index(f"{side}_wrist")
+        rotations = identity_rotations(avatar, len(postures))
+        rotations[:, wrist_joint] = [rotation for rotation, _ in postures]
+        rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, params) for _, params in postures]
+        pose = forward_kinematics(avatar, rotations)
+        return site_points(avatar, site, "l" if side == "r" else "r", pose) - pose.positions[:, wrist_joint]
+
+    def finger_rotations(self, side: str, params: np.ndarray) -> np.ndarray:
+        """Local rotations ``(17, 4)`` of the hand's joints for the shape ``params``
+        (:func:`motor.hand.shape.hand_rotations` of one row)."""
+        return self._recall(
+            ("fingers", side, _bytes(params)),
+            lambda: hand_rotations(self.avatar, side, np.asarray(params, dtype=float)[None])[0],
+        )
+
+    def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
+        """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
+        with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
+        key = ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params))
+        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+            self._pending_poses[key] = (side, wrist, rotation, params)
+            raise GeometryPending(key)
+        return self._recall(key, lambda: self._arm_pose(side, wrist, rotation, params))
+
+    def resolve_pending(self) -> bool:
+        """Compute every noted site offset and arm pose: one forward-kinematics pass per
+        side and site for the offsets (:meth:`prefetch_site_offsets`), one IK and one
+        forward-kinematics pass per side for the poses; each row's arithmetic is that of
+        the one-by-one computation, so the answers are the same, bit for bit. A pass that
+        fails (an avatar without the site, say) leaves its requests to be computed one by
+        one when asked again, where each raises for its own sign. Returns whether
+        anything was noted."""
+        noted = bool(self._pending_offsets or self._pending_poses)
+        self.prefetch_site_offsets(self._pending_offsets)
+        self._pending_offsets = []
+        by_side: dict[str, dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]]] = {}
+        for key, request in self._pending_poses.items():
+            by_side.setdefault(request[0], {})[key] = request
+        self._pending_poses = {}
+        avatar = self.avatar
+        for side, wanted in by_side.items():
+            requests = list(wanted.values())
+            try:
+                solution = solve_arm(avatar, side, np.array([r[1] for r in requests]), np.array([r[2] for r in requests]))
+                rotations = identity_rotations(avatar, len(requests))
+                rotations[:, avatar.arm_joints(side)] = solution.rotations
+                rotations[:, avatar.hand_joints(side)] = [self.finger_rotations(side, r[3]) for r in requests]
+            except (SpecError, ValueError, KeyError):
+                self._alone.update(wanted)
+                continue
+            pose = forward_kinematics(avatar, rotations)
+            for index, key in enumerate(wanted):
+                self._memo[key] = Pose(pose.positions[index : index + 1], pose.orientations[index : index + 1])
+        return noted
+
+    def _arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
+        avatar = self.avatar
+        solution = solve_arm(avatar, side, wrist[None], rotation[None])
+        rotations = identity_rotations(avatar, 1)
+        rotations[0, avatar.arm_joints(side)] = solution.rotations[0]
+        rotations[0, avatar.hand_joints(side)] = self.finger_rotations(side, params)
+        return forward_kinematics(avatar, rotations)
+
+
+def _bytes(values: np.ndarray) -> bytes:
+    return np.asarray(values, dtype=float).tobytes()
