@@ -4,11 +4,15 @@
 arm — wrist position, hand rotation, hand shape — holding every LMP activated so far.
 Each :meth:`MotorControl.frames` call runs the per-frame order of seed 004 (Fig. 4) for
 all frames of the window at once: first the externally formulated LMPs (wrist position,
-wrist rotation) are sampled, then both arms' IK is solved (analytic, natural swivel),
-then the joint-space LMPs (hand shape → finger joint rotations) are applied; then the
-neck module (:mod:`motor.neck`) turns torso, shoulders, neck, head and eyes, and the face
-module (:mod:`motor.face`) gives the frame's ARKit morph weights; every other joint keeps
-its rest rotation and the root stands still at ``(0, root_height, 0)``.
+wrist rotation) are sampled; where a hand reaches across the body the trunk turns toward
+it (:mod:`motor.arm.reach_turn`) and the arms are solved in the trunk's frame; the wrists
+are kept out of the torso and the hands a palm thickness apart (:mod:`motor.body.collision`);
+then both arms' IK is solved (analytic, with the swivel track below) — and solved again
+where the hands as the arms turned them would still meet; then the joint-space LMPs (hand
+shape → finger joint rotations) are applied; then the neck module (:mod:`motor.neck`)
+turns torso, shoulders, neck, head and eyes (composed onto the trunk's turn), and the
+face module (:mod:`motor.face`) gives the frame's ARKit morph weights; every other joint
+keeps its rest rotation and the root stands still at ``(0, root_height, 0)``.
 
 Head and face: :meth:`MotorControl.plan` adds to each program the neck LMPs and face
 tracks of the behaviour's head and face slots (MURML ``GazeDirection``, ``Neck`` …,
@@ -17,21 +21,26 @@ tracks of the behaviour's head and face slots (MURML ``GazeDirection``, ``Neck``
 :meth:`MotorControl.speak` adds a chunk's lip-sync, the brow raise and a small head beat
 on its accented words, and its boundary blink.
 
-The elbow's swivel: the IK's natural swivel (Soechting & Flanders with its wrist and
-torso corrections, a search over candidate swivels) is the costly part of the arm, and
-it varies slowly. It is therefore computed on a fixed grid of the utterance clock, every
-:data:`SWIVEL_PERIOD` seconds, and interpolated between grid points by a Catmull-Rom
-spline (C¹); each frame's arm is then solved analytically with that swivel, so wrist
-positions and hand rotations are exact at every frame and the elbow follows the natural
-swivel within the interpolation error. The grid does not depend on the frame rate or on
-the window, so frames depend only on their own times and the activated LMPs: sampling
-window after window gives exactly the frames of one call over the whole span. Runs of
-identical channel values (holds, rest) are solved once and repeated, which is exact.
+The elbow's swivel is a smooth function of time by construction: both arms' swivel
+tracks and forearm twists live on a fixed grid of the utterance clock, every
+:data:`motor.arm.swivel_track.SWIVEL_PERIOD` seconds (:mod:`motor.arm.swivel_track`).
+Frames between grid points take the swivel by a Catmull-Rom spline (C¹) and the twist
+from the grid (:meth:`motor.arm.swivel_track.SwivelGrid.sample`); wrist positions and
+hand rotations are exact at every frame. Runs of identical channel values (holds, rest)
+are solved once and repeated, which is exact.
 
-For the same reason frames and swivels can be computed ahead of the window asked for
-(:data:`FRAME_LOOKAHEAD`, :data:`SWIVEL_LOOKAHEAD`), so that short windows share the
+A grid state depends on the state before it and on channel values up to
+:data:`motor.arm.swivel_track.TRACK_REACH` grid points ahead, nothing else; so frames
+depend only on their times and the activated LMPs, and sampling window after window
+gives exactly the frames of one call over the whole span. The tracks start at the first
+grid point asked for. Activating an LMP forgets the grid states that could see its start
+— except those that frames already handed out used, which stay: the motion goes on from
+where it was shown.
+
+Frames and grid states are computed ahead of the window asked for
+(:data:`FRAME_LOOKAHEAD`, :data:`motor.arm.swivel_track.SWIVEL_LOOKAHEAD`), so that short windows share the
 fixed cost of one computation; activating an LMP forgets what was computed ahead from
-where it can change things (its start, less the swivel interpolation's reach).
+where it can change things.
 """
 
 from __future__ import annotations
@@ -43,7 +52,9 @@ from dataclasses import replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.ik import solve_arm
+from motor.arm.ik import solve_arm, swivel_of, swivel_zeros
+from motor.arm.reach_turn import TURN_JOINTS, trunk_turn, turned
+from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH, SwivelGrid
 from motor.face.arkit import FACE_NAMES
 from motor.face.control import FaceControl
 from motor.face.planning import plan_face
@@ -52,7 +63,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
+from motor.body.collision import hands_may_meet, kept_out_of_torso, separate_hands
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
 from motor.program.fragment import first_location
@@ -79,17 +90,20 @@ from tts.speech import SpeechTiming
 
 #: The channels of one arm, in sampling order (externally formulated ones first).
 ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
-#: Period of the grid on which the natural swivel is computed, seconds (module docstring).
-SWIVEL_PERIOD = 0.1
 #: How far back (s) from the start of the latest window the LMP history is kept; covers
 #: the swivel grid's margin.
 HISTORY = 1.0
-#: How many grid points past a window the natural swivel is solved ahead, in the same
-#: batch: short windows then share one search instead of each paying for its own.
-SWIVEL_LOOKAHEAD = 20
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
+#: How much nearer (m) than the palm thickness the hands as the arms turned them may come
+#: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
+#: that (skin gives; moving the wrists for it would cost a movement that starts from a
+#: contact its minimum-jerk start) and never overlap more than that and
+#: :data:`motor.body.collision.HAND_BAND` together (5 mm).
+REACHED_ALLOWANCE = 0.003
+#: Most times the hands as the arms turned them are moved apart and the arms solved again.
+HANDS_APART_ROUNDS = 3
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 #: Module of a channel that is not an arm's: its LMPs go to the neck or the face.
@@ -127,13 +141,14 @@ class MotorControl:
         self._lmps: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
         self._timelines: dict[tuple[str, str], ChannelTimeline] = {}
         self._pending: dict[tuple[str, str], list[LMP]] = {channel: [] for channel in self._initial}
-        self._swivels: dict[str, dict[int, float]] = {arm: {} for arm in ARMS}
+        self._grid = SwivelGrid(avatar)
+        self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
-        self._last_swivel = {arm: _LastRun() for arm in ARMS}
         self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
         self._hand_joints = {arm: avatar.hand_joints(AVATAR_SIDE[arm]) for arm in ARMS}
+        self._trunk_joints = np.array([avatar.joint_index(name) for name in TURN_JOINTS])
         rest = np.zeros((avatar.joint_count, 4))
         rest[:, 3] = 1.0
         self._rest_rotations = rest
@@ -236,8 +251,10 @@ class MotorControl:
 
     def palm_centres(self, arm: str, times: np.ndarray) -> np.ndarray:
         """Where the palm of ``arm`` is asked to be at sorted ``times`` (metres): the wrist
-        channel moved by the hand rotation to the palm's centre."""
-        wrists = self._wrists(arm, times)
+        channel, kept out of the torso, moved by the hand rotation to the palm's centre
+        (what gaze follows: the trunk's turn and the hands' separation, a few
+        centimetres at most, are left out)."""
+        wrists = kept_out_of_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
         hands = quat.normalize(_sample(self.timeline((arm, "hand_rotation")), times))
         return wrists + quat.rotate(hands, self._palm_offset[arm])
 
@@ -260,15 +277,14 @@ class MotorControl:
             self._changed(channel, lmp.pegs.start)
 
     def _changed(self, channel: tuple[str, str], since: float) -> None:
-        """The channel's values from ``since`` on are no longer known: forget the natural
-        swivels solved at grid times from then on (earlier values are unchanged: an LMP
-        only takes control at its start)."""
-        grid = self._swivels[channel[0]]
-        first = math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE)
-        for index in [i for i in grid if i >= first]:
-            del grid[index]
+        """The channel's values from ``since`` on are no longer known: forget the grid
+        states that could see them (:data:`TRACK_REACH` grid points before; earlier values
+        are unchanged: an LMP only takes control at its start), except those that frames
+        already handed out used, and the frames computed ahead from those states on."""
+        first = max(math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE) - TRACK_REACH, self._committed + 1)
+        self._grid.forget_from(first)
         # a frame's swivel is interpolated from grid points up to two periods after it
-        self._forget_ahead_from((first - 3) * SWIVEL_PERIOD)
+        self._forget_ahead_from((first - 2) * SWIVEL_PERIOD)
 
     def _forget_ahead_from(self, since: float) -> None:
         """Drop the frames computed ahead from time ``since`` on (something changes them)."""
@@ -335,6 +351,7 @@ class MotorControl:
         first = math.ceil(start * self.fps - _FRAME_TOLERANCE)
         rotations, face = self._rotations_ahead(first, count)
         if count:
+            self._committed = max(self._committed, self._grid_span(times)[1])
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
@@ -373,30 +390,98 @@ class MotorControl:
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
         """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
+        return self._solve_frames(times)[0]
+
+    def _solve_frames(self, times: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
+        """Joint rotations ``(n, J, 4)`` at ``times``, the wrist positions each arm was
+        given ``(n, 3)`` (the trunk's frame) and the trunk's yaw ``(n,)``."""
         rotations = np.empty((times.size, self.avatar.joint_count, 4))
         rotations[:] = self._rest_rotations
-        for arm in ARMS:
-            # the frames and the swivel grid points still to solve, sampled in one pass
-            missing = self._missing_grid(arm, times)
-            merged = np.concatenate([times, missing * SWIVEL_PERIOD])
+        first, last = self._grid_span(times)
+        plan = self._grid.plan(first, last)
+        if plan is None:
+            inputs = self._arm_inputs(times)
+        else:
+            # the frames and the grid points still to solve, sampled in one pass
+            grid = self._grid.times(plan[0], plan[1])
+            merged = np.concatenate([times, grid])
             order = np.argsort(merged, kind="stable")
             back = np.empty_like(order)
             back[order] = np.arange(order.size)
-            wrists = self._wrists(arm, merged[order])[back]
-            hands = _sample(self.timeline((arm, "hand_rotation")), merged[order])[back]
-            if missing.size:
-                self._solve_grid(arm, missing, wrists[times.size :], hands[times.size :])
-            wrists, hands = wrists[: times.size], hands[: times.size]
-            params = _sample(self.timeline((arm, "handshape")), times)
+            sampled = self._arm_inputs(merged[order])
+            inputs = {arm: tuple(v[back[: times.size]] for v in values) for arm, values in sampled.items()}
+            self._grid.solve(*plan, {arm: tuple(v[back[times.size :]] for v in values) for arm, values in sampled.items()})
+        turn = turned(self.avatar, inputs["trunk"][0][:, 0])
+        if turn is not None:
+            rotations[:, self._trunk_joints] = turn.local_rotations()
+        rows = {}
+        for arm in ARMS:
+            wrists, hands = inputs[arm]
             side = AVATAR_SIDE[arm]
-            inputs = np.concatenate([wrists, hands, self.swivel(arm, times)[:, None]], axis=1)
-            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(
-                lambda rows, side=side: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7]).rotations, inputs
-            )
+            swivel, twist = self._grid.sample(arm, times, first, last)
+            rows[arm] = np.concatenate([wrists, hands, swivel, twist], axis=1)
+            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm])
+            params = _sample(self.timeline((arm, "handshape")), times)
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
-        return rotations
+        self._hands_apart(rotations, rows, inputs["apart"])
+        return rotations, {arm: rows[arm][:, :3] for arm in ARMS}, inputs["trunk"][0][:, 0]
+
+    def _hands_apart(self, rotations: np.ndarray, rows: dict[str, np.ndarray], apart: tuple[np.ndarray, np.ndarray]) -> None:
+        """Where the hands as the arms turned them (not quite as asked, where the joint
+        limits fall short) would still come into each other, the wrists move apart
+        (:func:`motor.body.collision.separate_hands`, with the hands' reached rotations,
+        from where they were moved apart as asked: ``apart``, left and right, before the
+        torso), are kept out of the torso and those frames' arms are solved again; up to
+        :data:`HANDS_APART_ROUNDS` times, as solving again turns the hands anew."""
+        near = np.flatnonzero(hands_may_meet(self.avatar, rows["left"][:, :3], rows["right"][:, :3]))
+        if near.size == 0:
+            return
+        placed = {"left": apart[0][near], "right": apart[1][near]}
+        for _ in range(HANDS_APART_ROUNDS):
+            reached = {arm: _chain_rotation(rotations[near][:, self._arm_joints[arm]]) for arm in ARMS}
+            left, right = separate_hands(self.avatar, placed["left"], placed["right"], reached["left"], reached["right"], REACHED_ALLOWANCE)
+            moved = np.any(left != placed["left"], axis=1) | np.any(right != placed["right"], axis=1)
+            if not np.any(moved):
+                return
+            frames = near[moved]
+            for arm, wrists in (("left", left), ("right", right)):
+                placed[arm] = wrists
+                rows[arm][frames, :3] = kept_out_of_torso(self.avatar, wrists[moved])
+                side = AVATAR_SIDE[arm]
+                rotations[frames[:, None], self._arm_joints[arm][None, :]] = _LastRun().apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm][frames])
+
+    def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
+        """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
+        ``times``: the wrist channel's, kept out of the torso and the hands a palm
+        thickness apart (as asked, and as the arms turn them)."""
+        _, wrists, yaw = self._solve_frames(np.asarray(times, dtype=float))
+        turn = turned(self.avatar, yaw)
+        return wrists if turn is None else {arm: turn.from_trunk(points) for arm, points in wrists.items()}
+
+    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, ...]]:
+        """Per arm, the wrist positions and hand rotations the IK is given at sorted
+        ``times``, in the trunk's frame: the channels' values, carried into the frame of
+        the trunk turned where a hand reaches across the body (:mod:`motor.arm.reach_turn`;
+        ``"trunk"``: its yaw ``(n, 1)``), the hands a palm thickness apart and the wrists
+        kept out of the torso (a path between targets may cut through it;
+        :mod:`motor.body.collision`); ``"apart"``: the left and right wrists before the
+        torso (:meth:`_hands_apart` moves them on from there, so that the torso's ease is
+        taken once)."""
+        values = {arm: (_sample(self.timeline((arm, "wrist_position")), times), _sample(self.timeline((arm, "hand_rotation")), times)) for arm in ARMS}
+        turn = trunk_turn(self.avatar, values["left"][0], values["right"][0])
+        if turn is not None:
+            values = {arm: (turn.to_trunk(wrists), turn.hands_to_trunk(hands)) for arm, (wrists, hands) in values.items()}
+        (left, left_hands), (right, right_hands) = values["left"], values["right"]
+        left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
+        yaw = np.zeros((times.size, 1)) if turn is None else turn.yaw[:, None]
+        return {
+            "left": (kept_out_of_torso(self.avatar, left), left_hands),
+            "right": (kept_out_of_torso(self.avatar, right), right_hands),
+            "trunk": (yaw,),
+            "apart": (left, right),
+        }
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
@@ -415,31 +500,18 @@ class MotorControl:
             self._lmps[channel] = list(timeline.lmps[keep:])
         self.neck.forget_before(horizon)
         self.face.forget_before(horizon)
-        limit = math.floor(horizon / SWIVEL_PERIOD) - 2
-        for grid in self._swivels.values():
-            for index in [i for i in grid if i < limit]:
-                del grid[index]
-
-    def _wrists(self, arm: str, times: np.ndarray) -> np.ndarray:
-        """The wrist positions the arm is given at sorted ``times``: the wrist channel's, kept
-        out of the torso (a path between targets may cut through it; :mod:`motor.body.collision`)."""
-        return outside_torso(self.avatar, _sample(self.timeline((arm, "wrist_position")), times))
+        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
-        """The natural swivel (radians) at ``times``: IK on the :data:`SWIVEL_PERIOD` grid,
-        Catmull-Rom interpolated."""
+        """The arm's swivel (radians) at sorted ``times``, from the grid's track."""
         if times.size == 0:
             return np.zeros(0)
         first, last = self._grid_span(times)
-        missing = self._missing_grid(arm, times)
-        if missing.size:
-            grid = missing * SWIVEL_PERIOD
-            wrists = self._wrists(arm, grid)
-            hands = _sample(self.timeline((arm, "hand_rotation")), grid)
-            self._solve_grid(arm, missing, wrists, hands)
-        known = self._swivels[arm]
-        natural = np.array([known[i] for i in range(first, last + 1)])
-        return _catmull_rom(np.unwrap(natural), first, times / SWIVEL_PERIOD)
+        plan = self._grid.plan(first, last)
+        if plan is not None:
+            self._grid.solve(*plan, self._arm_inputs(self._grid.times(plan[0], plan[1])))
+        swivel = self._grid.sample(arm, times, first, last)[0]
+        return swivel[:, 0] + swivel_of(swivel[:, 1:], *swivel_zeros(self.avatar, AVATAR_SIDE[arm], self._arm_inputs(times)[arm][0]))
 
     @staticmethod
     def _grid_span(times: np.ndarray) -> tuple[int, int]:
@@ -447,27 +519,6 @@ class MotorControl:
         first = math.floor(times[0] / SWIVEL_PERIOD + _FRAME_TOLERANCE) - 1
         last = math.floor(times[-1] / SWIVEL_PERIOD + _FRAME_TOLERANCE) + 2
         return first, last
-
-    def _missing_grid(self, arm: str, times: np.ndarray) -> np.ndarray:
-        """Grid indices to solve for ``times``: none if every needed one is known, else the
-        unknown ones up to :data:`SWIVEL_LOOKAHEAD` points ahead."""
-        if times.size == 0:
-            return np.zeros(0, dtype=int)
-        first, last = self._grid_span(times)
-        known = self._swivels[arm]
-        if all(i in known for i in range(first, last + 1)):
-            return np.zeros(0, dtype=int)
-        ahead = range(first, max(last, first + SWIVEL_LOOKAHEAD) + 1)
-        return np.array([i for i in ahead if i not in known], dtype=int)
-
-    def _solve_grid(self, arm: str, missing: np.ndarray, wrists: np.ndarray, hands: np.ndarray) -> None:
-        """Natural swivels at grid indices ``missing`` from the channel values there."""
-        side = AVATAR_SIDE[arm]
-        solved = self._last_swivel[arm].apply(
-            lambda rows: solve_arm(self.avatar, side, rows[:, :3], rows[:, 3:]).swivel[:, None],
-            np.concatenate([wrists, hands], axis=1),
-        )
-        self._swivels[arm].update(zip(missing.tolist(), solved[:, 0].tolist()))
 
     def warnings(self) -> tuple[str, ...]:
         """What the LMPs changed when they activated (a squeezed preparation, a slowed
@@ -477,6 +528,21 @@ class MotorControl:
     def activated(self) -> dict[tuple[str, str], tuple[LMP, ...]]:
         """The LMPs activated on every channel so far."""
         return {channel: tuple(lmps) for channel, lmps in self._lmps.items()}
+
+
+def _solve_rows(avatar: Avatar, side: str, rows: np.ndarray) -> np.ndarray:
+    """Arm joint rotations ``(n, 4, 4)`` from rows of wrist, hand rotation, swivel, the
+    swivel's zero and the twist's reference (:meth:`MotorControl._rotations`)."""
+    return solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]).rotations
+
+
+def _chain_rotation(local: np.ndarray) -> np.ndarray:
+    """Global rotations ``(n, 4)`` of the last of a chain's local rotations ``(n, k, 4)``
+    below an unturned parent (the trunk's frame)."""
+    total = local[:, 0]
+    for index in range(1, local.shape[1]):
+        total = quat.multiply(total, local[:, index])
+    return total
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
@@ -522,16 +588,6 @@ class _LastRun:
         result = fresh if not reuse else (self.result[None] if fresh is None else np.concatenate([self.result[None], fresh]))
         self.row, self.result = unique[-1].copy(), result[-1].copy()
         return np.repeat(result, np.diff(np.append(starts, values.shape[0])), axis=0)
-
-
-def _catmull_rom(values: np.ndarray, first: int, positions: np.ndarray) -> np.ndarray:
-    """Catmull-Rom spline through ``values`` at grid indices ``first, first + 1, …``,
-    evaluated at fractional grid ``positions`` (which need one grid point of margin)."""
-    index = np.floor(positions + _FRAME_TOLERANCE).astype(int) - first
-    u = positions - (index + first)
-    p0, p1, p2, p3 = values[index - 1], values[index], values[index + 1], values[index + 2]
-    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
-
 
 
 def _palm_offset(avatar: Avatar, side: str) -> np.ndarray:

@@ -1,15 +1,21 @@
-"""The swivel LMP: the elbow's angle about the shoulder–wrist axis (radians) through keys.
+"""The swivel: the elbow's angle about the shoulder–wrist axis (radians), the arm's one
+redundant degree of freedom once the wrist is placed (seed 004's IK).
 
-The swivel is the arm's one redundant degree of freedom once the wrist is placed
-(seed 004's IK); an LMP on ``(side, "swivel")`` overrides the natural swivel.
+* :class:`SwivelLMP` — an LMP on ``(side, "swivel")`` that sets it through keys;
+* :func:`smooth_swivels` — the swivel as a smooth function of time: a track over a
+  grid of instants minimizing the IK's swivel cost (:func:`motor.arm.ik.swivel_costs`)
+  plus a cost of change, never a per-instant argmin (which jumps between candidates of
+  nearly equal cost and makes the elbow pop).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
+from motor.arm.swivel_cost import parabola_offset
 from motor.program.lmp import TimePegs, VectorKeyframeLMP
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
 
@@ -27,3 +33,111 @@ class SwivelLMP(VectorKeyframeLMP):
     ) -> None:
         super().__init__((side, "swivel"), pegs, np.asarray(angles, dtype=float), key_times, time_profile or minimum_jerk())
 
+
+
+#: Swivel track (see :func:`smooth_swivels`): cost of changing the swivel between two
+#: grid points (per radian squared), the largest change per grid point in candidate
+#: steps, and how many grid points ahead each choice looks.
+SMOOTHNESS = 2.0
+MAX_STEP = 2
+HORIZON = 2
+
+
+@dataclass(frozen=True)
+class SwivelState:
+    """Where a swivel track stands at one grid point: the chosen candidate as an unwrapped
+    step count from the first candidate (``cell``, so that the track can turn past ±π
+    without a jump) and the swivel there, refined between candidates (radians, unwrapped)."""
+
+    cell: int
+    swivel: float
+
+
+def smooth_swivels(
+    costs: np.ndarray,
+    candidates: np.ndarray,
+    previous: SwivelState | None,
+    horizon: int = HORIZON,
+    now: np.ndarray | None = None,
+    turns: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A swivel track over ``m`` grid points, continuous by construction: the candidates
+    chosen (unwrapped step counts from the first, ``(m,)`` integers) and the swivels there
+    (radians, unwrapped, ``(m,)``).
+
+    ``costs (m + horizon, K)`` are the costs of the evenly spaced ``candidates (K,)`` (a
+    whole circle) at consecutive grid points; ``previous`` is the track's state at the
+    grid point before the first (None: the track starts here, at its cheapest candidate).
+    ``now (m, K)``, if given, are costs that count at their own grid point only, not in
+    the look ahead of earlier ones (what depends on another track's future). ``turns
+    (m + horizon,)`` (radians, 0 if None) are how far the swivel's zero turned since the
+    grid point before: the change of swivel that keeps the elbow in place, which costs
+    nothing.
+
+    Each grid point's swivel moves at most :data:`MAX_STEP` candidates (beyond the turn of
+    the zero) from the previous one, to the candidate minimizing the cost of the change
+    (:data:`SMOOTHNESS`) plus the cost to go over the next ``horizon`` grid points — a
+    fixed-lag dynamic programme whose value tables are computed for all grid points at
+    once; only the walk along the chosen candidates is sequential, one table look-up per
+    grid point. The swivel is then refined between candidates by a parabola through the
+    chosen one's neighbours. The result depends on the costs and turns up to ``horizon``
+    grid points ahead and on ``previous`` only, so a track computed piece by piece equals
+    one computed at once.
+    """
+    count = len(candidates)
+    step = float(candidates[1] - candidates[0])
+    turn = np.zeros(costs.shape[0]) if turns is None else np.asarray(turns, dtype=float) / step
+    base = np.rint(turn).astype(np.int64)
+    shifts = np.arange(-MAX_STEP, MAX_STEP + 1)
+    # the cost of moving from candidate i to i + base + d at each grid point
+    change = SMOOTHNESS * ((base[:, None] + shifts - turn[:, None]) * step) ** 2
+    value = costs
+    for _ in range(horizon):
+        rows = value.shape[0] - 1
+        value = costs[:rows] + _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
+    if now is not None:
+        value = value + now
+    rows = value.shape[0]
+    wrapped = _wrapped(_aligned(value, base[:rows]))
+    options = np.stack([wrapped[:, k : k + count] + change[:rows, k : k + 1] for k in range(len(shifts))], axis=1)
+    moves = (base[:rows, None] + np.argmin(options, axis=1) - MAX_STEP).ravel().tolist()
+    cells = [0] * rows
+    cell = int(np.argmin(value[0])) if previous is None else previous.cell
+    begin = 1 if previous is None else 0
+    cells[0] = cell
+    for row in range(begin, rows):
+        cell += moves[row * count + cell % count]
+        cells[row] = cell
+    chosen = np.array(cells)
+    near = chosen[:, None] + np.array([-1, 0, 1])
+    around = np.take_along_axis(value, near % count, axis=1)
+    offsets = parabola_offset(around[:, 0], around[:, 1], around[:, 2])
+    return chosen, candidates[0] + (chosen + offsets) * step
+
+
+def _aligned(value: np.ndarray, base: np.ndarray) -> np.ndarray:
+    """``value (m, K)`` with row ``r`` turned so that column ``i`` holds candidate
+    ``i + base[r]`` (mod K); rows that need no turn — most — are left as they are."""
+    turned = np.flatnonzero(base)
+    if turned.size == 0:
+        return value
+    count = value.shape[1]
+    aligned = value.copy()
+    aligned[turned] = np.take_along_axis(value[turned], (np.arange(count) + base[turned, None]) % count, axis=1)
+    return aligned
+
+
+def _wrapped(value: np.ndarray) -> np.ndarray:
+    """``value (m, K)`` with :data:`MAX_STEP` columns of the other end on either side (the
+    candidates go round the circle)."""
+    return np.concatenate([value[:, -MAX_STEP:], value, value[:, :MAX_STEP]], axis=1)
+
+
+def _banded_minimum(value: np.ndarray, base: np.ndarray, change: np.ndarray) -> np.ndarray:
+    """``min_d change[:, d] + value[:, (i + base + d) mod K]`` over ``|d|`` ≤ :data:`MAX_STEP`."""
+    count = value.shape[1]
+    wrapped = _wrapped(_aligned(value, base))
+    best = wrapped[:, :count] + change[:, :1]
+    for k in range(1, 2 * MAX_STEP + 1):
+        best = np.minimum(best, wrapped[:, k : k + count] + change[:, k : k + 1])
+    return best

@@ -1,7 +1,8 @@
 """Wrist paths the arm can follow: in reach and clear of the torso, breakpoints and between.
 
 :func:`placed` moves points out of the torso (:func:`motor.body.collision.outside_torso`)
-and into the arm's reach (the nearest point the IK reaches); a point moved into reach may
+and into the arm's exact reach (:func:`in_reach`: where the IK follows them as placed, short
+of the band in which it eases a stretched arm's reach); a point moved into reach may
 land in front of the torso's margin again, so the two moves alternate (a few rounds) until
 it is both. The gesture planner places every breakpoint so, but the curve through them
 (:mod:`motor.trajectory.power_law`) can still dip into the torso between two breakpoints
@@ -23,6 +24,7 @@ from scipy.ndimage import gaussian_filter1d
 
 from dataclasses import dataclass
 
+from motor.arm.chain import arm_chain, exact_reach
 from motor.arm.ik import solve_arm
 from motor.body.avatar import Avatar
 from motor.body.collision import outside_torso
@@ -60,20 +62,35 @@ def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
     reach (module docstring)."""
     clear = outside_torso(avatar, points)
     inside = np.any(clear != points, axis=1)
-    solution = solve_arm(avatar, side, clear)
-    short = solution.shortfall > REACH_TOLERANCE
+    reached, shortfall = in_reach(avatar, side, clear)
+    short = shortfall > REACH_TOLERANCE
     depth = float(np.max(np.abs(clear - points))) if np.any(inside) else 0.0
     if not np.any(short):
         return Placement(clear, int(np.sum(inside)), depth, 0, 0.0)
-    shortfall = float(np.max(solution.shortfall))
-    reached = np.where(short[:, None], solution.wrist, clear)
+    worst = float(np.max(shortfall))
+    reached = np.where(short[:, None], reached, clear)
     for _ in range(_ROUNDS):
         cleared = outside_torso(avatar, reached)
-        solution = solve_arm(avatar, side, cleared)
-        reached = np.where((solution.shortfall > REACH_TOLERANCE)[:, None], solution.wrist, cleared)
+        again, shortfall = in_reach(avatar, side, cleared)
+        reached = np.where((shortfall > REACH_TOLERANCE)[:, None], again, cleared)
         if np.array_equal(reached, cleared):
             break
-    return Placement(reached, int(np.sum(inside)), depth, int(np.sum(short)), shortfall)
+    return Placement(reached, int(np.sum(inside)), depth, int(np.sum(short)), worst)
+
+
+def in_reach(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The nearest points ``(n, 3)`` to ``points`` that the arm reaches exactly — within
+    :func:`motor.arm.chain.exact_reach` of its shoulder (pulled in along the line from
+    it; the IK eases its reach beyond, so a path placed there would be followed short of
+    its plan) and not nearer than its elbow bends (the IK's nearest point) — and how far
+    (m) each was moved."""
+    solution = solve_arm(avatar, side, points)
+    away = points - solution.shoulder
+    distance = np.linalg.norm(away, axis=1)
+    limit = exact_reach(arm_chain(avatar, side))
+    pulled = solution.shoulder + away * (limit / np.maximum(distance, 1e-12))[:, None]
+    reached = np.where((distance > limit)[:, None], pulled, solution.wrist)
+    return reached, np.linalg.norm(reached - points, axis=1)
 
 
 def _samples(piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

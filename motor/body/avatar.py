@@ -24,6 +24,15 @@ from typing import Any
 
 import numpy as np
 
+from motor.body.volumes import (
+    Capsule,
+    CollisionVolumes,
+    Ellipsoid,
+    EllipticCylinder,
+    Volume,
+    derived_volumes,
+    required_volumes,
+)
 from mura.murml_vocabulary import GRID_DISTANCES, GRID_HEIGHTS, GRID_LATERALS
 from mura.values import FINGERS
 
@@ -187,6 +196,8 @@ class Avatar:
         limits: joint name -> limit name -> (min, max) radians.
         sites: location name -> :class:`Site` (paired sites carry an ``l_``/``r_`` prefix).
         grid, torso, postures, calibration, hand_frames: see their classes.
+        collision: the body's collision volumes and palm thickness (the file's
+            ``collision`` entry, else derived from the skeleton: :mod:`motor.body.volumes`).
     """
 
     name: str
@@ -205,6 +216,7 @@ class Avatar:
     postures: dict[str, dict[str, Posture]]
     calibration: FingerCalibration
     hand_frames: dict[str, HandFrame]
+    collision: CollisionVolumes
 
     @property
     def joint_count(self) -> int:
@@ -317,6 +329,11 @@ class _Reader:
         rest = _rest_positions(parents, offsets)
         sites = self.sites(self.field(data, "locations"), names)
         frames = {side: _hand_frame(side, names, offsets, rest) for side in SIDES}
+        torso = self.torso(self.field(data, "torso"))
+        if "collision" in data:
+            collision = self.collision(data["collision"], names)
+        else:
+            collision = derived_volumes(names, rest, torso, {name: (site.bone, site.offset) for name, site in sites.items()})
         return Avatar(
             name=name,
             source=source,
@@ -330,10 +347,11 @@ class _Reader:
             limits=self.limits(self.field(data, "limits"), names),
             sites=sites,
             grid=self.grid(self.field(data, "grid")),
-            torso=self.torso(self.field(data, "torso")),
+            torso=torso,
             postures=self.postures(self.field(data, "postures")),
             calibration=self.calibration(self.field(data, "fingers"), self.field(data, "thumb")),
             hand_frames=frames,
+            collision=collision,
         )
 
     def skeleton(self, joints: Any) -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
@@ -445,6 +463,64 @@ class _Reader:
         center = self.vector(self.field(data, "center", "torso"), 3, "torso.center")
         return Torso(_frozen(center), **values)
 
+    def collision(self, data: Any, names: tuple[str, ...]) -> CollisionVolumes:
+        """The ``collision`` entry: a list of volumes (format in :mod:`motor.body.volumes`),
+        every standard name present with an allowed shape, and optionally
+        ``palm_thickness`` (else the hands' capsules' thickness)."""
+        entries = self.field(data, "volumes", "collision")
+        if not isinstance(entries, list):
+            raise self.fail("collision.volumes", "expected a list of volumes")
+        volumes: list[Volume] = []
+        for i, entry in enumerate(entries):
+            volume = self.volume(entry, f"collision.volumes[{i}]", names)
+            if any(v.name == volume.name for v in volumes):
+                raise self.fail(f"collision.volumes[{i}].name", f"volume {volume.name!r} declared twice")
+            volumes.append(volume)
+        for name, shapes in required_volumes().items():
+            found = next((v for v in volumes if v.name == name), None)
+            if found is None:
+                raise self.fail("collision.volumes", f"missing volume {name!r}")
+            if not isinstance(found, shapes):
+                allowed = " or ".join(_SHAPE_NAMES[s] for s in shapes)
+                raise self.fail(f"collision.volumes[{volumes.index(found)}].shape", f"volume {name!r} must be a {allowed}")
+        if "palm_thickness" in data:
+            thickness = self.positive(data["palm_thickness"], "collision.palm_thickness")
+        else:  # as thick as the hands' capsules
+            thickness = sum(v.radius for v in volumes if v.name in ("l_hand", "r_hand"))
+        return CollisionVolumes(tuple(volumes), thickness)
+
+    def volume(self, data: Any, where: str, names: tuple[str, ...]) -> Volume:
+        name = self.field(data, "name", where)
+        if not isinstance(name, str) or not name:
+            raise self.fail(f"{where}.name", "expected a non-empty string")
+        joint = self.field(data, "joint", where)
+        if joint not in names:
+            raise self.fail(f"{where}.joint", f"unknown joint {joint!r}")
+        shape = self.field(data, "shape", where)
+        if shape == "capsule":
+            a, b = (_frozen(self.vector(self.field(data, k, where), 3, f"{where}.{k}")) for k in ("a", "b"))
+            return Capsule(name, joint, a, b, self.positive(self.field(data, "radius", where), f"{where}.radius"))
+        if shape == "ellipsoid":
+            center = _frozen(self.vector(self.field(data, "center", where), 3, f"{where}.center"))
+            radii = self.vector(self.field(data, "radii", where), 3, f"{where}.radii")
+            for k, r in enumerate(radii):
+                self.positive(float(r), f"{where}.radii[{k}]")
+            return Ellipsoid(name, joint, center, _frozen(radii))
+        if shape == "elliptic_cylinder":
+            center = _frozen(self.vector(self.field(data, "center", where), 3, f"{where}.center"))
+            width, depth = (self.positive(self.field(data, k, where), f"{where}.{k}") for k in ("half_width", "half_depth"))
+            bottom, top = (self.number(self.field(data, k, where), f"{where}.{k}") for k in ("bottom", "top"))
+            if bottom >= top:
+                raise self.fail(f"{where}.top", f"top {top} must be above bottom {bottom}")
+            return EllipticCylinder(name, joint, center, width, depth, bottom, top)
+        raise self.fail(f"{where}.shape", f"unknown shape {shape!r} (expected {', '.join(_SHAPE_NAMES.values())})")
+
+    def positive(self, value: Any, where: str) -> float:
+        number = self.number(value, where)
+        if number <= 0:
+            raise self.fail(where, f"must be positive, got {number}")
+        return number
+
     def postures(self, data: Any) -> dict[str, dict[str, Posture]]:
         postures: dict[str, dict[str, Posture]] = {}
         for name in POSTURES:
@@ -479,6 +555,9 @@ class _Reader:
             thumb_max_bend=_frozen(self.vector(self.field(thumb, "max_bend", "thumb"), 2, "thumb.max_bend")),
             thumb_postures=postures,
         )
+
+
+_SHAPE_NAMES = {Capsule: "capsule", Ellipsoid: "ellipsoid", EllipticCylinder: "elliptic_cylinder"}
 
 
 def _frozen(array: np.ndarray) -> np.ndarray:

@@ -1,33 +1,348 @@
-"""Keeping the hands out of the torso (seed 000, section 4.4).
+"""The body's collision volumes in a pose: placement, signed distances, clear wrist targets.
 
-The avatar's torso is an upright elliptic cylinder (``Avatar.torso``). A wrist target
-inside it — or behind it within its width, where no hand goes — is pushed forward onto
-the front surface of the cylinder grown by :data:`TORSO_MARGIN`, where the surface
-normal points into signing space. Gesture and sign planning both use it, so no planned
-wrist position lies in the body.
+* :func:`joint_placement` / :func:`to_rest` carry points between the avatar frame and a
+  volume's rest frame (a volume moves rigidly with its joint; :mod:`motor.body.volumes`);
+* :func:`segment_distance` and :func:`capsule_distance` give signed distances between a
+  capsule and any volume, vectorized over any leading axes (frames, candidates): exact
+  for capsules, along the radial direction for ellipsoids and elliptic cylinders (exact
+  for spheres and circular cylinders; for the body's mildly elliptic shapes the sign is
+  exact and the depth within a few millimetres near the surface, within 10 % deep inside);
+* :func:`outside_torso` places wrist targets out of the torso (what the planners place
+  their targets and paths with); :func:`kept_out_of_torso` keeps every frame's wrist
+  targets out of it, smoothly (what the motor control does to whatever it is given): a
+  path that crosses the torso's front, top or bottom bends around it;
+* :func:`separate_hands` keeps the two hands a palm thickness apart, smoothly too: hands
+  placed in contact stay as placed, hands asked to overlap are bent apart (to within
+  :data:`HAND_BAND`); hands whose paths cross pass one over the other.
+
+Both eases are C² (:func:`_eased`): a path that enters their band changes neither speed
+nor acceleration with a step. The torso's band lies in front of its margin (a clearance:
+nothing is left inside it), the hands' band below the palm thickness (a contact: the
+planners place hands that touch exactly there, and a movement that starts from the
+contact keeps its planned minimum-jerk profile).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from motor import quaternion as quat
 from motor.body.avatar import Avatar
+from motor.body.volumes import Capsule, Ellipsoid, EllipticCylinder, Volume
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
+#: Width (m) of the band in front of the torso's margin in which a wrist target is eased
+#: out (:func:`kept_out_of_torso`), and of the bands beyond its top, bottom and sides over
+#: which that push fades.
+SOFT_BAND = 0.02
+EDGE_BAND = 0.025
+#: Depth (m) of the band below the palm thickness into which hands asked to come nearer
+#: are eased (:func:`separate_hands`): they overlap at most that much, while a contact
+#: placed at the palm thickness (:mod:`motor.program.fragment`) stays exactly as placed.
+HAND_BAND = 0.002
+#: Fractions of a hand's midline (from the wrist to the knuckles) over which hands whose
+#: nearest points both lie past them, and whose wrists lie as far apart, count as meeting
+#: fingers into fingers (:func:`_parting`).
+END_SHARE = (0.6, 0.8)
+#: Sine of the angle between the hands' long axes from which they count as crossing.
+CROSSING_SINE = 0.3
+#: Side the left hand takes where the hands cross: up, a little to the left and forward.
+_PREFERRED = np.array([0.1, 1.0, 0.01])
+_TINY = 1e-12
+
+
+def joint_placement(avatar: Avatar, positions: np.ndarray, orientations: np.ndarray, joint: str) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation ``(n, 4)`` and translation ``(n, 3)`` carrying a joint's rest geometry to
+    its pose: ``posed = rotate(rotation, rest) + translation``. ``positions (n, J, 3)`` and
+    ``orientations (n, J, 4)`` are forward kinematics' global joint poses."""
+    index = avatar.joint_index(joint)
+    rotation = orientations[:, index]
+    return rotation, positions[:, index] - quat.rotate(rotation, avatar.rest_positions[index])
+
+
+def to_rest(rotation: np.ndarray, translation: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Posed points ``(n, ..., 3)`` expressed in the rest frame of a placement ``(n, 4)``, ``(n, 3)``."""
+    extra = (slice(None),) + (None,) * (points.ndim - 2)
+    return quat.rotate(quat.conjugate(rotation)[extra], points - translation[extra])
+
+
+def posed_capsule(capsule: Capsule, rotation: np.ndarray, translation: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A capsule's end points ``(n, 3)`` in a placement."""
+    return quat.rotate(rotation, capsule.a) + translation, quat.rotate(rotation, capsule.b) + translation
+
+
+#: A vector field as its three coordinate arrays (any broadcastable shapes): the layout
+#: of the swivel search, where contiguous ``(n, K)`` arrays per coordinate are fastest.
+Components = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+def components(v: np.ndarray) -> Components:
+    """The coordinate arrays of vectors ``(..., 3)``."""
+    return v[..., 0], v[..., 1], v[..., 2]
+
+
+def _dot(u: Components, v: Components) -> np.ndarray:
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+def _minus(u: Components, v: Components) -> Components:
+    return u[0] - v[0], u[1] - v[1], u[2] - v[2]
+
+
+def _clip01(value: np.ndarray) -> np.ndarray:
+    return np.minimum(np.maximum(value, 0.0), 1.0)
+
+
+def closest_parameters(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Parameters ``s, t`` in [0, 1] of the closest points ``p0 + s (p1 - p0)`` and
+    ``q0 + t (q1 - q0)`` of two segments (arrays ``(..., 3)`` broadcast; degenerate
+    segments allowed)."""
+    return _closest(components(p0), components(p1), components(q0), components(q1))
+
+
+def _closest(p0: Components, p1: Components, q0: Components, q1: Components) -> tuple[np.ndarray, np.ndarray]:
+    d1, d2, r = _minus(p1, p0), _minus(q1, q0), _minus(p0, q0)
+    a, e, f = _dot(d1, d1), _dot(d2, d2), _dot(d2, r)
+    b, c = _dot(d1, d2), _dot(d1, r)
+    a_safe, e_safe = np.maximum(a, _TINY), np.maximum(e, _TINY)
+    denominator = a * e - b * b
+    s = np.where(denominator > _TINY * np.maximum(a * e, _TINY), _clip01((b * f - c * e) / np.maximum(denominator, _TINY)), 0.0)
+    t = (b * s + f) / e_safe
+    s = np.where(t < 0.0, _clip01(-c / a_safe), np.where(t > 1.0, _clip01((b - c) / a_safe), s))
+    s = np.where(a > _TINY, s, 0.0)
+    t = np.where(e > _TINY, _clip01(t), 0.0)
+    return s, t
+
+
+def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
+    """Shortest distance between segments ``p0``–``p1`` and ``q0``–``q1`` (arrays ``(..., 3)`` broadcast)."""
+    return segments_apart(components(p0), components(p1), components(q0), components(q1))
+
+
+def segments_apart(p0: Components, p1: Components, q0: Components, q1: Components) -> np.ndarray:
+    """:func:`segment_distance` of segments given by coordinate arrays."""
+    s, t = _closest(p0, p1, q0, q1)
+    gap = tuple((p0[i] + s * (p1[i] - p0[i])) - (q0[i] + t * (q1[i] - q0[i])) for i in range(3))
+    return np.sqrt(_dot(gap, gap))
+
+
+def point_segment_distance(point: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
+    """Distance from points to segments ``q0``–``q1`` (arrays ``(..., 3)`` broadcast)."""
+    p, a, b = components(point), components(q0), components(q1)
+    d = _minus(b, a)
+    t = _clip01(_dot(_minus(p, a), d) / np.maximum(_dot(d, d), _TINY))
+    gap = tuple(p[i] - (a[i] + t * d[i]) for i in range(3))
+    return np.sqrt(_dot(gap, gap))
+
+
+def capsule_distance(volume: Volume, a: np.ndarray, b: np.ndarray, radius: float | np.ndarray) -> np.ndarray:
+    """Signed distance (m, negative inside) between the capsule ``a``–``b`` with
+    ``radius`` and ``volume``; ``a``, ``b`` ``(..., 3)`` in the volume's rest frame."""
+    return capsule_apart(volume, components(a), components(b), radius)
+
+
+def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | np.ndarray) -> np.ndarray:
+    """:func:`capsule_distance` of a capsule given by coordinate arrays."""
+    if isinstance(volume, Capsule):
+        return segments_apart(a, b, tuple(volume.a), tuple(volume.b)) - volume.radius - radius
+    if isinstance(volume, Ellipsoid):
+        return _ellipsoid_distance(volume, a, b) - radius
+    return _cylinder_distance(volume, a, b) - radius
+
+
+def _ellipsoid_distance(ellipsoid: Ellipsoid, a: Components, b: Components) -> np.ndarray:
+    """Signed radial distance of a segment from an ellipsoid: the segment's point nearest
+    the centre in the space where the ellipsoid is a unit sphere, measured along its ray."""
+    (cx, cy, cz), (rx, ry, rz) = ellipsoid.center, ellipsoid.radii
+    p0 = ((a[0] - cx) / rx, (a[1] - cy) / ry, (a[2] - cz) / rz)
+    d = ((b[0] - a[0]) / rx, (b[1] - a[1]) / ry, (b[2] - a[2]) / rz)
+    t = _clip01(-_dot(p0, d) / np.maximum(_dot(d, d), _TINY))
+    scaled = (p0[0] + t * d[0], p0[1] + t * d[1], p0[2] + t * d[2])
+    rho = np.sqrt(_dot(scaled, scaled))
+    unscaled = (scaled[0] * rx, scaled[1] * ry, scaled[2] * rz)
+    return np.sqrt(_dot(unscaled, unscaled)) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
+
+
+def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components) -> np.ndarray:
+    """Signed distance of a segment from a vertical elliptic cylinder: within the height
+    range, radial (as :func:`_ellipsoid_distance`, in the horizontal plane); a segment
+    wholly above or below it is as far as its nearest end's vertical and radial gaps."""
+    width, depth = cylinder.half_width, cylinder.half_depth
+    x0, z0 = (a[0] - cylinder.center[0]) / width, (a[2] - cylinder.center[2]) / depth
+    dx, dz = (b[0] - a[0]) / width, (b[2] - a[2]) / depth
+    y0, dy = a[1], b[1] - a[1]
+    flat = np.abs(dy) <= _TINY
+    safe = np.where(flat, _TINY, dy)
+    low, high = (cylinder.bottom - y0) / safe, (cylinder.top - y0) / safe
+    level = (y0 >= cylinder.bottom) & (y0 <= cylinder.top)
+    enter = np.maximum(np.where(flat, np.where(level, 0.0, 2.0), np.minimum(low, high)), 0.0)
+    leave = np.minimum(np.where(flat, 1.0, np.maximum(low, high)), 1.0)
+    inside = enter <= leave
+    t = np.minimum(np.maximum(-(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY), enter), np.maximum(leave, enter))
+    # outside the height range: the end nearer to it
+    middle = 0.5 * (cylinder.bottom + cylinder.top)
+    t = np.where(inside, t, np.where(np.abs(y0 + dy - middle) < np.abs(y0 - middle), 1.0, 0.0))
+    sx, sz = x0 + t * dx, z0 + t * dz
+    rho = np.sqrt(sx * sx + sz * sz)
+    radial = np.sqrt((sx * width) ** 2 + (sz * depth) ** 2) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
+    y = y0 + t * dy
+    vertical = np.maximum(cylinder.bottom - y, y - cylinder.top)
+    return np.where(inside, radial, np.where(radial > 0.0, np.sqrt(vertical * vertical + radial * radial), vertical))
 
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
-    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) inside the torso's
-    elliptic cylinder grown by :data:`TORSO_MARGIN`, or behind it within its width,
-    pushed forward onto its front surface; the others unchanged."""
+    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) placed out of the torso:
+    a point inside its elliptic cylinder grown by :data:`TORSO_MARGIN`, or behind it
+    within its width, moved forward onto the grown cylinder's front surface; the others
+    unchanged. What planners place their targets and path samples with (gestures
+    :mod:`motor.arm.wrist_path`, signs, verbs): idempotent, and :func:`kept_out_of_torso`
+    leaves what it returns where it is."""
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
     dx = (points[:, 0] - torso.center[0]) / a
-    front = torso.center[2] + b * np.sqrt(np.clip(1.0 - dx * dx, 0.0, 1.0))
-    inside = (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
+    inside = inside_torso(avatar, points)
     if not np.any(inside):
         return points
-    out = points.copy()
+    out = np.array(points, dtype=float)
     out[:, 2] = np.where(inside, front, out[:, 2])
     return out
+
+
+def kept_out_of_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
+    """Wrist positions ``(n, 3)`` (avatar frame at rest, metres) kept out of the torso,
+    smoothly (C¹): what the motor control does to every frame's wrist targets, whoever
+    made them.
+
+    The torso's elliptic cylinder grown by :data:`TORSO_MARGIN`: a point inside it, or
+    behind it within its width, is moved forward out of it; a point in front of its
+    surface by less than :data:`SOFT_BAND` is eased out with a C² curve (:func:`_eased`:
+    a path meeting the surface bends instead of stopping dead), and beyond the torso's
+    top, bottom and sides the push fades out over :data:`EDGE_BAND`. Points farther away
+    are unchanged; no moved point is left inside."""
+    torso = avatar.torso
+    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
+    dx = np.abs(points[:, 0] - torso.center[0]) / a
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
+    gap = points[:, 2] - front
+    eased = _eased(gap, SOFT_BAND)
+    fade = (
+        _fade(torso.bottom - points[:, 1])
+        * _fade(points[:, 1] - torso.top)
+        * _fade((dx - 1.0) * a)
+    )
+    push = (eased - gap) * fade
+    if not np.any(push > 0.0):
+        return points
+    out = np.array(points, dtype=float)
+    # measured from the surface, so that a point pushed whole lands on or past it exactly
+    out[:, 2] = np.where(push > 0.0, front + eased + (1.0 - fade) * (gap - eased), out[:, 2])
+    return out
+
+
+def inside_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGIN) -> np.ndarray:
+    """Which wrist positions ``(n, 3)`` lie inside the torso grown by ``margin`` (m), or
+    behind it within its width: with :data:`TORSO_MARGIN`, those :func:`outside_torso`
+    places (and :func:`kept_out_of_torso` moves out: neither leaves one there)."""
+    torso = avatar.torso
+    a, b = torso.half_width + margin, torso.half_depth + margin
+    dx = (points[:, 0] - torso.center[0]) / a
+    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
+    return (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
+
+
+def _eased(gap: np.ndarray, band: float) -> np.ndarray:
+    """Distances (m) past a limit kept positive, smoothly: unchanged from ``band`` on,
+    below it ``band (1 + tanh(gap / band - 1))`` — equal in value, slope and curvature at
+    ``band`` (C²), rising monotonically from 0 (however deep the point was) to ``band``."""
+    rise = np.exp(2.0 * (np.minimum(gap, band) / band - 1.0))  # 1 + tanh(x) = 2 e^2x / (1 + e^2x), > 0
+    return np.where(gap >= band, gap, 2.0 * band * rise / (1.0 + rise))
+
+
+def _fade(beyond: np.ndarray) -> np.ndarray:
+    """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly to 0 at :data:`EDGE_BAND`."""
+    u = np.minimum(np.maximum(beyond / EDGE_BAND, 0.0), 1.0)
+    return 1.0 - u * u * (3.0 - 2.0 * u)
+
+
+def hand_segments(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """End points ``(n, 3)`` of a hand's capsule for wrist positions and global hand
+    rotations ``(n, 4)``."""
+    capsule = avatar.collision.arm(side, "hand")
+    wrist_rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    return wrists + quat.rotate(hands, capsule.a - wrist_rest), wrists + quat.rotate(hands, capsule.b - wrist_rest)
+
+
+def separate_hands(
+    avatar: Avatar, left: np.ndarray, right: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray, allowance: float = 0.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """Wrist positions ``(n, 3)`` of both arms moved apart where their hands would come
+    closer than the palm thickness (the distance of the hands' midlines when palm meets
+    palm): each wrist moves half the deficit along the line between the hands' nearest
+    points. Where the hands cross or coincide that line is tilted toward
+    :func:`_parting`, which it becomes where they meet. Hands at least the thickness
+    apart are unchanged (a contact placed at the thickness stays as placed); nearer ones
+    are eased apart in C² (:func:`_eased`, shifted) into :data:`HAND_BAND` below it, so
+    hands asked through each other bend apart without a speed or acceleration step and
+    overlap at most that much. With an ``allowance`` (m) the thickness is taken that much
+    smaller (a second look at hands already eased apart as asked)."""
+    palm = avatar.collision.palm_thickness
+    thickness = palm - allowance
+    near = np.flatnonzero(hands_may_meet(avatar, left, right))
+    if near.size == 0:
+        return left, right
+    l0, l1 = hand_segments(avatar, "l", left[near], left_hands[near])
+    r0, r1 = hand_segments(avatar, "r", right[near], right_hands[near])
+    s, t = closest_parameters(l0, l1, r0, r1)
+    between = (l0 + s[:, None] * (l1 - l0)) - (r0 + t[:, None] * (r1 - r0))
+    gap = quat.norm(between) - thickness
+    if not np.any(gap < 0.0):
+        return left, right
+    eased = _eased(gap + HAND_BAND, HAND_BAND) - HAND_BAND
+    # where the hands (nearly) pass through each other, the line between them means little:
+    # tilt it toward the way they part
+    meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * palm), 0.0)[:, None]
+    length = float(np.linalg.norm(avatar.collision.arm("r", "hand").b - avatar.collision.arm("r", "hand").a))
+    direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, length)
+    direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
+    half = (0.5 * (eased - gap))[:, None] * direction
+    left, right = np.array(left, dtype=float), np.array(right, dtype=float)
+    left[near] += half
+    right[near] -= half
+    return left, right
+
+
+def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.ndarray:
+    """Which wrist positions ``(n, 3)`` are near enough for the hands to come within the
+    palm thickness, whichever way the hands turn."""
+    reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
+    return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness
+
+
+def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarray, t: np.ndarray, length: float) -> np.ndarray:
+    """The way the left hand leaves the right where they touch, for hands with long axes
+    ``left``, ``right`` (n, 3), wrists ``apart`` (left less right, (n, 3)), nearest
+    points at the fractions ``s``, ``t`` of their midlines and midlines ``length`` (m)
+    long: where the fingers of hands whose wrists are most of a hand apart run into each
+    other, they are drawn apart along the line between the wrists (mirrored hands stay
+    mirrored); where they cross otherwise (one hand over the other, wrists near), across
+    both hands (perpendicular to their long axes) — the side toward the avatar's top and
+    left — and toward the avatar's left where they lie side by side (palm against palm);
+    blended between."""
+    across = quat.cross(left, right)
+    sine = quat.norm(across) / np.maximum(quat.norm(left) * quat.norm(right), _TINY)
+    across = across * np.where(across @ _PREFERRED >= 0.0, 1.0, -1.0)[:, None]
+    across = across / np.maximum(quat.norm(across), _TINY)[:, None]
+    weight = np.minimum(np.maximum(sine / CROSSING_SINE, 0.0), 1.0)[:, None]
+    parting = weight * across + (1.0 - weight) * np.array([1.0, 0.0, 0.0])
+    spread = quat.norm(apart)
+    drawn = (_smooth_ramp(np.minimum(s, t), END_SHARE) * _smooth_ramp(spread / length, END_SHARE))[:, None]
+    parting = drawn * apart / np.maximum(spread, _TINY)[:, None] + (1.0 - drawn) * parting
+    return parting / np.maximum(quat.norm(parting), _TINY)[:, None]
+
+
+def _smooth_ramp(value: np.ndarray, edges: tuple[float, float]) -> np.ndarray:
+    """0 below ``edges[0]``, 1 above ``edges[1]``, smoothstep between."""
+    u = np.minimum(np.maximum((value - edges[0]) / (edges[1] - edges[0]), 0.0), 1.0)
+    return u * u * (3.0 - 2.0 * u)

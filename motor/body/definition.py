@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor.body.avatar import AVATAR_DIR, SIDES
+from motor.body.volumes import FOREARM_SHARE, SHOULDER_SHARE
 
 #: The reference avatar whose joint limits, finger calibration, thumb postures and grid
 #: proportions are taken (scaled) when a body cannot give them.
@@ -164,6 +165,9 @@ def derive_definition(body: Body) -> Definition:
     scales = _scales(measure, reference)
     face = _face_landmarks(measure, scales)
     locations = {**_central_sites(measure, face), **_side_sites(measure, face)}
+    palm = _palm_thickness(locations)
+    arms = _arm_volumes(measure, scales, palm)
+    torso = _clear_of_arms(_torso(measure, scales), arms)
     document = {
         "name": body.name,
         "description": body.description or f"Avatar {body.name}, derived by mura from its skeleton{' and skin' if body.skin else ''}.",
@@ -181,9 +185,9 @@ def derive_definition(body: Body) -> Definition:
         "thumb": reference["thumb"],
         "locations": locations,
         "grid": _grid(measure, reference, scales, face),
-        "torso": _torso(measure, scales),
+        "torso": torso,
         "postures": _postures(measure, reference, scales),
-        "collision": {"volumes": _volumes(measure, scales, face)},
+        "collision": {"volumes": _volumes(measure, scales, face, torso, arms), "palm_thickness": palm},
     }
     measure.guessed.append("joint limits, finger calibration and thumb postures: the reference avatar max's")
     if body.skin is None:
@@ -560,10 +564,58 @@ def _postures(m: _Measure, reference: dict, s: dict) -> dict:
     return postures
 
 
-def _volumes(m: _Measure, s: dict, f: dict) -> list[dict]:
+def _palm_thickness(locations: dict) -> float:
+    """How far apart the hands' midlines are when palm touches palm: the right hand's
+    thickness from its palm to its back, as measured on the skin (both sites ride on the
+    wrist)."""
+    palm, back = locations["r_palm"], locations["r_handback"]
+    return float(np.linalg.norm(np.asarray(palm["offset"]) - np.asarray(back["offset"])))
+
+
+def _clear_of_arms(torso: dict, arms: dict[str, list[dict]]) -> dict:
+    """The torso narrowed, where the arms hang against it at rest, to the inner surface of
+    their upper-arm and forearm capsules: a body's volumes never overlap its own rest pose
+    (else every pose of the arm would count as inside the torso, and the swivel search
+    would flee a penetration no swivel can end). The trunk's skin is widest where it
+    meets the shoulders, and that width is the arms' flesh, not the torso's."""
+    width = torso["half_width"]
+    share = np.linspace(0.0, 1.0, 33)[:, None]
+    for volumes in arms.values():
+        for capsule in volumes[:2]:
+            a, b = np.asarray(capsule["a"]), np.asarray(capsule["b"])
+            points = a + share * (b - a)
+            beside = points[(points[:, 1] >= torso["bottom"]) & (points[:, 1] <= torso["top"])]
+            if len(beside):
+                width = min(width, float(np.min(np.abs(beside[:, 0] - torso["center"][0]))) - capsule["radius"])
+    return {**torso, "half_width": width}
+
+
+def _arm_volumes(m: _Measure, s: dict, palm: float) -> dict[str, list[dict]]:
+    """Each side's upper-arm, forearm and hand capsules, as thick as the skin around their
+    bones; as the default volumes (:mod:`motor.body.volumes`) the upper arm leaves out the
+    shoulder's own flesh next to the joint (:data:`SHOULDER_SHARE`), the forearm stops
+    short of the wrist (:data:`FOREARM_SHARE`) and the hand is as thick as the palm — a
+    capsule as thick as the hand is wide would make hands placed palm to palm overlap."""
+    at = m.at
+    arms = {}
+    for side in SIDES:
+        shoulder, elbow, wrist = (at[f"{side}_{j}"] for j in ("shoulder", "elbow", "wrist"))
+        upper = m.radius(f"{side}_shoulder", shoulder, elbow, 0.045 * s["arm_ratio"])
+        fore = m.radius(f"{side}_elbow", elbow, wrist, 0.035 * s["arm_ratio"])
+        knuckles = 0.5 * (at[f"{side}_index1"] + at[f"{side}_pinky1"])
+        arms[side] = [
+            {"name": f"{side}_upper_arm", "joint": f"{side}_shoulder", "shape": "capsule",
+             "a": shoulder + SHOULDER_SHARE * (elbow - shoulder), "b": elbow, "radius": upper},
+            {"name": f"{side}_forearm", "joint": f"{side}_elbow", "shape": "capsule",
+             "a": elbow, "b": elbow + FOREARM_SHARE * (wrist - elbow), "radius": fore},
+            {"name": f"{side}_hand", "joint": f"{side}_wrist", "shape": "capsule", "a": wrist, "b": knuckles, "radius": 0.5 * palm},
+        ]  # fmt: skip
+    return arms
+
+
+def _volumes(m: _Measure, s: dict, f: dict, torso: dict, arms: dict[str, list[dict]]) -> list[dict]:
     at = m.at
     volumes = []
-    torso = _torso(m, s)
     volumes.append({"name": "torso", "joint": "vl5", "shape": "elliptic_cylinder", "center": torso["center"],
                     "half_width": torso["half_width"], "half_depth": torso["half_depth"],
                     "bottom": float(at["vl5"][1]), "top": torso["top"]})  # fmt: skip
@@ -584,16 +636,7 @@ def _volumes(m: _Measure, s: dict, f: dict) -> list[dict]:
         centre, radii = 0.5 * (low + high), 0.5 * (high - low)
     volumes.append({"name": "head", "joint": "skullbase", "shape": "ellipsoid", "center": centre, "radii": radii})
     for side in SIDES:
-        shoulder, elbow, wrist = (at[f"{side}_{j}"] for j in ("shoulder", "elbow", "wrist"))
-        upper = m.radius(f"{side}_shoulder", shoulder, elbow, 0.045 * s["arm_ratio"])
-        fore = m.radius(f"{side}_elbow", elbow, wrist, 0.035 * s["arm_ratio"])
-        knuckles = 0.5 * (at[f"{side}_index1"] + at[f"{side}_pinky1"])
-        hand = m.radius(f"{side}_wrist", wrist, knuckles, 0.03 * s["hand_ratio"])
-        volumes += [
-            {"name": f"{side}_upper_arm", "joint": f"{side}_shoulder", "shape": "capsule", "a": shoulder, "b": elbow, "radius": upper},
-            {"name": f"{side}_forearm", "joint": f"{side}_elbow", "shape": "capsule", "a": elbow, "b": wrist, "radius": fore},
-            {"name": f"{side}_hand", "joint": f"{side}_wrist", "shape": "capsule", "a": wrist, "b": knuckles, "radius": hand},
-        ]
+        volumes += arms[side]
         if f"{side}_hip" in at and f"{side}_knee" in at:
             thigh = m.radius(f"{side}_hip", at[f"{side}_hip"], at[f"{side}_knee"], 0.07 * s["width_ratio"], 70.0)
             volumes.append({"name": f"{side}_thigh", "joint": f"{side}_hip", "shape": "capsule", "a": at[f"{side}_hip"],

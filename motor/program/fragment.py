@@ -37,8 +37,10 @@ list of keys ``(start, end, value)`` on a local clock ``[0, D]``, the value reac
   floor (the avatar's ``root_height`` is subtracted); otherwise through the dominant
   hand's mean stroke position. Only the first three numbers of a center are used.
   Hands brought together touch and do not overlap: a mirrored location closer to its
-  image than the avatar's palm thickness (:func:`motor.hand.contact.palm_thickness`) is
-  moved apart, both hands equally, to that distance.
+  image than the avatar's palm thickness (``palm_thickness`` of its collision entry,
+  :mod:`motor.body.volumes`) is moved apart, both hands equally, to that distance; the
+  motor control keeps every pair of hands at least that far apart as the arms turn them
+  (:func:`motor.body.collision.separate_hands`).
 
 A location out of the arm's reach (the IK falls short of it; :mod:`motor.arm.wrist_path`)
 is replaced by the nearest point the arm reaches, with a warning; a stroke too fast for
@@ -60,7 +62,6 @@ import numpy as np
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.locations import resolve_location
 from motor.face.planning import FACE_SLOTS
-from motor.hand.contact import palm_thickness
 from motor.hand.shape import handshape_params
 from motor.neck.planning import NECK_SLOTS
 from motor.trajectory.biocontrol import MANNERS, movement_duration
@@ -303,15 +304,15 @@ class Compiler:
 
     def kept_apart(self, keys: tuple[Key, ...], symmetry: Symmetry, center: np.ndarray, dominant: str) -> tuple[Key, ...]:
         """Dominant-hand location keys at least a palm thickness from their mirror images
-        (:mod:`motor.hand.contact`): hands brought together touch, they do not overlap. A key
-        on the mirror planes is moved to the dominant hand's side (the avatar's right is −x)."""
+        (``avatar.collision.palm_thickness``): hands brought together touch, they do not
+        overlap. A key on the mirror planes is moved to the dominant hand's side (the avatar's right is −x)."""
         signs = reflection_signs(symmetry)
         away = np.where(signs < 0.0, 1.0, 0.0)
         away[0] *= -1.0 if dominant == "right" else 1.0
         if not np.any(away):
             return keys
         points = np.array([np.asarray(key.value, dtype=float) for key in keys])
-        apart = kept_apart(points, symmetry, center, palm_thickness(self.avatar), away / np.linalg.norm(away))
+        apart = kept_apart(points, symmetry, center, self.avatar.collision.palm_thickness, away / np.linalg.norm(away))
         return tuple(replace(key, value=point) for key, point in zip(keys, apart))
 
     def mirror_center(self, node: Symmetrical, child: Fragment) -> np.ndarray:

@@ -11,11 +11,12 @@ along the lax profile in :func:`motor.program.gesture.retraction_duration` and s
 
 The sign LMPs (:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and
 sign) are activated on :class:`motor.control.MotorControl`, which samples them and solves
-both arms (analytic IK with the natural swivel, torso avoidance included) and hands for
-every frame. Each sign's non-manual tiers (head, eye gaze, torso, shoulders, eyebrows,
-eyelids, nose, mouth gestures and mouth pictures) are activated with it, timed by its
-transition and movement (:mod:`motor.signing.nonmanual`), so the motion carries the head
-and eyes and the face's morph weights too.
+both arms (analytic IK with a smooth swivel track that keeps the arms clear of the body
+and of each other, :mod:`motor.control`) and hands for every frame. Each sign's
+non-manual tiers (head, eye gaze, torso, shoulders, eyebrows, eyelids, nose, mouth
+gestures and mouth pictures) are activated with it, timed by its transition and movement
+(:mod:`motor.signing.nonmanual`), so the motion carries the head and eyes and the face's
+morph weights too.
 """
 
 from __future__ import annotations
@@ -26,9 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.ik import solve_arm
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
 from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
 from motor.motion import Motion
@@ -50,9 +49,6 @@ REST_TAIL = 0.3
 #: which are checked against the torso and the arm's reach.
 TRANSITION_SPACING = 0.03
 MIN_TRANSITION_POINTS = 4
-#: Depth (m) of the upper arm's axis inside the torso cylinder tolerated before a frame's
-#: arm is solved again (the shoulder joint itself sits at the torso's edge).
-UPPER_ARM_TOLERANCE = 0.01
 #: Channels of one arm that a sign drives.
 CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 
@@ -141,7 +137,6 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
     motion = control.frames(0.0, clock + back + REST_TAIL)
-    motion = _elbows_outside(avatar, control, motion)
     return SignedMotion(motion, tuple(timings), tuple(warnings), control)
 
 
@@ -177,34 +172,6 @@ def _transition_ways(
         for way, points in zip(ways, cleared):
             way[arm] = points[1:-1]
     return ways
-
-
-def _elbows_outside(avatar: Avatar, control: MotorControl, motion: Motion) -> Motion:
-    """Frames whose upper arm entered the torso solved again, each with the better of two
-    swivels by the IK's own penetration diagnostics: the per-frame natural swivel of
-    :func:`motor.arm.ik.solve_arm`, and the natural swivel of the wrist position alone
-    (without the hand rotation's wrist-comfort terms), the hand still turned as asked.
-
-    The control's swivel is sampled on a coarse grid and interpolated; where the natural
-    swivel jumps between grid points (the wrist crossing the midline near the body, or a
-    hand rotation that makes the wrist-comfort terms win), the interpolated or natural
-    elbow can pass through the trunk.
-    """
-    depth = upper_arm_depths(avatar, motion)
-    for arm in ARMS:
-        flagged = depth[arm] > UPPER_ARM_TOLERANCE
-        if not np.any(flagged):
-            continue
-        side = AVATAR_SIDE[arm]
-        times = motion.times[flagged]
-        wrists = control.timeline((arm, "wrist_position")).sample(times)
-        hands = control.timeline((arm, "hand_rotation")).sample(times)
-        natural = solve_arm(avatar, side, wrists, hands)
-        positional = solve_arm(avatar, side, wrists, hands, swivel=solve_arm(avatar, side, wrists).swivel)
-        better = (positional.penetration < natural.penetration)[:, None, None]
-        rotations = np.where(better, positional.rotations, natural.rotations)
-        motion.rotations[np.flatnonzero(flagged)[:, None], avatar.arm_joints(side)[None, :]] = rotations
-    return motion
 
 
 def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose]) -> float:
@@ -260,16 +227,17 @@ def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
 
 def frame_faults(avatar: Avatar, signed: SignedMotion) -> dict[str, np.ndarray]:
     """Per frame: ``non_finite`` (bool), ``shortfall`` (m between the wrist reached by
-    forward kinematics and the wrist asked for, worse arm) and ``upper_arm_depth`` (m,
+    forward kinematics and the wrist the arm was given — the sign's, kept out of the torso
+    and the hands a palm thickness apart — worse arm) and ``upper_arm_depth`` (m,
     worse arm, see :func:`upper_arm_depths`)."""
     motion = signed.motion
     finite = np.all(np.isfinite(motion.rotations), axis=(1, 2))
     pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
     shortfall = np.zeros(motion.frame_count)
+    asked = signed.control.wrist_targets(motion.times)
     for arm in ARMS:
         wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
-        asked = outside_torso(avatar, signed.control.timeline((arm, "wrist_position")).sample(motion.times))
-        shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked, axis=1))
+        shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked[arm], axis=1))
     depths = upper_arm_depths(avatar, motion)
     return {"non_finite": ~finite, "shortfall": shortfall, "upper_arm_depth": np.maximum(*depths.values())}
 

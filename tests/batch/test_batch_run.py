@@ -77,7 +77,8 @@ def test_a_rerun_skips_what_is_done_and_redoes_what_changed(cluster: str, corpus
 
 
 def test_killed_run_resumes_without_redoing_completed_items(cluster: str, tmp_path: Path) -> None:
-    signs = {f"{gloss} {copy}": symbols for copy in range(5) for gloss, symbols in SIGNS.items() if gloss != "broken"}
+    # Enough chunks of 16 that both workers cannot finish them all between two looks at the journal.
+    signs = {f"{gloss} {copy}": symbols for copy in range(24) for gloss, symbols in SIGNS.items() if gloss != "broken"}
     corpus = tmp_path / "many.sigml"
     corpus.write_text(sigml(signs), encoding="utf-8")
     out = tmp_path / "out"
@@ -144,7 +145,8 @@ def test_folders_of_utterances_and_bml_blocks_render_with_their_speech(cluster: 
 
 
 def test_interrupted_run_stops_its_workers_and_resumes(cluster: str, tmp_path: Path) -> None:
-    signs = {f"{gloss} {copy}": symbols for copy in range(5) for gloss, symbols in SIGNS.items() if gloss != "broken"}
+    # Enough chunks of 16 that both workers cannot finish them all between two looks at the journal.
+    signs = {f"{gloss} {copy}": symbols for copy in range(24) for gloss, symbols in SIGNS.items() if gloss != "broken"}
     corpus = tmp_path / "many.sigml"
     corpus.write_text(sigml(signs), encoding="utf-8")
     out = tmp_path / "out"

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from motor import quaternion as quat
 from motor.arm.hand_orientation import hand_rotation
+from motor.arm.chain import REACH_EASE
 from motor.arm.ik import ArmSolution, solve_arm
 from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
@@ -47,7 +50,7 @@ def test_reachable_targets_are_met_within_a_millimetre(avatar, side):
     pose = _pose(avatar, side, solution)
     shoulder, elbow, wrist = (pose.positions[:, j] for j in avatar.arm_joints(side)[1:])
     reachable = solution.shortfall == 0.0
-    assert reachable.sum() > 0.6 * len(targets)
+    assert reachable.sum() > 0.5 * len(targets)  # the last 3 cm before full stretch are eased
     assert np.linalg.norm(wrist - targets, axis=1)[reachable].max() < 1e-3
     assert np.allclose(elbow, solution.elbow) and np.allclose(wrist, solution.wrist)
     low, high = avatar.limit(f"{side}_elbow", "flexion")
@@ -66,11 +69,12 @@ def test_unreachable_targets_land_on_the_reach_sphere(avatar, side):
     targets = np.array([[sign * 2.0, 0.5, 0.0], [0.0, 2.5, 0.3], [-sign * 1.5, 0.3, 1.5], [0.0, -1.0, 1.0]])
     solution = solve_arm(avatar, side, targets)
     reach = solution.wrist - solution.shoulder
-    assert np.allclose(np.linalg.norm(reach, axis=1), avatar.arm_length(side))
+    # the wrist stops short of full stretch by the reach's ease (the elbow never locks)
+    assert np.allclose(np.linalg.norm(reach, axis=1), avatar.arm_length(side) - REACH_EASE)
     wanted = targets - solution.shoulder
     cosine = np.sum(reach * wanted, axis=1) / np.linalg.norm(reach, axis=1) / np.linalg.norm(wanted, axis=1)
     assert np.allclose(cosine, 1.0)
-    assert np.allclose(solution.shortfall, np.linalg.norm(wanted, axis=1) - avatar.arm_length(side))
+    assert np.allclose(solution.shortfall, np.linalg.norm(wanted, axis=1) - avatar.arm_length(side) + REACH_EASE)
     assert np.all(solution.shortfall > 0.3)
 
 
@@ -180,7 +184,7 @@ def test_any_feasible_hand_rotation_is_met(avatar, side):
     rotations[:, 2] = quat.multiply(rotations[:, 2], quat.from_axis_angle(frame.twist_axis, twist))
     rotations[:, 3] = quat.from_rotation_vector(flexion[:, None] * frame.bend_axis + deviation[:, None] * frame.splay_axis)
     feasible = (posed.shortfall == 0) & (posed.penetration == 0)
-    posed_pose = _pose(avatar, side, ArmSolution(rotations, *[getattr(posed, f) for f in ("shoulder", "elbow", "wrist", "shortfall", "elbow_flexion", "swivel", "orientation_error", "penetration")]))
+    posed_pose = _pose(avatar, side, replace(posed, rotations=rotations))
     hands = posed_pose.orientations[:, avatar.arm_joints(side)[3]]
     solution = solve_arm(avatar, side, targets[feasible], hands[feasible])
     assert feasible.sum() > frames // 2

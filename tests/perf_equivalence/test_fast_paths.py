@@ -12,6 +12,7 @@ from motor import quaternion as quat
 from motor.arm.swivel import SwivelLMP
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import load_avatar
+from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH
 from motor.control import MotorControl
 from motor.program.lmp import (
     ChannelState,
@@ -109,14 +110,16 @@ def _programs(control):
 
 
 def test_frames_after_a_late_activation_are_those_of_a_fresh_control(avatar):
-    """Swivels solved ahead are forgotten from a new LMP's start on, frames computed ahead
-    from two swivel periods before it, and the appended timelines equal rebuilt ones: the
-    frames match a control given everything at once."""
+    """Swivel track states solved ahead are forgotten from ``TRACK_REACH`` grid points
+    before a new LMP's start on, frames computed ahead from two swivel periods before
+    that, and the appended timelines equal rebuilt ones: the frames match a control given
+    everything at once (the LMP comes 0.5 s after the frames handed out, more than the
+    track looks ahead)."""
     streaming = MotorControl(avatar, fps=30.0)
     first, second = _programs(streaming)
     streaming.activate(first)
     early = [streaming.frames(0.0, 1.0), streaming.frames(1.0, 1.1)]  # swivels solved to 1.9 s
-    assert max(streaming._swivels["right"]) * 0.1 > second.pegs.start
+    assert streaming._grid.last * SWIVEL_PERIOD > second.pegs.start
     streaming.activate(second)
     late = [streaming.frames(a, b) for a, b in ((1.1, 1.2), (1.2, 1.5), (1.5, 1.9), (1.9, 5.0))]  # partly from frames computed ahead
     fresh = MotorControl(avatar, fps=30.0)
@@ -127,14 +130,19 @@ def test_frames_after_a_late_activation_are_those_of_a_fresh_control(avatar):
 
 
 def test_frames_after_an_interrupt_are_those_of_a_fresh_control(avatar):
-    """An interrupt forgets the frames computed ahead from where it changes the motion."""
+    """An interrupt forgets the frames computed ahead from where it changes the motion.
+
+    Frames handed out before it are those of a control that knew of it when it comes no
+    sooner than the swivel track looks ahead (``TRACK_REACH`` grid points, and two more
+    for the interpolation) after them; the frames after it are in any case."""
     streaming = MotorControl(avatar, fps=30.0)
     programs = _programs(streaming)
     for program in programs:
         streaming.activate(program)
-    early = streaming.frames(0.0, 1.0)  # frames computed ahead to 3.0 s, uninterrupted
+    handed_out = 1.2 - (TRACK_REACH + 2) * SWIVEL_PERIOD
+    early = streaming.frames(0.0, handed_out)  # frames computed ahead for 2.0 s, uninterrupted
     streaming.interrupt(1.2)
-    late = [streaming.frames(a, b) for a, b in ((1.0, 1.5), (1.5, 2.5), (2.5, 5.0))]
+    late = [streaming.frames(a, b) for a, b in ((handed_out, 1.5), (1.5, 2.5), (2.5, 5.0))]
     fresh = MotorControl(avatar, fps=30.0)
     for program in programs:
         fresh.activate(program)

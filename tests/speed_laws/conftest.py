@@ -24,22 +24,41 @@ PUBLISHED = sorted((REPO.parent / "shared" / "corpora" / "murml").glob("*.us"))
 FILES = [*EXAMPLES, *PUBLISHED]
 
 
+#: How near (m) beyond the palm thickness the palms count as touching.
+CONTACT = 0.01
+
+
 @dataclass(frozen=True, eq=False)
 class Rendered:
     """One performance: its frame rate, the wrists ``{"right": (n, 3), "left": …}`` in the
-    avatar frame, the frame times and the timeline JSON."""
+    avatar frame, the frame times, the timeline JSON, the warnings and the middle
+    knuckles (the far end of each palm) like the wrists."""
 
     fps: float
     wrists: dict[str, np.ndarray]
     times: np.ndarray
     timeline: dict
     warnings: tuple[str, ...]
+    knuckles: dict[str, np.ndarray]
 
     def frame(self, time: float) -> int:
         return int(round((time - self.times[0]) * self.fps))
 
     def behaviors(self, kind: str | None = None) -> list[dict]:
         return [b for b in self.timeline["behaviors"] if kind is None or b["kind"] == kind]
+
+    def hands_in_contact(self, palm_thickness: float) -> np.ndarray:
+        """Frames where the two palms (wrist to middle knuckle) come within :data:`CONTACT`
+        of ``palm_thickness`` (m) of each other, and the frames next to them (central
+        differences): where the motor control keeps the hands apart as the arms turn them,
+        whatever the planned paths do."""
+        w, k = self.wrists, self.knuckles
+        steps = np.linspace(0.0, 1.0, 11)[:, None, None]
+        left = w["left"][None] + steps * (k["left"] - w["left"])[None]
+        right = w["right"][None] + steps * (k["right"] - w["right"])[None]
+        gap = np.linalg.norm(left[:, None] - right[None], axis=-1).min(axis=(0, 1))
+        near = gap < palm_thickness + CONTACT
+        return near | np.roll(near, 1) | np.roll(near, -1)
 
 
 _CACHE: dict[tuple[str, float], Rendered] = {}
@@ -56,9 +75,10 @@ def rendered(path: Path, fps: float) -> Rendered:
     if key not in _CACHE:
         performed = render(path, fps)
         motion = performed.motion
-        joints = joint_positions(motion, ("r_wrist", "l_wrist"))
+        joints = joint_positions(motion, ("r_wrist", "l_wrist", "r_middle1", "l_middle1"))
         wrists = {"right": joints["r_wrist"] - motion.root_translation, "left": joints["l_wrist"] - motion.root_translation}
-        _CACHE[key] = Rendered(fps, wrists, motion.times, performed.timeline.to_json(), tuple(performed.warnings))
+        knuckles = {"right": joints["r_middle1"] - motion.root_translation, "left": joints["l_middle1"] - motion.root_translation}
+        _CACHE[key] = Rendered(fps, wrists, motion.times, performed.timeline.to_json(), tuple(performed.warnings), knuckles)
     return _CACHE[key]
 
 

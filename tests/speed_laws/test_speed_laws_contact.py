@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from bench.speed_laws import joint_positions
+from motor.body.avatar import load_avatar
 from motor.control import MotorControl
-from motor.hand.contact import palm_thickness
 from motor.program.lmp import TimePegs
 from mura.constraints import Arm, Dynamic, Parallel, Segment, SegmentKind, Static, Symmetrical, Symmetry
 from mura.values import Direction, GridLocation, PalmOrientation
@@ -32,8 +32,8 @@ def test_join_hands_palms_touch_without_overlapping(avatar) -> None:
     (join,) = [b for b in performance.behaviors() if b["id"] == "join_hands"]
     first, last = performance.frame(join["phases"]["stroke_start"]), performance.frame(join["phases"]["relax"])
     gap = _gap(performance.wrists)[first : last + 1]
-    assert gap.min() >= palm_thickness(avatar) - ROUNDING
-    assert gap[-1] == pytest.approx(palm_thickness(avatar), abs=1e-3), "the hands meet"
+    assert gap.min() >= avatar.collision.palm_thickness - ROUNDING
+    assert gap[-1] == pytest.approx(avatar.collision.palm_thickness, abs=1e-3), "the hands meet"
 
 
 @pytest.mark.parametrize(
@@ -64,11 +64,15 @@ def test_synthetic_symmetric_gestures_keep_a_palm_thickness_apart(avatar, start,
     motion = control.frames(0.0, program.pegs.end + 0.1)
     joints = joint_positions(motion, ("r_wrist", "l_wrist"))
     gap = _gap({"right": joints["r_wrist"], "left": joints["l_wrist"]})
-    assert gap.min() >= palm_thickness(avatar) - ROUNDING
-    assert gap.min() == pytest.approx(palm_thickness(avatar), abs=1e-3), "the hands meet"
+    assert gap.min() >= avatar.collision.palm_thickness - ROUNDING
+    assert gap.min() == pytest.approx(avatar.collision.palm_thickness, abs=1e-3), "the hands meet"
 
 
-def test_palm_thickness_comes_from_the_avatar(avatar) -> None:
-    site = avatar.sites["r_palm"]
-    assert palm_thickness(avatar) == pytest.approx(2.0 * abs(float(np.asarray(site.offset) @ np.asarray(site.normal))))
-    assert 0.01 < palm_thickness(avatar) < 0.06
+@pytest.mark.parametrize("name", ["max", "kim", "makehuman"])
+def test_palm_thickness_is_the_hands_own(name: str) -> None:
+    """One palm thickness per avatar, in its collision entry: the distance between the
+    palm and the back of the hand, where the avatar's locations put them."""
+    avatar = load_avatar(name)
+    palm, back = (avatar.rest_positions[avatar.sites[site].bone] + np.asarray(avatar.sites[site].offset) for site in ("r_palm", "r_handback"))
+    assert avatar.collision.palm_thickness == pytest.approx(float(np.linalg.norm(palm - back)), abs=5e-4)
+    assert 0.01 < avatar.collision.palm_thickness < 0.06

@@ -1,0 +1,216 @@
+"""How close an arm comes to the body and to the other arm, for candidate elbows at once.
+
+The arm's segments are the avatar's ``upper_arm`` and ``forearm`` capsules, carried along
+their bones (the part of each capsule's axis between its end points, projected onto the
+bone: the swivel search moves them with the elbow without building rotations). The
+obstacles are the body's volumes (torso, pelvis, neck, head and any others that move
+with neither arm), carried rigidly by the clavicles' parent joint when the torso turns,
+and optionally the other arm's three capsules at the same instants.
+
+:func:`clearance` gives, for ``(n, K)`` candidate elbow positions (as coordinate arrays),
+a penalty that grows quadratically as a segment comes within :data:`CLEARANCE` of an
+obstacle (so the feasible set is entered from its inside, smoothly) and the depth of the
+deepest penetration of the body. Only the frames whose arm, for some candidate, comes
+near an obstacle's bounding box are measured against it.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.body.avatar import HAND_JOINTS, Avatar
+from motor.body.collision import Components, capsule_apart, segments_apart
+from motor.body.volumes import Capsule, Ellipsoid, Volume
+
+#: Clearance (m) a segment keeps from an obstacle before it is penalized.
+CLEARANCE = 0.01
+#: Penalty of a segment at the obstacle's surface; it grows with the square of the
+#: distance inside the clearance, per :data:`CLEARANCE`.
+CONTACT_PENALTY = 50.0
+
+
+@dataclass(frozen=True, eq=False)
+class ArmCapsules:
+    """One arm's capsules as the swivel search moves them: the upper arm from ``upper_ends``
+    fractions of the way shoulder → elbow, the forearm ``fore_ends`` of elbow → wrist,
+    the hand's end points relative to the wrist at rest ``hand_ends (2, 3)``; radii in metres."""
+
+    upper_ends: tuple[float, float]
+    upper_radius: float
+    fore_ends: tuple[float, float]
+    fore_radius: float
+    hand_ends: np.ndarray
+    hand_radius: float
+
+
+@dataclass(frozen=True, eq=False)
+class Obstacle:
+    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame)."""
+
+    volume: Volume
+    box: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class ArmSegments:
+    """An arm's posed capsules at ``n`` instants: end points ``(n, 3)`` of the upper arm,
+    forearm and hand, and their radii (the obstacles the other arm keeps clear of)."""
+
+    upper: tuple[np.ndarray, np.ndarray]
+    fore: tuple[np.ndarray, np.ndarray]
+    hand: tuple[np.ndarray, np.ndarray]
+    radii: tuple[float, float, float]
+
+    def take(self, rows: np.ndarray) -> ArmSegments:
+        pick = lambda ends: (ends[0][rows], ends[1][rows])
+        return ArmSegments(pick(self.upper), pick(self.fore), pick(self.hand), self.radii)
+
+    def capsules(self) -> tuple[tuple[np.ndarray, np.ndarray, float], ...]:
+        return tuple((a, b, r) for (a, b), r in zip((self.upper, self.fore, self.hand), self.radii))
+
+
+@functools.lru_cache(maxsize=32)
+def arm_capsules(avatar: Avatar, side: str) -> ArmCapsules:
+    """The arm's capsules (:class:`ArmCapsules`) from the avatar's collision volumes."""
+    _, shoulder, elbow, wrist = (avatar.rest_positions[i] for i in avatar.arm_joints(side))
+    along = lambda point, start, end: float((point - start) @ (end - start) / ((end - start) @ (end - start)))
+    upper, fore, hand = (avatar.collision.arm(side, part) for part in ("upper_arm", "forearm", "hand"))
+    return ArmCapsules(
+        upper_ends=(along(upper.a, shoulder, elbow), along(upper.b, shoulder, elbow)),
+        upper_radius=upper.radius,
+        fore_ends=(along(fore.a, elbow, wrist), along(fore.b, elbow, wrist)),
+        fore_radius=fore.radius,
+        hand_ends=np.stack((hand.a - wrist, hand.b - wrist)),
+        hand_radius=hand.radius,
+    )
+
+
+@functools.lru_cache(maxsize=32)
+def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
+    """The body's volumes with their bounding boxes."""
+    limbs = frozenset(f"{side}_{joint}" for side in "lr" for joint in ("sternoclavicular", "shoulder", "elbow", "wrist", *HAND_JOINTS))
+    obstacles = []
+    for volume in avatar.collision.body(limbs):
+        if isinstance(volume, Capsule):
+            box = np.stack((np.minimum(volume.a, volume.b) - volume.radius, np.maximum(volume.a, volume.b) + volume.radius))
+        elif isinstance(volume, Ellipsoid):
+            box = np.stack((volume.center - volume.radii, volume.center + volume.radii))
+        else:
+            box = np.array([
+                [volume.center[0] - volume.half_width, volume.bottom, volume.center[2] - volume.half_depth],
+                [volume.center[0] + volume.half_width, volume.top, volume.center[2] + volume.half_depth],
+            ])  # fmt: skip
+        obstacles.append(Obstacle(volume, box))
+    return tuple(obstacles)
+
+
+def arm_segments(capsules: ArmCapsules, shoulder: np.ndarray, elbow: np.ndarray, wrist: np.ndarray, hands: np.ndarray) -> ArmSegments:
+    """An arm's posed capsules from its joint positions ``(n, 3)`` and global hand rotations ``(n, 4)``."""
+    along = lambda start, end, ends: tuple(start + f * (end - start) for f in ends)
+    hand = tuple(wrist + quat.rotate(hands, offset) for offset in capsules.hand_ends)
+    return ArmSegments(
+        along(shoulder, elbow, capsules.upper_ends),
+        along(elbow, wrist, capsules.fore_ends),
+        hand,
+        (capsules.upper_radius, capsules.fore_radius, capsules.hand_radius),
+    )
+
+
+def penalty(distance: np.ndarray) -> np.ndarray:
+    """Cost of a signed distance (m): 0 beyond :data:`CLEARANCE`, quadratic inside it."""
+    inside = np.maximum(CLEARANCE - distance, 0.0) * (1.0 / CLEARANCE)
+    return CONTACT_PENALTY * inside * inside
+
+
+def clearance(
+    avatar: Avatar,
+    side: str,
+    shoulder: np.ndarray,
+    wrist: np.ndarray,
+    elbow: Components,
+    body_frame: tuple[np.ndarray, np.ndarray] | None = None,
+    other: ArmSegments | None = None,
+    body: bool = True,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Penalty and body penetration depth (m) ``(n, K)`` of the arm from ``shoulder`` to
+    ``wrist`` ``(n, 3)`` with its elbow at the coordinate arrays ``elbow`` ``(n, K)``.
+
+    ``body_frame`` (rotation ``(n, 4)``, translation ``(n, 3)``) carries the body's rest
+    geometry to where it is when the torso is not upright (None: upright, at rest).
+    ``other``: the other arm's capsules at the same instants, kept clear of too;
+    ``body``: False to keep clear of the other arm only."""
+    capsules = arm_capsules(avatar, side)
+    shape = elbow[0].shape
+    cost = np.zeros(shape)
+    depth = np.zeros(shape)
+    if body and body_frame is not None:
+        rotation, translation = body_frame
+        inverse = quat.conjugate(rotation)
+        rest_shoulder, rest_wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
+        stacked = np.stack(elbow, axis=-1) - translation[:, None]
+        rest_elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
+    else:
+        rest_shoulder, rest_wrist, rest_elbow = shoulder, wrist, elbow
+    if body:
+        boxes = _boxes(capsules, rest_shoulder, rest_wrist, rest_elbow)
+        for (a, b, radius), (low, high) in zip(_segments(capsules, rest_shoulder, rest_wrist, rest_elbow), boxes):
+            for obstacle in body_obstacles(avatar):
+                near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
+                if not np.any(near):
+                    continue
+                if np.all(near):
+                    distance = capsule_apart(obstacle.volume, a, b, radius)
+                    cost += penalty(distance)
+                    np.maximum(depth, -distance, out=depth)
+                    continue
+                rows = np.flatnonzero(near)
+                distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
+                cost[rows] += penalty(distance)
+                depth[rows] = np.maximum(depth[rows], -distance)
+    if other is not None:
+        boxes = _boxes(capsules, shoulder, wrist, elbow)
+        for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
+            for a_other, b_other, r_other in other.capsules():
+                near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
+                if not np.any(near):
+                    continue
+                rows = np.flatnonzero(near)
+                ends = tuple(a_other[rows, i : i + 1] for i in range(3)), tuple(b_other[rows, i : i + 1] for i in range(3))
+                distance = segments_apart(tuple(c[rows] for c in a), tuple(c[rows] for c in b), *ends)
+                cost[rows] += penalty(distance - radius - r_other)
+    return cost, np.maximum(depth, 0.0)
+
+
+def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
+    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
+    capsules' ends are affine in the elbow with non-negative weights, so the box of the
+    candidate elbows bounds them."""
+    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
+    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
+    boxes = []
+    for (u0, u1), start, from_start, radius in (
+        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
+        (capsules.fore_ends, wrist, False, capsules.fore_radius),
+    ):
+        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
+        weight = lambda f: f if from_start else 1.0 - f
+        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
+        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
+        grow = radius + CLEARANCE
+        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
+    return boxes
+
+
+def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
+    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
+    do not move with the elbow ``(n, 1)``) and radii."""
+    s = tuple(shoulder[:, i : i + 1] for i in range(3))
+    w = tuple(wrist[:, i : i + 1] for i in range(3))
+    (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
+    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
+    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius

@@ -1,0 +1,196 @@
+"""What a swivel costs: how natural, comfortable for the wrist and clear of the body it is.
+
+Candidate swivels are the whole circle in steps of :data:`SWIVEL_STEP`
+(:data:`CANDIDATES`). Each candidate's cost sums
+
+* its distance from the natural swivel (Soechting & Flanders, :mod:`motor.arm.chain`):
+  quadratic, and steeply beyond :data:`SWIVEL_RANGE` where the shoulder leaves its
+  comfortable range;
+* the wrist's load (seed 000: spare the wrist): flexion and — weighted more — radial/ulnar
+  deviation as fractions of their limits, and the hand rotation the limits leave
+  unachieved, saturating (a hand rotation no swivel comes near does not drag the elbow
+  around);
+* the arm's clearance from the body and the other arm (:mod:`motor.arm.clearance`).
+
+Only the candidates within :data:`WINDOW` steps of the natural swivel are measured; the
+others cost their distance from it plus :data:`OUTSIDE`. Everything is computed on
+coordinate arrays ``(n, K)`` (contiguous per coordinate), the layout in which numpy is
+fastest for these many small vectors.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from motor.arm.chain import ArmPlacement
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance
+from motor.body.avatar import Avatar
+from motor.body.collision import Components
+
+#: Candidate swivels (radians): the whole circle in steps of :data:`SWIVEL_STEP`.
+SWIVEL_STEP = float(np.deg2rad(10.0))
+CANDIDATES = np.arange(-np.pi, np.pi - 1e-9, SWIVEL_STEP)
+#: Cost weights: distance from the natural swivel (per radian), wrist deviation and
+#: flexion as fractions of their limits, unachieved hand rotation (per radian squared,
+#: saturating beyond :data:`RESIDUAL_SATURATION` radians).
+SWIVEL_SCALE = 0.7
+DEVIATION_WEIGHT = 1.5
+FLEXION_WEIGHT = 0.4
+RESIDUAL_WEIGHT = 5000.0
+RESIDUAL_SATURATION = 0.25
+#: Farther than this from the natural swivel (radians) the elbow is forced, e.g. straight
+#: up, the shoulder leaves its comfortable range: the cost then grows by
+#: :data:`RANGE_WEIGHT` per radian squared beyond it.
+SWIVEL_RANGE = float(np.radians(100.0))
+RANGE_WEIGHT = 300.0
+#: Candidates measured on each side of the natural swivel, and the cost added to those
+#: not measured (farther than the comfortable range anyway).
+WINDOW = int(round(SWIVEL_RANGE / SWIVEL_STEP))
+OUTSIDE = 1000.0
+_CELLS = np.arange(-WINDOW, WINDOW + 1, dtype=float)
+_TINY = 1e-12
+
+
+def candidate_costs(
+    avatar: Avatar,
+    placement: ArmPlacement,
+    natural: np.ndarray,
+    other: ArmSegments | None = None,
+    own: bool = True,
+) -> np.ndarray:
+    """Costs ``(n, K)`` of the candidates (module docstring) for an arm placed at
+    ``placement`` with natural swivels ``natural (n,)``, keeping clear of the ``other``
+    arm's capsules too; with ``own`` False, only that: the penalty of coming near the
+    other arm (0 outside the window)."""
+    count = len(CANDIDATES)
+    if not own:
+        return _other_arm_costs(avatar, placement, natural, other)
+    cells = np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
+    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
+    circle = placement.circle
+    penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other)
+    measured = natural_cost(psi - natural[:, None]) + penalty
+    if placement.hands is not None:
+        measured += wrist_cost(placement, elbow, radial)
+    costs = natural_cost((CANDIDATES[None, :] - natural[:, None] + np.pi) % (2.0 * np.pi) - np.pi) + OUTSIDE
+    np.put_along_axis(costs, cells.astype(np.int64) % count, measured, axis=1)
+    return costs
+
+
+def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, other: ArmSegments) -> np.ndarray:
+    """Only the penalty of coming near the other arm, measured in the frames whose arm —
+    bounded by its shoulder, wrist and whole elbow circle — may reach the other's capsules."""
+    count = len(CANDIDATES)
+    costs = np.zeros((len(natural), count))
+    circle = placement.circle
+    own = arm_capsules(avatar, placement.chain.side)
+    reach = circle.radius[:, None] + max(other.radii) + max(own.upper_radius, own.fore_radius) + CLEARANCE
+    low = np.minimum(np.minimum(circle.shoulder, circle.wrist), circle.center - reach)
+    high = np.maximum(np.maximum(circle.shoulder, circle.wrist), circle.center + reach)
+    near = np.zeros(len(natural), dtype=bool)
+    for a, b, radius in other.capsules():
+        near |= np.all((low <= np.maximum(a, b) + radius) & (high >= np.minimum(a, b) - radius), axis=1)
+    if not np.any(near):
+        return costs
+    rows = np.flatnonzero(near)
+    cells = np.rint((natural[rows] - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
+    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    subset = placement.take(rows)
+    elbow, _ = candidate_elbows(subset, np.cos(psi), np.sin(psi))
+    penalty, _ = clearance(avatar, placement.chain.side, subset.circle.shoulder, subset.circle.wrist, elbow, subset.body_frame, other.take(rows), body=False)
+    window = np.zeros((len(rows), count))
+    np.put_along_axis(window, cells.astype(np.int64) % count, penalty, axis=1)
+    costs[rows] = window
+    return costs
+
+
+def natural_cost(away: np.ndarray) -> np.ndarray:
+    """The cost of being ``away`` radians (in [-π, π]) from the natural swivel."""
+    beyond = np.maximum(np.abs(away) - SWIVEL_RANGE, 0.0)
+    return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
+
+
+def candidate_elbows(placement: ArmPlacement, cos: np.ndarray, sin: np.ndarray) -> tuple[Components, Components]:
+    """Elbow positions at swivels with cosines and sines ``(n, K)`` and their directions
+    from the circle's centre, as coordinate arrays."""
+    circle = placement.circle
+    radial = tuple(circle.down[:, i : i + 1] * cos + circle.out[:, i : i + 1] * sin for i in range(3))
+    radius = circle.radius[:, None]
+    return tuple(circle.center[:, i : i + 1] + radius * radial[i] for i in range(3)), radial
+
+
+def wrist_cost(placement: ArmPlacement, elbow: Components, radial: Components) -> np.ndarray:
+    """The wrist's load for elbows at ``elbow`` (directions ``radial`` from the circle's
+    centre), the hand rotated as ``placement.hands``."""
+    chain = placement.chain
+    flexion, deviation, twist, _ = wrist_state(placement, elbow, radial)
+    excess = lambda value, limits: value - np.minimum(np.maximum(value, limits[0]), limits[1])
+    unreached = excess(flexion, chain.wrist_flexion) ** 2 + excess(deviation, chain.wrist_deviation) ** 2 + excess(twist, chain.twist_range) ** 2
+    deviation = deviation / np.where(deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
+    flexion = flexion / np.where(flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
+    return DEVIATION_WEIGHT * deviation * deviation + FLEXION_WEIGHT * flexion * flexion + RESIDUAL_WEIGHT * unreached / (1.0 + unreached / RESIDUAL_SATURATION**2)
+
+
+def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Wrist flexion and deviation, forearm twist (all radians, unclamped) and the swing
+    between forearm and hand (radians) that the hand rotation ``placement.hands`` asks for
+    with elbows at ``elbow`` (directions ``radial`` from the circle's centre).
+
+    The same quantities :func:`motor.arm.ik.solve_arm` computes, from vectors alone: the
+    wrist's swing is the rotation taking the forearm's axis, seen from the hand, onto the
+    hand's long axis (its rotation vector gives flexion and deviation); the forearm twist
+    is what turns the elbow's hinge onto where the hand, swung back, wants it (Rodrigues'
+    formula for the swing of a fixed vector)."""
+    chain, circle = placement.chain, placement.circle
+    matrix = _matrices(placement.hands)
+    column = lambda i, j: matrix[:, i, j][:, None]
+    forearm = tuple((circle.wrist[:, i : i + 1] - elbow[i]) * (1.0 / chain.fore) for i in range(3))
+    seen = tuple(column(0, i) * forearm[0] + column(1, i) * forearm[1] + column(2, i) * forearm[2] for i in range(3))
+    a = chain.fore_rest
+    axis = (seen[1] * a[2] - seen[2] * a[1], seen[2] * a[0] - seen[0] * a[2], seen[0] * a[1] - seen[1] * a[0])
+    sine = np.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
+    cosine = seen[0] * a[0] + seen[1] * a[1] + seen[2] * a[2]
+    angle = np.arctan2(sine, cosine)
+    scale = angle / np.maximum(sine, _TINY)
+    flex_across, dev_across = _cross(a, chain.flexion_axis), _cross(a, chain.deviation_axis)
+    flexion = scale * (seen[0] * flex_across[0] + seen[1] * flex_across[1] + seen[2] * flex_across[2])
+    deviation = scale * (seen[0] * dev_across[0] + seen[1] * dev_across[1] + seen[2] * dev_across[2])
+    h = chain.hinge_rest
+    along = (axis[0] * h[0] + axis[1] * h[1] + axis[2] * h[2]) / np.maximum(1.0 + cosine, _TINY)
+    swung = (
+        h[0] * cosine - (axis[1] * h[2] - axis[2] * h[1]) + axis[0] * along,
+        h[1] * cosine - (axis[2] * h[0] - axis[0] * h[2]) + axis[1] * along,
+        h[2] * cosine - (axis[0] * h[1] - axis[1] * h[0]) + axis[2] * along,
+    )
+    wanted = tuple(column(i, 0) * swung[0] + column(i, 1) * swung[1] + column(i, 2) * swung[2] for i in range(3))
+    c = tuple(circle.axis[:, i : i + 1] for i in range(3))
+    hinge = (radial[1] * c[2] - radial[2] * c[1], radial[2] * c[0] - radial[0] * c[2], radial[0] * c[1] - radial[1] * c[0])
+    across = (hinge[1] * wanted[2] - hinge[2] * wanted[1], hinge[2] * wanted[0] - hinge[0] * wanted[2], hinge[0] * wanted[1] - hinge[1] * wanted[0])
+    sign = float(chain.pronation_axis @ chain.fore_rest)
+    twist = np.arctan2(sign * (across[0] * forearm[0] + across[1] * forearm[1] + across[2] * forearm[2]), hinge[0] * wanted[0] + hinge[1] * wanted[1] + hinge[2] * wanted[2])
+    return flexion, deviation, twist, angle
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> tuple[float, float, float]:
+    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+
+
+def _matrices(q: np.ndarray) -> np.ndarray:
+    """Rotation matrices ``(n, 3, 3)`` of unit quaternions ``(n, 4)`` (scalar last)."""
+    x, y, z, w = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
+    return np.stack(
+        (
+            np.stack((1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)), axis=-1),
+            np.stack((2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)), axis=-1),
+            np.stack((2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)), axis=-1),
+        ),
+        axis=-2,
+    )
+
+
+def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
+    """Where (in steps, within ±½) the parabola through three evenly spaced costs is lowest."""
+    curvature = left - 2.0 * middle + right
+    step = 0.5 * (left - right) / np.where(curvature > 1e-12, curvature, 1.0)
+    return np.where(curvature > 1e-12, np.minimum(np.maximum(step, -0.5), 0.5), 0.0)

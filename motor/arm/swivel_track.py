@@ -1,0 +1,220 @@
+"""Both arms' swivel tracks on a fixed grid of the utterance clock.
+
+Every :data:`SWIVEL_PERIOD` seconds each candidate swivel of each arm gets the IK's cost
+(natural swivel, wrist comfort, clearance from the body: :func:`motor.arm.ik.track_costs`)
+and a swivel track walks through the candidates, a bounded step from one grid point to
+the next, toward what costs least now and :data:`motor.arm.swivel.HORIZON` grid points
+ahead (:func:`motor.arm.swivel.smooth_swivels`). The track's steps follow the turn of
+the swivel's zero from grid point to grid point, so that a track that stays put keeps
+the elbow where it was whatever the arm's elevation. The right arm's track is found
+first; the left arm's keeps clear of the right arm where that track puts it at the same
+grid point (a cost of the point itself, not of the look ahead). The forearm twist is
+carried along the grid too (:func:`twist_track`): it never wraps from one limit to the
+other.
+
+A grid state depends on the state before it and on channel values up to
+:data:`TRACK_REACH` grid points ahead, nothing else. States are kept as columns of
+arrays, grid index ``first`` onward, contiguous.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from motor.arm.ik import CANDIDATES, track_costs
+from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
+from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+
+#: Period of the grid, seconds.
+SWIVEL_PERIOD = 0.125
+#: How many grid points a batch solves at least: short windows then share one batch.
+SWIVEL_LOOKAHEAD = 20
+#: How many grid points ahead a grid state depends on channel values.
+TRACK_REACH = HORIZON
+#: How much less of a twist the hand asks for must be left unachieved before the forearm
+#: turns over to the other side of its range (radians), and how fast it turns over
+#: (radians per grid point).
+TWIST_HYSTERESIS = math.radians(90.0)
+TWIST_STEP = math.radians(60.0)
+#: How far the wrist's flexion and deviation may move per grid point where the hand's
+#: way is only partly defined (radians).
+WRIST_STEP = math.radians(40.0)
+#: The columns kept per arm and grid point: the track's candidate (unwrapped step count)
+#: and swivel (radians, unwrapped), how far the swivel's zero turned since the grid point
+#: before, the direction of swivel 0 (3 columns), the forearm twist, the twist the hand
+#: wanted there (radians, in (-π, π]) and the wrist's flexion and deviation.
+_COLUMNS = ("cell", "swivel", "turn", "zero_x", "zero_y", "zero_z", "twist", "wanted", "flexion", "deviation")
+
+
+@dataclass
+class _Arm:
+    """One arm's grid states, a row per grid point (columns :data:`_COLUMNS`)."""
+
+    rows: np.ndarray
+
+    def state(self, row: int) -> tuple[SwivelState, tuple[float, float, float]]:
+        """The track's state, and the twist, flexion and deviation at a row."""
+        values = self.rows[row]
+        return SwivelState(int(values[0]), float(values[1])), (float(values[6]), float(values[8]), float(values[9]))
+
+
+class SwivelGrid:
+    """The grid states of both arms from grid index :attr:`first` on (none when empty)."""
+
+    def __init__(self, avatar: Avatar) -> None:
+        self.avatar = avatar
+        self.first = 0
+        self._arms = {arm: _Arm(np.empty((0, len(_COLUMNS)))) for arm in ARMS}
+
+    @property
+    def count(self) -> int:
+        return self._arms[ARMS[0]].rows.shape[0]
+
+    @property
+    def last(self) -> int:
+        """The last grid index known (``first - 1`` when none is)."""
+        return self.first + self.count - 1
+
+    def plan(self, first: int, last: int) -> tuple[int, int, bool] | None:
+        """Which grid states to solve so that every index in ``[first, last]`` is known:
+        None if all are, else the first and last index to solve and whether the tracks
+        start afresh there. They go on from the last known state, :data:`SWIVEL_LOOKAHEAD`
+        points at a time; they start afresh at ``first`` — forgetting what is known — when
+        nothing before it is known."""
+        if self.count and self.first <= first and last <= self.last:
+            return None
+        if not self.count or first < self.first:
+            return first, max(last, first + SWIVEL_LOOKAHEAD - 1), True
+        start = self.last + 1
+        return start, max(last, start + SWIVEL_LOOKAHEAD - 1), False
+
+    def times(self, start: int, end: int) -> np.ndarray:
+        """The grid times whose channel values :meth:`solve` needs for ``start … end``."""
+        return np.arange(start - 1, end + HORIZON + 1) * SWIVEL_PERIOD
+
+    def solve(self, start: int, end: int, fresh: bool, inputs: dict[str, tuple[np.ndarray, np.ndarray]]) -> None:
+        """Grid states ``start … end`` of both arms (module docstring) from the arms' wrist
+        positions and hand rotations at :meth:`times`."""
+        if fresh:
+            self.first = start
+            for arm in ARMS:
+                self._arms[arm].rows = self._arms[arm].rows[:0]
+        count = end - start + 1
+        before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
+        costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm]) for arm in ARMS}
+        tracks, poses = {}, {}
+        other = None
+        for arm in ARMS:
+            now = None if other is None else costs[arm].near_other(self.avatar, other)
+            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now if now is not None and np.any(now) else None)
+            other = costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0])
+        for arm in ARMS:
+            side = AVATAR_SIDE[arm]
+            cells, swivels = tracks[arm]
+            _, wanted, certainty, flexion, deviation = poses[arm]
+            limits = self.avatar.limit(f"{side}_elbow", "twist")
+            twists = twist_track(wanted, certainty, None if before[arm] is None else before[arm][1][0], limits)
+            wrist = wrist_track(np.stack([flexion, deviation], axis=1), certainty, None if before[arm] is None else before[arm][1][1:])
+            rows = np.column_stack([cells, swivels, costs[arm].turns[:count], costs[arm].zeros[:count], twists, wanted, wrist])
+            self._arms[arm].rows = np.concatenate([self._arms[arm].rows, rows])
+
+    @staticmethod
+    def _track(costs, before, now: np.ndarray | None) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, ...]]:
+        """One arm's track (candidates, swivels) and its pose there (:meth:`TrackCosts.pose`)."""
+        track = smooth_swivels(costs.costs, CANDIDATES, None if before is None else before[0], HORIZON, now, costs.turns)
+        return track, costs.pose(track[1])
+
+    def forget_from(self, index: int) -> None:
+        """Drop the states of grid indices ``index`` and later."""
+        keep = max(0, index - self.first)
+        for arm in ARMS:
+            self._arms[arm].rows = self._arms[arm].rows[:keep]
+
+    def forget_before(self, index: int) -> None:
+        """Drop the states of grid indices before ``index`` (the last one always stays: the
+        tracks go on from it)."""
+        drop = min(max(0, index - self.first), self.count - 1)
+        if drop <= 0:
+            return
+        self.first += drop
+        for arm in ARMS:
+            self._arms[arm].rows = self._arms[arm].rows[drop:]
+
+    def sample(self, arm: str, times: np.ndarray, first: int, last: int) -> tuple[np.ndarray, np.ndarray]:
+        """The arm's swivel at sorted ``times`` (whose grid span is ``first … last``) as
+        ``(n, 4)``: a Catmull-Rom spline through the four grid swivels around each time,
+        each carried to the grid point at or before it (undoing the turns of the zero
+        between them), and that grid point's direction of swivel 0, from which the swivel
+        is counted (so that between grid points the elbow keeps to the track however the
+        arm's zero turns); and the forearm twist's reference ``(n, 2)``: the grid's twist
+        and the twist the hand wanted there, and the wrist's flexion and deviation, all
+        linear between grid points (the wanted twist the shorter way round)."""
+        rows = self._arms[arm].rows[first - self.first : last - self.first + 1]
+        positions = times / SWIVEL_PERIOD
+        at = np.floor(positions + 1e-9).astype(int) - first
+        swivel, turn = rows[:, 1], rows[:, 2]
+        points = (swivel[at - 1] + turn[at], swivel[at], swivel[at + 1] - turn[at + 1], swivel[at + 2] - turn[at + 1] - turn[at + 2])
+        swivel = np.concatenate([_catmull_rom(*points, positions - (at + first))[:, None], rows[at, 3:6]], axis=1)
+        u = positions - (at + first)
+        twist, wanted, wrist = rows[at, 6], rows[at, 7], rows[at, 8:10]
+        change = (rows[at + 1, 7] - wanted + np.pi) % (2.0 * np.pi) - np.pi
+        reference = np.column_stack([twist + u * (rows[at + 1, 6] - twist), wanted + u * change, wrist + u[:, None] * (rows[at + 1, 8:10] - wrist)])
+        return swivel, reference
+
+
+def twist_track(wanted: np.ndarray, certainty: np.ndarray, previous: float | None, limits: tuple[float, float]) -> np.ndarray:
+    """The forearm twist along grid points (radians, within the limits).
+
+    At each grid point the hand asks for a twist, known up to whole turns; it is taken on
+    the turn nearest the previous grid point's twist and clamped to the limits — unless
+    the other way round leaves at least :data:`TWIST_HYSTERESIS` less of it unachieved,
+    when the forearm turns over to that side instead. The twist then moves toward its
+    target by at most :data:`TWIST_STEP` per grid point, so turning over takes several
+    frames instead of one, and only as far as the hand's twist is defined (``certainty``,
+    :func:`motor.arm.ik.twist_certainty`). The first grid point, without a previous one,
+    takes the shortest turn."""
+    low, high = limits
+    turn = 2.0 * math.pi
+    twists = []
+    here = previous
+    for value, sure in zip(wanted.tolist(), certainty.tolist()):
+        if here is None:
+            here = low if value < low else high if value > high else value
+            twists.append(here)
+            continue
+        value += turn * round((here - value) / turn)
+        other = value - turn if value > high else value + turn
+        short = value - high if value > high else low - value if value < low else 0.0
+        other_short = other - high if other > high else low - other if other < low else 0.0
+        if short > other_short + TWIST_HYSTERESIS:
+            value = other
+        step = (low if value < low else high if value > high else value) - here
+        here += sure * (-TWIST_STEP if step < -TWIST_STEP else TWIST_STEP if step > TWIST_STEP else step)
+        twists.append(here)
+    return np.array(twists)
+
+
+def wrist_track(targets: np.ndarray, certainty: np.ndarray, previous: tuple[float, float] | None) -> np.ndarray:
+    """The wrist's flexion and deviation along grid points ``(m, 2)``: each moves toward
+    its target (within the limits, from the hand rotation) by at most
+    :data:`WRIST_STEP`, and only as far as the hand's way is defined (``certainty``); so
+    where the hand points so far off the forearm that the nearest wrist jumps from one
+    limit to the other, the wrist stays where it was. Without a previous grid point the
+    first takes its target."""
+    values = targets.tolist()
+    here = list(values[0]) if previous is None else list(previous)
+    track = []
+    for (flexion, deviation), sure in zip(values, certainty.tolist()):
+        for i, target in enumerate((flexion, deviation)):
+            step = target - here[i]
+            here[i] += sure * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
+        track.append(tuple(here))
+    return np.array(track)
+
+
+def _catmull_rom(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """The Catmull-Rom spline through ``p0 … p3`` (at grid points −1 … 2) at ``u`` in [0, 1)."""
+    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
