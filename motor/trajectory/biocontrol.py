@@ -50,6 +50,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import lsq_linear
 
+from motor.trajectory.speed_budget import budget
+
 #: Samples of each profile table.
 TABLE_SIZE = 1025
 #: Duration of a plain straight movement in the normal (targetted) manner, seconds.
@@ -231,6 +233,22 @@ def minimum_jerk() -> TimeProfile:
     """The minimum-jerk ease ``10u³ − 15u⁴ + 6u⁵``: zero speed and acceleration at both ends."""
     u = np.linspace(0.0, 1.0, TABLE_SIZE)
     return TimeProfile("minimum_jerk", u**3 * (10.0 - 15.0 * u + 6.0 * u * u), 30.0 * u * u * (1.0 - u) ** 2)
+
+
+def shortest_duration(length: float, manner: str) -> float:
+    """Shortest time (s) in which a rest-to-rest movement of ``length`` metres along the
+    profile of ``manner`` stays within that manner's speed and acceleration budget
+    (:mod:`motor.trajectory.speed_budget`): peak speed ``length · max f′ / T`` and peak
+    acceleration ``length · max |f″| / T²``."""
+    if length <= 0.0:
+        return 0.0
+    shape = profile(manner)
+    limits = budget(manner)
+    u = np.linspace(0.0, 1.0, shape.rates.size)
+    peak_acceleration = float(np.max(np.abs(np.gradient(shape.rates, u))))
+    by_speed = length * float(shape.rates.max()) / limits.peak_speed
+    by_acceleration = float(np.sqrt(length * peak_acceleration / limits.peak_acceleration))
+    return max(by_speed, by_acceleration)
 
 
 def movement_duration(kind: str, manner: str = "targetted", base: float = BASE_DURATION) -> float:
