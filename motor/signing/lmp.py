@@ -20,9 +20,12 @@ transition passes through its way points (they keep it clear of the torso) along
 interpolating spline; a sign's move follows the clamped B-spline whose control polygon is
 the move's polyline, which starts and ends on it and stays within its convex hull (and so
 within the reach the planner checked at the points, where an interpolating curve would
-bulge past them). Both are cut at reversals (:data:`motor.trajectory.spline.CUSP_ANGLE`),
-where the polyline's corner stays. Every move starts and stops at rest with zero
-acceleration (the manner profiles, :mod:`motor.trajectory.biocontrol`).
+bulge past them). Both are cut at reversals (:data:`REVERSAL_ANGLE`),
+where the polyline's corner stays and the hand stops: the move is split there into moves
+that each run from rest to rest, each piece taking time ∝ √(its length) so that all
+pieces peak at the same acceleration (:func:`stopping_times`). Every move starts and
+stops at rest with zero acceleration (the manner profiles,
+:mod:`motor.trajectory.biocontrol`), so a reversal is a stop, never a step in velocity.
 """
 
 from __future__ import annotations
@@ -31,13 +34,22 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.interpolate import BSpline
+from scipy.ndimage import gaussian_filter1d
 
 from motor import quaternion as quat
 from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
 from motor.trajectory.biocontrol import profile
-from motor.trajectory.power_law import path_spline
-from motor.trajectory.spline import CUSP_ANGLE, HOLD_LENGTH, turning_angles
+from motor.trajectory.power_law import EXPONENT, clamped_curvature, path_spline
+from motor.trajectory.spline import HOLD_LENGTH, turning_angles
 
+#: Turning angle (radians) at which a wrist path reverses: the hand stops there. Sharper
+#: than the utterances' cusp (:data:`motor.trajectory.spline.CUSP_ANGLE`), because a
+#: sign's path kept clear of the torso zigzags by up to ~135° between its checked points,
+#: which the B-spline within them rounds; a back-and-forth repetition turns by ~180°.
+REVERSAL_ANGLE = np.radians(150.0)
+#: Arc length (metres, a Gaussian's standard deviation) over which the curvature that
+#: times a wrist move is smoothed: the speed cannot change faster than the hand accelerates.
+LAW_SMOOTHING = 0.008
 #: Points per chord with which a wrist path is traced along its spline.
 PATH_DENSITY = 12
 #: Step of the differences that estimate a channel's velocity, seconds.
@@ -96,35 +108,88 @@ def _within(piece: np.ndarray) -> np.ndarray:
     return dense
 
 
-def smooth_path(points: np.ndarray, through: bool) -> np.ndarray:
+def smooth_pieces(points: np.ndarray, through: bool) -> list[np.ndarray]:
     """A wrist path ``(m, 3)`` traced densely (:data:`PATH_DENSITY` points per chord) along
     the interpolating spline through its points (``through``) or the B-spline within their
-    hull (module docstring), cut at reversals; repeated points are dropped. Paths of fewer
-    than three distinct points are returned as they are."""
+    hull (module docstring), cut at reversals into pieces (each ``(k ≥ 2, 3)``, starting
+    where the previous one ends); repeated points are dropped. A path of fewer than three
+    distinct points is one piece, as it is."""
     keep = np.concatenate([[True], np.linalg.norm(np.diff(points, axis=0), axis=1) > HOLD_LENGTH])
     p = points[keep]
     if p.shape[0] < 3:
-        return points
-    cuts = np.concatenate([[0], np.flatnonzero(turning_angles(p) >= CUSP_ANGLE) + 1, [p.shape[0] - 1]])
-    pieces = [p[:1]]
+        return [points]
+    cuts = np.concatenate([[0], np.flatnonzero(turning_angles(p) >= REVERSAL_ANGLE) + 1, [p.shape[0] - 1]])
+    pieces = []
     for first, last in zip(cuts[:-1], cuts[1:]):
         piece = p[first : last + 1]
-        if piece.shape[0] < 3:
-            pieces.append(piece[1:])
-        else:
-            pieces.append(_through(piece) if through else _within(piece))
-    return np.concatenate(pieces)
+        traced = piece[1:] if piece.shape[0] < 3 else _through(piece) if through else _within(piece)
+        pieces.append(np.concatenate([piece[:1], traced]))
+    return pieces
+
+
+def smooth_path(points: np.ndarray, through: bool) -> np.ndarray:
+    """The pieces of :func:`smooth_pieces` joined into one path."""
+    pieces = smooth_pieces(points, through)
+    return np.concatenate([pieces[0], *(piece[1:] for piece in pieces[1:])])
+
+
+def stopping_times(lengths: np.ndarray, start: float, end: float) -> np.ndarray:
+    """Where a movement over ``[start, end]`` that stops at each reversal of its path (pieces
+    of ``lengths`` metres, each from rest to rest in the move's manner) is at rest: the
+    ``(k + 1,)`` piece boundaries. Each piece takes time ∝ √length, so every piece peaks at
+    the same acceleration (``length / time²`` is the same)."""
+    weights = np.sqrt(np.maximum(lengths, 0.0)) + _SAME
+    return start + (end - start) * np.concatenate([[0.0], np.cumsum(weights) / weights.sum()])
+
+
+def stopping_length(points: np.ndarray) -> float:
+    """The straight length (metres) a rest-to-rest movement of the same duration and peak
+    acceleration would travel as the path ``points`` stopping at each reversal
+    (:func:`stopping_times`): ``(Σ √lengthᵢ)²``, the path length when it has no reversal."""
+    lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in smooth_pieces(points, through=False)]
+    return float(np.sum(np.sqrt(lengths)) ** 2)
+
+
+def _stopping_at_reversals(move: Move, through: bool) -> list[Move]:
+    """A wrist move traced along its smooth path, split where the path reverses into moves
+    that each start and stop at rest (a reversal at speed is a step in velocity)."""
+    pieces = smooth_pieces(move.values, through)
+    lengths = np.array([np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() for piece in pieces])
+    times = stopping_times(lengths, move.start, move.end)
+    return [replace(move, start=float(a), end=float(b), values=piece) for a, b, piece in zip(times[:-1], times[1:], pieces)]
+
+
+def law_fractions(points: np.ndarray) -> np.ndarray:
+    """Fraction of the *law time* ``τ = ∫ R̃^{−β} ds`` (β = 1/3) at each point of a dense
+    path ``(m, 3)``: a move that advances in law time along its manner profile goes at
+    speed ∝ R̃^{1/3} — the power law — wherever the profile is flat, and slows into tight
+    bends. ``R̃`` is the radius of curvature at each point (turning angle over the mean of
+    the adjacent chords), softly clamped (:func:`motor.trajectory.power_law.clamped_curvature`),
+    its logarithm smoothed over :data:`LAW_SMOOTHING` metres of arc."""
+    chords = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    arc = np.concatenate([[0.0], np.cumsum(chords)])
+    if arc[-1] < _SAME:
+        return np.linspace(0.0, 1.0, points.shape[0])
+    curvature = np.zeros(points.shape[0])
+    if points.shape[0] > 2:
+        spans = np.maximum(0.5 * (chords[:-1] + chords[1:]), _SAME)
+        curvature[1:-1] = turning_angles(points) / spans
+    curvature[0], curvature[-1] = curvature[min(1, curvature.size - 1)], curvature[max(curvature.size - 2, 0)]
+    log_curvature = np.log(clamped_curvature(curvature))
+    step = min(LAW_SMOOTHING / 4.0, float(arc[-1]) / 8.0)
+    grid = np.linspace(0.0, float(arc[-1]), int(np.ceil(float(arc[-1]) / step)) + 1)
+    smooth = gaussian_filter1d(np.interp(grid, arc, log_curvature), LAW_SMOOTHING / (grid[1] - grid[0]), mode="nearest")
+    density = np.exp(EXPONENT * np.interp(arc, grid, smooth))
+    tau = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * chords)])
+    return tau / tau[-1]
 
 
 def path_fractions(values: np.ndarray, by_distance: bool) -> np.ndarray:
-    """Fraction of the way ``(m,)`` at each value: by arc length (positions) or evenly."""
-    count = values.shape[0]
+    """Fraction of the way ``(m,)`` at each value: by law time (positions,
+    :func:`law_fractions`) or evenly."""
     if not by_distance:
-        return np.linspace(0.0, 1.0, count)
-    cumulative = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(values, axis=0), axis=1))])
-    if cumulative[-1] < _SAME:
-        return np.linspace(0.0, 1.0, count)
-    return cumulative / cumulative[-1]
+        return np.linspace(0.0, 1.0, values.shape[0])
+    return law_fractions(values)
 
 
 @dataclass(frozen=True, eq=False)
@@ -240,14 +305,15 @@ class SignChannelLMP:
             first = -first
         by_distance = self.channel[1] == "wrist_position"
         way = np.stack([here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first])
-        chain = [Move(state.time, self.pegs.ready, self.transition, smooth_path(way, through=True) if by_distance else way)]
+        transition = Move(state.time, self.pegs.ready, self.transition, way)
+        chain = _stopping_at_reversals(transition, through=True) if by_distance else [transition]
         previous = first
         for move in self.moves:
-            values = move.values
             if rotation:
-                values = quat.continuous(np.concatenate([previous[None], values]))[1:]
-            elif by_distance:
-                values = smooth_path(values, through=False)
-            chain.append(replace(move, values=values))
-            previous = values[-1]
+                move = replace(move, values=quat.continuous(np.concatenate([previous[None], move.values]))[1:])
+            if by_distance:
+                chain.extend(_stopping_at_reversals(move, through=False))
+            else:
+                chain.append(move)
+            previous = chain[-1].values[-1]
         return _Track.of(rotation, here, chain, by_distance)

@@ -33,12 +33,12 @@ from motor.control import MotorControl
 from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
-from motor.signing.lmp import SignChannelLMP
+from motor.signing.lmp import SignChannelLMP, stopping_length
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths, rotations_along
-from motor.trajectory.biocontrol import movement_duration
+from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
 
@@ -108,10 +108,10 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     timings: list[SignTiming] = []
     warnings: list[str] = []
     for plan, (before, targets), way in zip(plans, legs, ways):
-        ready = clock + _transition_time(before, targets)
+        manner = "targetted" if plan.static else "lax"
+        ready = clock + _transition_time(before, targets, way, manner)
         end = ready + plan.duration
         pegs = TimePegs(clock, ready, ready, ready + 0.5 * plan.duration, end, end, end)
-        manner = "targetted" if plan.static else "lax"
         lmps = [
             SignChannelLMP(
                 (arm, channel), pegs, targets[arm].channel(channel),
@@ -174,10 +174,13 @@ def _transition_ways(
     return ways
 
 
-def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose]) -> float:
-    """Lax straight movement time, or Fitts' law for the farthest wrist if longer."""
+def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose], way: dict[str, np.ndarray], manner: str) -> float:
+    """Lax straight movement time, or Fitts' law for the farthest wrist, or the least time
+    the wrists' ways need within the speed budget of ``manner``, whichever is longest."""
     distance = max(float(np.linalg.norm(targets[arm].wrist - here[arm].wrist)) for arm in ARMS)
-    return max(movement_duration("straight", "lax"), float(fitts_duration(distance)))
+    paths = [np.concatenate([here[arm].wrist[None], way[arm].reshape(-1, 3), targets[arm].wrist[None]]) for arm in ARMS]
+    budgeted = max(shortest_duration(stopping_length(path), manner) for path in paths)
+    return max(movement_duration("straight", "lax"), float(fitts_duration(distance)), budgeted)
 
 
 @dataclass(frozen=True)

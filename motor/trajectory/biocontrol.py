@@ -15,14 +15,26 @@ moment it reaches the target.
 
 Each manner is integrated once, lazily, into a lookup table ``f: [0, 1] → [0, 1]`` (time
 fraction → path fraction) over the movement's main part: until it has settled to within
-1% of the target (or, when truncated, until it arrives), with time rescaled to one unit
-and ``f`` normalized to end at exactly 1. The end speed is then not zero: that is the
-"sharp stop" of targetted movement — and the start is a step in acceleration. A movement
-starts and ends at rest with zero acceleration, so the speed profile ``f′`` is then
-windowed: multiplied by ``w(u/ε) · w((1 − u)/ε)`` with the smoothstep ``w(x) = 3x² − 2x³``
-(1 from x = 1 on) over :data:`END_SMOOTHING` ``= ε`` of the duration at each end, and
-integrated again. The sharp stop stays sharp (it takes the last tenth of the movement)
-but is continuous in speed and acceleration.
+1% of the target (or, when truncated, until it arrives), with time rescaled to one unit.
+As integrated, the model starts with a step in acceleration (the controller's full
+command at once) and ends at speed (the "sharp stop" of targetted movement). A movement
+starts and ends at rest with zero acceleration, and a hand's jerk stays near that of a
+minimum-jerk movement (seed 000's stop is sharp, not a collision), so the table is the
+profile *nearest the model's* (least squares on the speed ``f′``) among those that
+
+* start and stop at rest with zero acceleration (``f′ = f″ = 0`` at both ends) and travel
+  the whole way (``f(1) = 1``);
+* keep the jerk ``|f‴(u)|`` within :data:`JERK_RATIO` times that of the minimum-jerk
+  movement ``|60 (1 − 6u + 6u²)|``, floored at :data:`JERK_FLOOR` of its peak (so the
+  bound follows the minimum-jerk jerk where it is large, at the ends, and allows
+  :data:`JERK_RATIO` ``·`` :data:`JERK_FLOOR` ``· 60`` in between, where the speed peaks).
+
+The jerk is piecewise constant over :data:`JERK_PIECES` equal pieces, so ``f`` is a
+piecewise cubic, C² by construction; the bounded least-squares problem is solved once per
+manner (:func:`scipy.optimize.lsq_linear`). Targetted movement keeps a late speed peak
+(about 0.6 of its duration) and a stop steeper than its start; lax keeps its broad central
+peak; linear and tense keep their cruise between a jerk-limited start and stop. The stop
+is a zero-acceleration stop at any frame rate: no speed step.
 
 Durations: seed 000 keeps a movement's duration independent of its size, longer for
 curved arcs and longer still for circles; :func:`movement_duration` gives
@@ -36,6 +48,9 @@ from functools import cache
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import lsq_linear
+
+from motor.trajectory.speed_budget import budget
 
 #: Samples of each profile table.
 TABLE_SIZE = 1025
@@ -45,9 +60,15 @@ BASE_DURATION = 0.4
 MOVEMENT_KIND_DURATION: dict[str, float] = {"straight": 1.0, "curved": 1.3, "circle": 1.7}
 #: The fraction of the path counted as arrived ("settled to within 1%").
 SETTLED = 0.99
-#: Fraction of a movement's duration over which its speed profile is brought to rest
-#: with zero acceleration at each end (module docstring).
-END_SMOOTHING = 0.1
+#: Largest jerk of a profile relative to the minimum-jerk movement's at the same time
+#: (module docstring); the design's target is 1.5, this leaves room for sampling.
+JERK_RATIO = 1.4
+#: Floor of that bound, as a fraction of the minimum-jerk movement's peak jerk (60).
+JERK_FLOOR = 0.5
+#: Pieces of constant jerk of a profile (they divide ``TABLE_SIZE − 1``).
+JERK_PIECES = 32
+#: Weight of the end conditions (at rest, whole way) against the fit of the speed.
+_END_WEIGHT = 1e3
 
 
 @dataclass(frozen=True)
@@ -153,21 +174,50 @@ def integrate_manner(manner: Manner) -> TimeProfile:
     return at_rest(manner.name, np.maximum(v, 0.0))
 
 
-def _smoothstep(x: np.ndarray) -> np.ndarray:
-    x = np.clip(x, 0.0, 1.0)
-    return x * x * (3.0 - 2.0 * x)
+@cache
+def _jerk_operators() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Maps from the :data:`JERK_PIECES` piece jerks to the acceleration, speed and path
+    fraction at the ``TABLE_SIZE`` table points (exact integration of piecewise-constant
+    jerk from rest, vectorized with cumulative sums)."""
+    steps = TABLE_SIZE - 1
+    h = 1.0 / steps
+    jerk = np.repeat(np.eye(JERK_PIECES), steps // JERK_PIECES, axis=0)
+    acceleration = np.cumsum(jerk * h, axis=0)
+    acceleration_before = np.vstack([np.zeros((1, JERK_PIECES)), acceleration[:-1]])
+    speed = np.cumsum(acceleration_before * h + jerk * h * h / 2.0, axis=0)
+    speed_before = np.vstack([np.zeros((1, JERK_PIECES)), speed[:-1]])
+    fraction = np.cumsum(speed_before * h + acceleration_before * h * h / 2.0 + jerk * h**3 / 6.0, axis=0)
+    start = np.zeros((1, JERK_PIECES))
+    return np.vstack([start, acceleration]), np.vstack([start, speed]), np.vstack([start, fraction])
+
+
+def jerk_bound(u: np.ndarray) -> np.ndarray:
+    """The largest jerk ``|f‴|`` a profile may have at time fractions ``u`` (module docstring)."""
+    minimum_jerk_jerk = np.abs(60.0 * (1.0 - 6.0 * u + 6.0 * u * u))
+    return JERK_RATIO * np.maximum(minimum_jerk_jerk, 60.0 * JERK_FLOOR)
 
 
 def at_rest(name: str, speeds: np.ndarray) -> TimeProfile:
-    """The profile of a speed curve sampled at equal time steps over a movement, windowed
-    to start and stop at rest with zero acceleration (module docstring) and normalized."""
-    u = np.linspace(0.0, 1.0, speeds.size)
-    rates = speeds * _smoothstep(u / END_SMOOTHING) * _smoothstep((1.0 - u) / END_SMOOTHING)
-    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (rates[1:] + rates[:-1]) * np.diff(u))])
-    total = float(cumulative[-1])
-    fractions = cumulative / total
-    fractions[-1] = 1.0
-    return TimeProfile(name, fractions, rates / total)
+    """The profile nearest a speed curve sampled at ``TABLE_SIZE`` equal time steps over
+    a movement that starts and stops at rest with zero acceleration and keeps its jerk
+    within :func:`jerk_bound` (module docstring)."""
+    if speeds.shape != (TABLE_SIZE,) or not np.all(np.isfinite(speeds)) or not speeds.sum() > 0:
+        raise ValueError(f"profile {name!r}: speeds must be {TABLE_SIZE} finite samples, not all zero")
+    u = np.linspace(0.0, 1.0, TABLE_SIZE)
+    wanted = speeds / float(np.sum(0.5 * (speeds[1:] + speeds[:-1]) * np.diff(u)))
+    acceleration, speed, fraction = _jerk_operators()
+    ends = np.vstack([acceleration[-1], speed[-1], fraction[-1]])
+    bound = jerk_bound((np.arange(JERK_PIECES) + 0.5) / JERK_PIECES)
+    system = np.vstack([speed, _END_WEIGHT * ends]) * bound
+    solution = lsq_linear(system, np.concatenate([wanted, _END_WEIGHT * np.array([0.0, 0.0, 1.0])]), bounds=(-1.0, 1.0), method="bvls")
+    jerk = solution.x * bound
+    # the end conditions exactly: the least change of the piece jerks that meets them
+    jerk += ends.T @ np.linalg.solve(ends @ ends.T, np.array([0.0, 0.0, 1.0]) - ends @ jerk)
+    fractions = fraction @ jerk
+    fractions[0], fractions[-1] = 0.0, 1.0
+    rates = speed @ jerk
+    rates[0], rates[-1] = 0.0, 0.0
+    return TimeProfile(name, np.maximum.accumulate(np.clip(fractions, 0.0, 1.0)), np.maximum(rates, 0.0))
 
 
 @cache
@@ -183,6 +233,22 @@ def minimum_jerk() -> TimeProfile:
     """The minimum-jerk ease ``10u³ − 15u⁴ + 6u⁵``: zero speed and acceleration at both ends."""
     u = np.linspace(0.0, 1.0, TABLE_SIZE)
     return TimeProfile("minimum_jerk", u**3 * (10.0 - 15.0 * u + 6.0 * u * u), 30.0 * u * u * (1.0 - u) ** 2)
+
+
+def shortest_duration(length: float, manner: str) -> float:
+    """Shortest time (s) in which a rest-to-rest movement of ``length`` metres along the
+    profile of ``manner`` stays within that manner's speed and acceleration budget
+    (:mod:`motor.trajectory.speed_budget`): peak speed ``length · max f′ / T`` and peak
+    acceleration ``length · max |f″| / T²``."""
+    if length <= 0.0:
+        return 0.0
+    shape = profile(manner)
+    limits = budget(manner)
+    u = np.linspace(0.0, 1.0, shape.rates.size)
+    peak_acceleration = float(np.max(np.abs(np.gradient(shape.rates, u))))
+    by_speed = length * float(shape.rates.max()) / limits.peak_speed
+    by_acceleration = float(np.sqrt(length * peak_acceleration / limits.peak_acceleration))
+    return max(by_speed, by_acceleration)
 
 
 def movement_duration(kind: str, manner: str = "targetted", base: float = BASE_DURATION) -> float:

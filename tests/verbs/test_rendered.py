@@ -163,6 +163,17 @@ def _site_track(clip, frames, joint, hand, site, width):
     return positions[:, index] / 100.0 + rotations[index].apply(width * site_offset(hand, site))
 
 
+def _closest_approach(gap: np.ndarray) -> float:
+    """Smallest length (m) of the gap between two sites over frames, the motion between two
+    frames taken as straight (as a viewer interpolates it): the frames alone can miss the
+    closest point of a hand passing at speed."""
+    if len(gap) == 1:
+        return float(np.linalg.norm(gap[0]))
+    start, step = gap[:-1], np.diff(gap, axis=0)
+    along = np.clip(-np.einsum("ij,ij->i", start, step) / np.maximum(np.einsum("ij,ij->i", step, step), 1e-18), 0.0, 1.0)
+    return float(np.min(np.linalg.norm(start + along[:, None] * step, axis=1)))
+
+
 @pytest.mark.parametrize("arrangement", [(-0.6, 0.9), (0.9, -0.6), (-1.0, 0.0), (0.3, -0.3)])
 def test_rendered_email_passes_through_the_c_and_copy_starts_together(max_avatar, models, lexicon, arrangement):
     _, width = avatar_scale(max_avatar)
@@ -174,4 +185,4 @@ def test_rendered_email_passes_through_the_c_and_copy_starts_together(max_avatar
         frames = np.round((times - signed.motion.start_time) * FPS).astype(int)
         right = _site_track(clip, frames, "r_wrist", "right", lexicon.sites[entry.relation.right_site], width)
         left = _site_track(clip, frames, "l_wrist", "left", lexicon.sites[entry.relation.left_site], width)
-        assert np.min(np.linalg.norm(right - left, axis=1)) <= entry.relation.within, verb
+        assert _closest_approach(right - left) <= entry.relation.within, verb
