@@ -67,6 +67,7 @@ from mura.bml_vocabulary import (
     MODES,
     MURML_NAMESPACE,
 )
+from mura.bml_head import HEAD_SCOPE, HEAD_SLOTS, head_constraint
 from mura.bml_sync import NAME, chunks_of, number, parse_reference
 from mura.murml import function_gesture, read_gesture_element
 from mura.xml_source import XmlSource
@@ -244,6 +245,8 @@ class _BlockReader:
             models[behavior.id] = self._speech(behavior)
             return
         support = BEHAVIORS[kind].support
+        if kind in HEAD_SLOTS:
+            self._check_timed_params(behavior)
         try:
             gesture = self._gesture(behavior) if support == "performed" else None
         except _CannotRealize as reason:
@@ -315,6 +318,10 @@ class _BlockReader:
         element, kind = behavior.element, behavior.kind
         if kind == "murmlgesture":
             return self._murml_gesture(behavior)
+        if kind in HEAD_SLOTS:
+            warn = lambda what, message, attribute: self._warn(what, message, element, attribute)
+            tree = head_constraint(self.source, element, kind, behavior.id, self.lexicon, warn)
+            return Gesture(behavior.id, tree, None, HEAD_SCOPE, self.source.where(element))
         mode = element.get("mode")
         if mode is not None and mode not in MODES:
             raise self.source.error(f"mode {mode!r} is not one of {', '.join(MODES)}", element, "mode")

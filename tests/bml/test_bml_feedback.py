@@ -21,7 +21,7 @@ FRAME = 1.0 / 60.0
 
 def block(block_id: str, composition: str = "APPEND", words: str = "Take <sync id=\"tm1\"/> this bar.") -> str:
     return (f'<bml {NS} id="{block_id}" composition="{composition}"><speech id="s1"><text>{words}</text></speech>'
-            f'<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><gaze id="z1" target="Loc-User" start="g1:stroke"/></bml>')
+            f'<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><faceFacs id="z1" au="1" start="g1:stroke"/></bml>')
 
 
 class Recorder:

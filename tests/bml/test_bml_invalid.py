@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from agent.cli import main
@@ -108,7 +110,9 @@ def test_render_writes_the_files_of_a_block(tmp_path, capsys, repo):
     out = tmp_path / "out"
     assert main(["render", str(repo / "specs" / "bml" / "take_this_bar.bml"), "-o", str(out), "--tts", "fake"]) == 0
     assert {f"take_this_bar.{ext}" for ext in ("bvh", "html", "timeline.json", "wav")} <= {p.name for p in out.iterdir()}
-    assert "timed but not performed" in capsys.readouterr().err
+    timeline = json.loads((out / "take_this_bar.timeline.json").read_text(encoding="utf-8"))
+    assert all(behavior["performed"] for behavior in timeline["behaviors"])  # the nod too
+    assert "not performed" not in capsys.readouterr().err
 
 
 def test_unnamespaced_bml_is_read_with_a_warning(tmp_path):

@@ -22,7 +22,7 @@ NS = 'xmlns="http://www.bml-initiative.org/bml/bml-1.0"'
 
 def block(block_id: str, composition: str = "APPEND", words: str = "Take <sync id=\"tm1\"/> this bar, please.") -> str:
     return (f'<bml {NS} id="{block_id}" composition="{composition}"><speech id="s1"><text>{words}</text></speech>'
-            f'<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><head id="h1" lexeme="NOD" stroke="g1:strokeEnd"/></bml>')
+            f'<gesture id="g1" lexeme="BEAT" stroke="s1:tm1"/><head id="h1" lexeme="NOD" amount="0.5" stroke="g1:strokeEnd"/></bml>')
 
 
 def until(ws, done, limit: int = 5000) -> list[dict]:
