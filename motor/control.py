@@ -40,7 +40,9 @@ where it was shown.
 Frames and grid states are computed ahead of the window asked for
 (:data:`FRAME_LOOKAHEAD`, :data:`motor.arm.swivel_track.SWIVEL_LOOKAHEAD`), so that short windows share the
 fixed cost of one computation; activating an LMP forgets what was computed ahead from
-where it can change things.
+where it can change things. While windows keep using up what was computed ahead with
+nothing changing it, each computation looks twice as far ahead as the one before (up to
+:data:`MAX_FRAME_LOOKAHEAD`).
 """
 
 from __future__ import annotations
@@ -96,6 +98,11 @@ HISTORY = 1.0
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
+#: Each time the frames computed ahead are used up with nothing activated that changed
+#: them, the next computation looks twice as far ahead, up to this (seconds): a stream of
+#: short windows over activated programs then pays the fixed cost of a computation a few
+#: times, not every :data:`FRAME_LOOKAHEAD` seconds. Memory: frames × joints × 32 bytes.
+MAX_FRAME_LOOKAHEAD = 16.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
 #: that (skin gives; moving the wrists for it would cost a movement that starts from a
@@ -144,6 +151,9 @@ class MotorControl:
         self._grid = SwivelGrid(avatar)
         self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
+        self._lookahead = FRAME_LOOKAHEAD  # seconds the next computation looks ahead
+        self._parents = tuple(int(p) for p in avatar.parents)
+        self._forget_from = -math.inf  # no arm LMP loses control before this horizon (s)
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
@@ -281,6 +291,7 @@ class MotorControl:
         states that could see them (:data:`TRACK_REACH` grid points before; earlier values
         are unchanged: an LMP only takes control at its start), except those that frames
         already handed out used, and the frames computed ahead from those states on."""
+        self._forget_from = -math.inf
         first = max(math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE) - TRACK_REACH, self._committed + 1)
         self._grid.forget_from(first)
         # a frame's swivel is interpolated from grid points up to two periods after it
@@ -292,6 +303,8 @@ class MotorControl:
             return
         held, rotations, faces = self._ahead
         kept = max(0, math.ceil(since * self.fps - _FRAME_TOLERANCE) - held)
+        if kept < rotations.shape[0]:
+            self._lookahead = FRAME_LOOKAHEAD
         self._ahead = (held, rotations[:kept], faces[:kept]) if kept else None
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
@@ -359,7 +372,7 @@ class MotorControl:
         return Motion(
             fps=self.fps,
             joint_names=self.avatar.joint_names,
-            parents=tuple(int(p) for p in self.avatar.parents),
+            parents=self._parents,
             offsets=np.asarray(self.avatar.offsets),
             rotations=rotations,
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
@@ -378,7 +391,9 @@ class MotorControl:
                 return rotations[first - held : first - held + count].copy(), faces[first - held : first - held + count].copy()
         if count == 0:
             return np.empty((0, self.avatar.joint_count, 4)), np.empty((0, len(FACE_NAMES)))
-        total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
+        if self._ahead is not None and self._ahead[0] <= first <= self._ahead[0] + self._ahead[1].shape[0]:
+            self._lookahead = min(2.0 * self._lookahead, MAX_FRAME_LOOKAHEAD)  # used up, unchanged: look further
+        total = max(count, math.ceil(self._lookahead * self.fps))
         times = np.arange(first, first + total) / self.fps
         rotations = self.neck.pose(times, self._rotations(times))
         faces = self.face.weights(times)
@@ -485,6 +500,15 @@ class MotorControl:
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
+        if horizon >= self._forget_from:
+            self._forget_arm_lmps_before(horizon)
+        self.neck.forget_before(horizon)
+        self.face.forget_before(horizon)
+        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
+
+    def _forget_arm_lmps_before(self, horizon: float) -> None:
+        """The arm channels' part of :meth:`_forget_before`; notes the earliest horizon at
+        which one of them will have something to drop, so that windows before it skip this."""
         for channel in self._lmps:
             timeline = self.timeline(channel)
             keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
@@ -498,9 +522,7 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
-        self.neck.forget_before(horizon)
-        self.face.forget_before(horizon)
-        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
+        self._forget_from = min((float(self.timeline(channel).starts[1]) for channel in self._lmps if len(self.timeline(channel).starts) > 1), default=math.inf)
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The arm's swivel (radians) at sorted ``times``, from the grid's track."""
