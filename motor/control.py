@@ -95,6 +95,10 @@ ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 #: How far back (s) from the start of the latest window the LMP history is kept; covers
 #: the swivel grid's margin.
 HISTORY = 1.0
+#: LMPs that lost control are dropped once a channel has this many of them (or all but
+#: its last): each drop computes the channel's state where its history now starts, so
+#: dropping a few at a time spares that work; memory stays flat all the same.
+FORGET_BATCH = 4
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
@@ -508,7 +512,8 @@ class MotorControl:
 
     def _forget_arm_lmps_before(self, horizon: float) -> None:
         """The arm channels' part of :meth:`_forget_before`; notes the earliest horizon at
-        which one of them will have something to drop, so that windows before it skip this."""
+        which one of them will have :data:`FORGET_BATCH` LMPs (or all but its last) to
+        drop, so that windows before it skip this."""
         for channel in self._lmps:
             timeline = self.timeline(channel)
             keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
@@ -522,7 +527,10 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
-        self._forget_from = min((float(self.timeline(channel).starts[1]) for channel in self._lmps if len(self.timeline(channel).starts) > 1), default=math.inf)
+        self._forget_from = min(
+            (float(starts[min(FORGET_BATCH, starts.size - 1)]) for starts in (self.timeline(c).starts for c in self._lmps) if starts.size > 1),
+            default=math.inf,
+        )
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The arm's swivel (radians) at sorted ``times``, from the grid's track."""
