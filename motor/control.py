@@ -41,8 +41,8 @@ Frames and grid states are computed ahead of the window asked for
 (:data:`FRAME_LOOKAHEAD`, :data:`motor.arm.swivel_track.SWIVEL_LOOKAHEAD`), so that short windows share the
 fixed cost of one computation; activating an LMP forgets what was computed ahead from
 where it can change things. While windows keep using up what was computed ahead with
-nothing changing it, each computation looks twice as far ahead as the one before (up to
-:data:`MAX_FRAME_LOOKAHEAD`).
+nothing changing it, each computation looks :data:`LOOKAHEAD_GROWTH` times as far ahead
+as the one before (up to :data:`MAX_FRAME_LOOKAHEAD`).
 """
 
 from __future__ import annotations
@@ -103,9 +103,12 @@ FORGET_BATCH = 4
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
 #: Each time the frames computed ahead are used up with nothing activated that changed
-#: them, the next computation looks twice as far ahead, up to this (seconds): a stream of
-#: short windows over activated programs then pays the fixed cost of a computation a few
-#: times, not every :data:`FRAME_LOOKAHEAD` seconds. Memory: frames × joints × 32 bytes.
+#: them, the next computation looks :data:`LOOKAHEAD_GROWTH` times as far ahead, up to
+#: :data:`MAX_FRAME_LOOKAHEAD` seconds: a stream of short windows over activated programs
+#: then pays the fixed cost of a computation (about 9 ms) a few times, not every
+#: :data:`FRAME_LOOKAHEAD` seconds. Memory: frames × joints × 32 bytes (16 s at 60 fps,
+#: 55 joints: 1.7 MB).
+LOOKAHEAD_GROWTH = 4.0
 MAX_FRAME_LOOKAHEAD = 16.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
@@ -396,7 +399,7 @@ class MotorControl:
         if count == 0:
             return np.empty((0, self.avatar.joint_count, 4)), np.empty((0, len(FACE_NAMES)))
         if self._ahead is not None and self._ahead[0] <= first <= self._ahead[0] + self._ahead[1].shape[0]:
-            self._lookahead = min(2.0 * self._lookahead, MAX_FRAME_LOOKAHEAD)  # used up, unchanged: look further
+            self._lookahead = min(LOOKAHEAD_GROWTH * self._lookahead, MAX_FRAME_LOOKAHEAD)  # used up, unchanged: look further
         total = max(count, math.ceil(self._lookahead * self.fps))
         times = np.arange(first, first + total) / self.fps
         rotations = self.neck.pose(times, self._rotations(times))
