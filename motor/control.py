@@ -98,7 +98,7 @@ HISTORY = 1.0
 #: LMPs that lost control are dropped once a channel has this many of them (or all but
 #: its last): each drop computes the channel's state where its history now starts, so
 #: dropping a few at a time spares that work; memory stays flat all the same.
-FORGET_BATCH = 4
+FORGET_BATCH = 2
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
@@ -106,9 +106,12 @@ FRAME_LOOKAHEAD = 2.0
 #: them, the next computation looks :data:`LOOKAHEAD_GROWTH` times as far ahead, up to
 #: :data:`MAX_FRAME_LOOKAHEAD` seconds: a stream of short windows over activated programs
 #: then pays the fixed cost of a computation (about 9 ms) a few times, not every
-#: :data:`FRAME_LOOKAHEAD` seconds. Memory: frames × joints × 32 bytes (16 s at 60 fps,
-#: 55 joints: 1.7 MB).
-LOOKAHEAD_GROWTH = 4.0
+#: :data:`FRAME_LOOKAHEAD` seconds. Twofold, not more: where programs keep being activated
+#: (the scheduler's chunks) what was computed ahead past the next activation is thrown
+#: away (rendering the example utterances in 0.1 s windows: 1.3 frames computed per frame
+#: handed out at twofold, 2.7 at fourfold). Memory: frames × joints × 32 bytes (16 s at
+#: 60 fps, 55 joints: 1.7 MB).
+LOOKAHEAD_GROWTH = 2.0
 MAX_FRAME_LOOKAHEAD = 16.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
