@@ -11,10 +11,16 @@ it on a fresh :class:`motor.control.MotorControl` and renders it, at 25 and 60 f
 * ``bare_*``: the cost of merely composing every joint rotation of every frame with
   numpy — forward kinematics of the rendered rotations (a quaternion product and a
   rotated offset per joint per frame) and a single quaternion product per joint per
-  frame — and the ratio of synthesis time to forward-kinematics time.
+  frame — and the ratio of synthesis time to forward-kinematics time;
+* ``bare_compose_and_write_*`` (issue 19's floor): composing the same rotations (forward
+  kinematics) and writing them (the local rotations as float32 bytes into a buffer, the
+  cheapest honest output), and ``synthesis_over_bare_*`` the synthesis time over it, for
+  the whole call and the streamed windows.
 
-Medians of several runs; the design target is ≥ 150,000 frames/s on one core and a ratio
-≤ 10 (DESIGN.md).
+Times are this process's CPU time (``time.process_time``: steadier than wall-clock on a
+shared machine), medians of several runs. Pin the process to one core for the figures:
+``taskset -c 0 .venv/bin/python -m bench.motion_speed``. The design target is ≥ 150,000
+frames/s on one core and a ratio ≤ 10 (DESIGN.md).
 """
 
 from __future__ import annotations
@@ -28,7 +34,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.timing import median_seconds
+import io
+
 from motor import quaternion as quat
 from motor.body.avatar import load_avatar
 from motor.body.kinematics import forward_kinematics
@@ -56,24 +63,44 @@ def _programs(control: MotorControl, gestures: list[BehaviorSpec]) -> list[Motor
 
 
 def _fresh(avatar, fps: float, programs: list[MotorProgram]) -> MotorControl:
-    """A control with the programs activated and its channel timelines built (activation
-    is per LMP, not per frame, and is timed apart)."""
+    """A control with the programs activated and its channel timelines built, the arms'
+    and the gaze's (activation is per LMP, not per frame, and is timed apart)."""
     control = MotorControl(avatar, fps)
     for program in programs:
         control.activate(program)
     for channel in control.activated():
         control.timeline(channel)
+    control.neck.timeline()
     return control
 
 
+def median_seconds(call: Callable[[], object], repeats: int) -> float:
+    """Median process time of ``repeats`` calls of ``call``, seconds."""
+    durations = []
+    for _ in range(repeats):
+        started = time.process_time()
+        call()
+        durations.append(time.process_time() - started)
+    return statistics.median(durations)
+
+
+def compose_and_write(avatar, rotations: np.ndarray) -> int:
+    """The bare floor of synthesis: compose the joint rotations (forward kinematics) and
+    write them (float32 bytes into a buffer); returns the bytes written."""
+    forward_kinematics(avatar, rotations)
+    buffer = io.BytesIO()
+    buffer.write(rotations.astype(np.float32).tobytes())
+    return buffer.tell()
+
+
 def _timed_frames(avatar, fps: float, programs: list[MotorProgram], render: Callable[[MotorControl], object], repeats: int) -> float:
-    """Median seconds of ``render`` on freshly activated controls (activation not timed)."""
+    """Median process seconds of ``render`` on freshly activated controls (activation not timed)."""
     durations = []
     for _ in range(repeats):
         control = _fresh(avatar, fps, programs)
-        started = time.perf_counter()
+        started = time.process_time()
         render(control)
-        durations.append(time.perf_counter() - started)
+        durations.append(time.process_time() - started)
     return statistics.median(durations)
 
 
@@ -94,6 +121,7 @@ def run(quick: bool) -> dict:
     programs = _programs(planning_control, gestures)
     end = max(program.pegs.end for program in programs) + 0.3
     result: dict[str, object] = {
+        "timing": "process time (time.process_time), medians",
         "joints": avatar.joint_count,
         "gestures": len(gestures),
         "utterance_seconds": round(end, 3),
@@ -104,11 +132,12 @@ def run(quick: bool) -> dict:
         frames = _fresh(avatar, fps, programs).frames(0.0, end)
         count = frames.frame_count
         whole = _timed_frames(avatar, fps, programs, lambda control: control.frames(0.0, end), repeats)
-        streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), 3)
+        streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), repeats)
         activation = median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
         rotations = frames.rotations
         fk = median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
         product = median_seconds(lambda: quat.multiply(rotations, rotations), repeats)
+        bare = median_seconds(lambda: compose_and_write(avatar, rotations), repeats)
         result.update({
             f"frames_{label}": count,
             f"frames_per_s_{label}": count / whole,
@@ -116,6 +145,9 @@ def run(quick: bool) -> dict:
             f"bare_forward_kinematics_frames_per_s_{label}": count / fk,
             f"bare_quaternion_product_frames_per_s_{label}": count / product,
             f"synthesis_over_forward_kinematics_{label}": whole / fk,
+            f"bare_compose_and_write_frames_per_s_{label}": count / bare,
+            f"synthesis_over_bare_{label}": whole / bare,
+            f"streamed_synthesis_over_bare_{label}": streamed / bare,
             f"activation_ms_{label}": 1000.0 * activation,
         })  # fmt: skip
     return result

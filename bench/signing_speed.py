@@ -9,6 +9,12 @@ sequence at 25 fps, and checks every frame (NaN, wrist reach, upper arm in the t
 * **frames per second**: frames of the sequence over the time to synthesize them
   (activation, sampling, IK and hands, the elbow check); planning is reported apart, per
   sign. The seed reports 15,000 frames/s for about 50 bone rotations per frame.
+  Wall-clock (``synthesis_frames_per_second``) and process time
+  (``synthesis_process_frames_per_second``); the bare floor
+  (:func:`bench.motion_speed.compose_and_write`: forward kinematics of the same rotations
+  and writing them as float32 bytes) in the same run, and the ratio
+  ``synthesis_over_bare`` (process times). Pin to one core for the figures:
+  ``taskset -c 0 .venv/bin/python -m bench.signing_speed``.
 * **planning per sign**: one :func:`motor.signing.planning.plan_signs` call over all the
   parsed signs, divided by the signs it planned: wall-clock (``planning_ms_per_sign``) and
   this process's CPU time (``planning_process_ms_per_sign``, steadier on a shared machine).
@@ -27,6 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bench.motion_speed import compose_and_write, median_seconds
 from motor.body.avatar import load_avatar
 from motor.signing.plan import SignPlanningError
 from motor.signing.planning import plan_signs
@@ -70,9 +77,10 @@ def run(quick: bool) -> dict:
         else:
             plans.append((result, size))
 
-    started = time.perf_counter()
+    started, started_cpu = time.perf_counter(), time.process_time()
     signed = realize_signs(avatar, [plan for plan, _ in plans], FPS)
-    synthesis = time.perf_counter() - started
+    synthesis, synthesis_cpu = time.perf_counter() - started, time.process_time() - started_cpu
+    bare = median_seconds(lambda: compose_and_write(avatar, signed.motion.rotations), 3)
     faults = frame_faults(avatar, signed)
     bad = faults["non_finite"] | (faults["shortfall"] > SHORTFALL_LIMIT) | (faults["upper_arm_depth"] > DEPTH_LIMIT)
     times = signed.motion.times
@@ -106,6 +114,9 @@ def run(quick: bool) -> dict:
         "frames": signed.motion.frame_count,
         "animation_seconds": round(signed.duration, 1),
         "synthesis_frames_per_second": round(signed.motion.frame_count / synthesis),
+        "synthesis_process_frames_per_second": round(signed.motion.frame_count / synthesis_cpu),
+        "bare_compose_and_write_frames_per_second": round(signed.motion.frame_count / bare),
+        "synthesis_over_bare": round(synthesis_cpu / bare, 1),
         "rotations_per_frame": len(signed.motion.joint_names),
         "max_shortfall_m": float(np.max(faults["shortfall"])),
         "max_upper_arm_depth_m": float(np.max(faults["upper_arm_depth"])),

@@ -40,7 +40,9 @@ where it was shown.
 Frames and grid states are computed ahead of the window asked for
 (:data:`FRAME_LOOKAHEAD`, :data:`motor.arm.swivel_track.SWIVEL_LOOKAHEAD`), so that short windows share the
 fixed cost of one computation; activating an LMP forgets what was computed ahead from
-where it can change things.
+where it can change things. While windows keep using up what was computed ahead with
+nothing changing it, each computation looks :data:`LOOKAHEAD_GROWTH` times as far ahead
+as the one before (up to :data:`MAX_FRAME_LOOKAHEAD`).
 """
 
 from __future__ import annotations
@@ -93,9 +95,24 @@ ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 #: How far back (s) from the start of the latest window the LMP history is kept; covers
 #: the swivel grid's margin.
 HISTORY = 1.0
+#: LMPs that lost control are dropped once a channel has this many of them (or all but
+#: its last): each drop computes the channel's state where its history now starts, so
+#: dropping a few at a time spares that work; memory stays flat all the same.
+FORGET_BATCH = 2
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0
+#: Each time the frames computed ahead are used up with nothing activated that changed
+#: them, the next computation looks :data:`LOOKAHEAD_GROWTH` times as far ahead, up to
+#: :data:`MAX_FRAME_LOOKAHEAD` seconds: a stream of short windows over activated programs
+#: then pays the fixed cost of a computation (about 9 ms) a few times, not every
+#: :data:`FRAME_LOOKAHEAD` seconds. Twofold, not more: where programs keep being activated
+#: (the scheduler's chunks) what was computed ahead past the next activation is thrown
+#: away (rendering the example utterances in 0.1 s windows: 1.3 frames computed per frame
+#: handed out at twofold, 2.7 at fourfold). Memory: frames × joints × 32 bytes (16 s at
+#: 60 fps, 55 joints: 1.7 MB).
+LOOKAHEAD_GROWTH = 2.0
+MAX_FRAME_LOOKAHEAD = 16.0
 #: How much nearer (m) than the palm thickness the hands as the arms turned them may come
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
 #: that (skin gives; moving the wrists for it would cost a movement that starts from a
@@ -144,6 +161,9 @@ class MotorControl:
         self._grid = SwivelGrid(avatar)
         self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
+        self._lookahead = FRAME_LOOKAHEAD  # seconds the next computation looks ahead
+        self._parents = tuple(int(p) for p in avatar.parents)
+        self._forget_from = -math.inf  # no arm LMP loses control before this horizon (s)
         self._last_arm = {arm: _LastRun() for arm in ARMS}
         self._last_hand = {arm: _LastRun() for arm in ARMS}
         self._arm_joints = {arm: avatar.arm_joints(AVATAR_SIDE[arm]) for arm in ARMS}
@@ -281,6 +301,7 @@ class MotorControl:
         states that could see them (:data:`TRACK_REACH` grid points before; earlier values
         are unchanged: an LMP only takes control at its start), except those that frames
         already handed out used, and the frames computed ahead from those states on."""
+        self._forget_from = -math.inf
         first = max(math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE) - TRACK_REACH, self._committed + 1)
         self._grid.forget_from(first)
         # a frame's swivel is interpolated from grid points up to two periods after it
@@ -292,6 +313,8 @@ class MotorControl:
             return
         held, rotations, faces = self._ahead
         kept = max(0, math.ceil(since * self.fps - _FRAME_TOLERANCE) - held)
+        if kept < rotations.shape[0]:
+            self._lookahead = FRAME_LOOKAHEAD
         self._ahead = (held, rotations[:kept], faces[:kept]) if kept else None
 
     def timeline(self, channel: tuple[str, str]) -> ChannelTimeline:
@@ -359,7 +382,7 @@ class MotorControl:
         return Motion(
             fps=self.fps,
             joint_names=self.avatar.joint_names,
-            parents=tuple(int(p) for p in self.avatar.parents),
+            parents=self._parents,
             offsets=np.asarray(self.avatar.offsets),
             rotations=rotations,
             root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
@@ -378,7 +401,9 @@ class MotorControl:
                 return rotations[first - held : first - held + count].copy(), faces[first - held : first - held + count].copy()
         if count == 0:
             return np.empty((0, self.avatar.joint_count, 4)), np.empty((0, len(FACE_NAMES)))
-        total = max(count, math.ceil(FRAME_LOOKAHEAD * self.fps))
+        if self._ahead is not None and self._ahead[0] <= first <= self._ahead[0] + self._ahead[1].shape[0]:
+            self._lookahead = min(LOOKAHEAD_GROWTH * self._lookahead, MAX_FRAME_LOOKAHEAD)  # used up, unchanged: look further
+        total = max(count, math.ceil(self._lookahead * self.fps))
         times = np.arange(first, first + total) / self.fps
         rotations = self.neck.pose(times, self._rotations(times))
         faces = self.face.weights(times)
@@ -485,6 +510,16 @@ class MotorControl:
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
+        if horizon >= self._forget_from:
+            self._forget_arm_lmps_before(horizon)
+        self.neck.forget_before(horizon)
+        self.face.forget_before(horizon)
+        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
+
+    def _forget_arm_lmps_before(self, horizon: float) -> None:
+        """The arm channels' part of :meth:`_forget_before`; notes the earliest horizon at
+        which one of them will have :data:`FORGET_BATCH` LMPs (or all but its last) to
+        drop, so that windows before it skip this."""
         for channel in self._lmps:
             timeline = self.timeline(channel)
             keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
@@ -498,9 +533,10 @@ class MotorControl:
             )
             self._initial[channel] = initial
             self._lmps[channel] = list(timeline.lmps[keep:])
-        self.neck.forget_before(horizon)
-        self.face.forget_before(horizon)
-        self._grid.forget_before(math.floor(horizon / SWIVEL_PERIOD) - 2)
+        self._forget_from = min(
+            (float(starts[min(FORGET_BATCH, starts.size - 1)]) for starts in (self.timeline(c).starts for c in self._lmps) if starts.size > 1),
+            default=math.inf,
+        )
 
     def swivel(self, arm: str, times: np.ndarray) -> np.ndarray:
         """The arm's swivel (radians) at sorted ``times``, from the grid's track."""

@@ -45,6 +45,8 @@ NECK_SHARES: tuple[float, float] = (0.25, 0.3)
 EYE_RANGE = np.radians(45.0)
 EYES: tuple[str, ...] = ("l_eyeball_joint", "r_eyeball_joint")
 GAZE_CHANNEL = ("neck", "gaze")
+#: Gaze shifts that lost control are dropped this many at a time (:meth:`NeckControl.forget_before`).
+FORGET_BATCH = 2
 
 NeckLMP = GazeLMP | HeadMovementLMP | TrunkLMP
 
@@ -127,12 +129,14 @@ class NeckControl:
         self._activate_gaze(back)
 
     def forget_before(self, horizon: float) -> None:
-        """Drop what lost control before ``horizon`` seconds (memory stays flat)."""
+        """Drop what lost control before ``horizon`` seconds (memory stays flat): gaze
+        shifts :data:`FORGET_BATCH` at a time (or all but the last), as each drop computes
+        the gaze where the kept history starts."""
         self._heads = [lmp for lmp in self._heads if lmp.last >= horizon]
         self._trunks = [lmp for lmp in self._trunks if lmp.last >= horizon]
         timeline = self.timeline()
         keep = int(np.searchsorted(timeline.starts, horizon, side="right")) - 1
-        if keep <= 0:
+        if keep <= 0 or keep < min(FORGET_BATCH, timeline.starts.size - 1):
             return
         start = float(timeline.starts[keep])
         state = timeline.realizations[keep - 1].state(start)
