@@ -73,7 +73,8 @@ class Blinks:
         """Spontaneous blink onsets in ``[start, end)``, sorted."""
         first, last = math.floor(start / BLOCK) - 1, math.floor(end / BLOCK)
         drawn = np.concatenate([self._block(k) for k in range(first, last + 1)])
-        keep = np.concatenate([[True], np.diff(drawn) >= REFRACTORY])
+        keep = np.ones(drawn.size, dtype=bool)
+        keep[1:] = np.diff(drawn) >= REFRACTORY
         onsets = drawn[keep]
         boundaries = np.array(self._boundaries)
         if boundaries.size:

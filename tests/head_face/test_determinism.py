@@ -7,7 +7,7 @@ import pytest
 from face_helpers import EXAMPLES
 
 from agent.agent import Agent
-from motor.face.blinks import DURATION, REFRACTORY, Blinks
+from motor.face.blinks import BLOCK, DURATION, REFRACTORY, Blinks
 
 
 @pytest.mark.parametrize("utterance", ["look_and_nod", "fig2_take_this_bar", "sign_here"])
@@ -49,3 +49,14 @@ def test_seeds_differ_and_chunk_boundaries_blink():
     assert boundary == pytest.approx(5.05) and np.sort(np.abs(onsets - boundary))[1] >= REFRACTORY
     closed = blinks.sample(np.linspace(5.05, 5.05 + DURATION, 200))
     assert closed.max() == pytest.approx(1.0, abs=1e-3) and closed[0] == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 7])
+def test_windows_with_no_spontaneous_blink_sample_open_lids(seed):
+    """A window whose random blocks drew no blink (an hour of speech meets some) gives open
+    lids, not an error."""
+    blinks = Blinks(seed)
+    quiet = next(k for k in range(1, 100_000) if blinks._block(k).size == 0 and blinks._block(k - 1).size == 0)
+    times = quiet * BLOCK + np.linspace(0.0, 0.5, 31)
+    assert blinks.spontaneous(float(times[0]), float(times[-1])).size == 0
+    assert np.all(blinks.sample(times) == 0.0)
