@@ -245,8 +245,8 @@ class _BlockReader:
             models[behavior.id] = self._speech(behavior)
             return
         support = BEHAVIORS[kind].support
-        if kind in HEAD_SLOTS:
-            self._check_timed_params(behavior)
+        if support == "timed" or kind in HEAD_SLOTS:
+            self._check_params(behavior)
         try:
             gesture = self._gesture(behavior) if support == "performed" else None
         except _CannotRealize as reason:
@@ -255,7 +255,6 @@ class _BlockReader:
             return
         params = tuple((name, value) for name, value in sorted(element.attrib.items()) if name in BEHAVIORS[kind].attributes)
         if support == "timed":
-            self._check_timed_params(behavior)
             self._warn("NOT_PERFORMED", f"<{kind}> {behavior.id!r} is timed but not performed: no motor module for it yet", element)
         models[behavior.id] = BehaviorSpec(behavior.id, kind, None, gesture, None, self.source.where(element), params=params)
 
@@ -376,7 +375,7 @@ class _BlockReader:
         unit = "cm" if any(True for _ in description.iter("dynamicElement")) else "mm"
         return read_gesture_element(self.source, holder, behavior.id, self.lexicon, unit)
 
-    def _check_timed_params(self, behavior: _Behavior) -> None:
+    def _check_params(self, behavior: _Behavior) -> None:
         element = behavior.element
         for name, kind in _NUMERIC.items():
             text = element.get(name)

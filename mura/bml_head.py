@@ -21,6 +21,7 @@ from collections.abc import Callable
 
 from lxml import etree
 
+from mura.bml_sync import number
 from mura.constraints import Constraint, Repetition, Static
 from mura.errors import SourceLocation
 from mura.lexicon import GestureLexicon
@@ -41,25 +42,25 @@ def head_constraint(
     source: XmlSource, element: etree._Element, kind: str, behavior_id: str, lexicon: GestureLexicon, warn: Warn
 ) -> Constraint:
     """The constraint tree performing the BML behaviour ``element`` of ``kind`` (a key of
-    :data:`HEAD_SLOTS`) read from ``source``; its attributes were checked by the BML reader."""
+    :data:`HEAD_SLOTS`) read from ``source``; its numbers were checked by the BML reader."""
     where = source.where(element)
     slot = HEAD_SLOTS[kind]
     if kind == "gaze":
-        leaf = _gaze(source, element.get("target", "").strip(), where, lexicon)
+        leaf = _gaze(source, slot, element.get("target", "").strip(), where, lexicon)
     else:
         leaf = Static(slot, Symbol(element.get("lexeme", "").strip()), HEAD_SCOPE, None, where)
     _say_what_is_not_performed(element, behavior_id, warn)
-    count = int(float(element.get("repetition", "1")))
+    count = int(number(element.get("repetition", "1")) or 1)
     return Repetition(leaf, count, where) if count > 1 else leaf
 
 
-def _gaze(source: XmlSource, target: str, where: SourceLocation, lexicon: GestureLexicon) -> Static:
+def _gaze(source: XmlSource, slot: str, target: str, where: SourceLocation, lexicon: GestureLexicon) -> Static:
     """A gaze target: a scene place read as MURML reads ``$place`` (its unit and grid
     names), or a name for the gaze model."""
     name = target.removeprefix("$")
     if name not in lexicon.scene:
-        return Static("GazeDirection", Symbol(name), HEAD_SCOPE, "pointTo", where)
-    element = etree.Element("static", slot="GazeDirection", value=f"${name}", mode="pointTo", scope=HEAD_SCOPE)
+        return Static(slot, Symbol(name), HEAD_SCOPE, "pointTo", where)
+    element = etree.Element("static", slot=slot, value=f"${name}", mode="pointTo", scope=HEAD_SCOPE)
     reader = ConstraintReader(source, "m", lexicon.scene, {}, where, lexicon.symbols)
     place = reader.read(element, None)
     if not isinstance(place, Static):
@@ -69,7 +70,7 @@ def _gaze(source: XmlSource, target: str, where: SourceLocation, lexicon: Gestur
 
 def _say_what_is_not_performed(element: etree._Element, behavior_id: str, warn: Warn) -> None:
     amount = element.get("amount")
-    if amount is not None and float(amount) != 1.0:
+    if amount is not None and number(amount) != 1.0:
         warn("NOT_PERFORMED", f"{behavior_id!r}: amount {amount} is not performed; the lexeme keeps its own amplitude", "amount")
     influence = element.get("influence")
     if influence is not None:
