@@ -14,6 +14,7 @@ posture.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -31,7 +32,6 @@ from motor.signing.lmp import Move, SignChannelLMP
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_sign
 from mura.model import BehaviorSpec
-from mura.signs import Sign
 
 #: How many sign plans are kept (a chunk's signs are planned, then asked for again).
 PLAN_CACHE = 16
@@ -48,24 +48,30 @@ class SignBehaviorPlanner:
 
     def __init__(self, avatar: Avatar) -> None:
         self.avatar = avatar
-        self._plans: dict[int, tuple[Sign, SignPlan]] = {}
+        self._plans: dict[int, tuple[object, SignPlan]] = {}
 
     def sign_plan(self, behavior: BehaviorSpec) -> SignPlan:
         """The sign's plan on its own clock; raises :class:`PlanningError` naming the behaviour."""
         sign = behavior.sign
         if sign is None:
             raise PlanningError(f"behaviour {behavior.id!r} carries no sign")
-        cached = self._plans.get(id(sign))
-        if cached is not None and cached[0] is sign:
-            return cached[1]
+        return self._remembered(sign, lambda: plan_sign(self.avatar, sign), behavior.id, (SignPlanningError,))
+
+    def _remembered(self, source: object, plan: Callable[[], SignPlan], behavior_id: str, errors: tuple[type[Exception], ...]) -> SignPlan:
+        """The plan of ``source`` (a sign object, kept by identity among the last
+        :data:`PLAN_CACHE`), made by ``plan`` when not kept; ``errors`` it raises become a
+        :class:`PlanningError` naming the behaviour."""
+        kept = self._plans.get(id(source))
+        if kept is not None and kept[0] is source:
+            return kept[1]
         try:
-            plan = plan_sign(self.avatar, sign)
-        except SignPlanningError as error:
-            raise PlanningError(f"behaviour {behavior.id!r}: {error}") from None
+            made = plan()
+        except errors as error:
+            raise PlanningError(f"behaviour {behavior_id!r}: {error}") from None
         if len(self._plans) >= PLAN_CACHE:
             self._plans.pop(next(iter(self._plans)))
-        self._plans[id(sign)] = (sign, plan)
-        return plan
+        self._plans[id(source)] = (source, made)
+        return made
 
     def first_wrists(self, behavior: BehaviorSpec) -> dict[str, np.ndarray]:
         """Where each hand the sign uses begins, metres (avatar frame)."""

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from motor.body.avatar import Avatar
 from motor.program.fragment import PlanningError
-from motor.signing.behavior import PLAN_CACHE, SignBehaviorPlanner
+from motor.signing.behavior import SignBehaviorPlanner
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.verbs.plan import pointing_plan, verb_plan
 from motor.verbs.shipped import MODELS_PATH, shipped_models
@@ -31,25 +31,14 @@ class VerbBehaviorPlanner(SignBehaviorPlanner):
     def __init__(self, avatar: Avatar, models: Path = MODELS_PATH) -> None:
         super().__init__(avatar)
         self.models_path = models
-        self._spatial_plans: dict[int, tuple[SpatialSign, SignPlan]] = {}
 
     def sign_plan(self, behavior: BehaviorSpec) -> SignPlan:
         """The sign's plan on its own clock; raises :class:`PlanningError` naming the behaviour."""
         spatial = behavior.spatial
         if spatial is None:
             raise PlanningError(f"behaviour {behavior.id!r} is neither a pointing sign nor an indicating verb")
-        cached = self._spatial_plans.get(id(spatial))
-        if cached is not None and cached[0] is spatial:
-            return cached[1]
-        try:
-            plan = spatial_plan(self.avatar, spatial, self.models_path)
-        except (SignPlanningError, SpecError, ValueError) as error:
-            raise PlanningError(f"behaviour {behavior.id!r}: {error}") from None
-        if len(self._spatial_plans) >= PLAN_CACHE:
-            self._spatial_plans.pop(next(iter(self._spatial_plans)))
-        self._spatial_plans[id(spatial)] = (spatial, plan)
-        return plan
-
+        errors = (SignPlanningError, SpecError, ValueError)
+        return self._remembered(spatial, lambda: spatial_plan(self.avatar, spatial, self.models_path), behavior.id, errors)
 
 def spatial_plan(avatar: Avatar, spatial: SpatialSign, models: Path = MODELS_PATH) -> SignPlan:
     """A pointing sign or an indicating verb as a sign plan on its own clock; the verb
