@@ -213,6 +213,23 @@ class _Track:
     warnings: tuple[str, ...] = ()
 
     @classmethod
+    def traced(cls, initial: np.ndarray, chain: TracedChain) -> _Track:
+        """The wrist track of a chain traced ahead: what :meth:`of` makes of the same moves."""
+        sizes = np.array([values.shape[0] for values in chain.values])
+        first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        return cls(
+            rotation=False,
+            initial=initial,
+            starts=chain.starts,
+            ends=chain.ends,
+            tables=np.stack([profile(manner).fractions for manner in chain.manners]),
+            values=np.concatenate(chain.values),
+            keys=np.concatenate([2.0 * i + f for i, f in enumerate(chain.fractions)]),
+            first=first,
+            last=first + sizes - 1,
+        )
+
+    @classmethod
     def of(cls, rotation: bool, initial: np.ndarray, moves: list[Move], by_distance: bool) -> _Track:
         fractions = [path_fractions(m.values, by_distance) for m in moves]
         sizes = np.array([m.values.shape[0] for m in moves])
@@ -266,6 +283,34 @@ class _Track:
 
 
 @dataclass(frozen=True, eq=False)
+class TracedChain:
+    """A wrist channel's moves as its activation would make them, traced ahead for many
+    signs at once (:mod:`motor.signing.path_batch`): the transition from ``here`` starting
+    at ``time`` and the sign's moves, each split at reversals, with the law-time fractions
+    of their values. Used only when the activation state is exactly ``(here, time)``.
+
+    Attributes:
+        time: seconds, the activation the transition was traced from.
+        here: ``(3,)`` metres, the wrist position it was traced from.
+        starts, ends: ``(k,)`` seconds of each move of the chain.
+        manners: the moves' manners.
+        values: each move's dense path ``(m, 3)``.
+        fractions: each move's fraction of the way at its values ``(m,)``.
+    """
+
+    time: float
+    here: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    manners: tuple[str, ...]
+    values: tuple[np.ndarray, ...]
+    fractions: tuple[np.ndarray, ...]
+
+    def fits(self, state: ChannelState) -> bool:
+        return state.time == self.time and np.array_equal(np.asarray(state.value, dtype=float), self.here)
+
+
+@dataclass(frozen=True, eq=False)
 class SignChannelLMP:
     """The moves of one channel during one sign, after a transition into it.
 
@@ -279,6 +324,8 @@ class SignChannelLMP:
         transition: the manner of the transition.
         via: ``(k, D)`` values the transition passes through on its way (a wrist path
             kept clear of the torso), or None for the direct way.
+        traced: the wrist chain traced ahead for the activation state expected, or None;
+            any other state is activated the plain way.
     """
 
     channel: Channel
@@ -287,6 +334,7 @@ class SignChannelLMP:
     moves: tuple[Move, ...] = ()
     transition: str = "lax"
     via: np.ndarray | None = None
+    traced: TracedChain | None = None
 
     def __post_init__(self) -> None:
         if not self.pegs.ready > self.pegs.start:
@@ -300,6 +348,8 @@ class SignChannelLMP:
     def activate(self, state: ChannelState) -> _Track:
         rotation = self.channel[1] in ROTATION_CHANNELS
         here = np.asarray(state.value, dtype=float)
+        if self.traced is not None and self.traced.fits(state):
+            return _Track.traced(here, self.traced)
         first = np.asarray(self.first, dtype=float)
         if rotation and here @ first < 0.0:
             first = -first

@@ -33,8 +33,9 @@ from motor.control import MotorControl
 from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
-from motor.signing.lmp import SignChannelLMP, stopping_length
+from motor.signing.lmp import SignChannelLMP
 from motor.signing.nonmanual import plan_nonmanuals
+from motor.signing.path_batch import stopping_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths, rotations_along
@@ -104,35 +105,51 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         here = {arm: _last_pose(plan, arm, targets[arm]) for arm in ARMS}
     legs.append((dict(here), rest))
     ways = _transition_ways(avatar, legs)
+    paths = [{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(legs, ways)]
+    stopping = iter(stopping_lengths([leg[arm] for leg in paths for arm in ARMS]))
     clock = REST_LEAD
+    spans: list[tuple[float, float, float]] = []
+    for plan, (before, targets) in zip(plans, legs):
+        manner = "targetted" if plan.static else "lax"
+        ready = clock + _transition_time(before, targets, [next(stopping) for _ in ARMS], manner)
+        spans.append((clock, ready, ready + plan.duration))
+        clock = ready + plan.duration
+    before, _ = legs[-1]
+    back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
+    spans.append((clock, clock + back, clock + back))
+    moves = [
+        {(arm, channel): tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())) for arm in ARMS for channel in CHANNELS}
+        for plan, (_, ready, _) in zip(plans, spans)
+    ]
+    manners = ["targetted" if plan.static else "lax" for plan in plans] + ["lax"]
+    # every wrist transition and move of the sequence traced in one batch (motor.signing.path_batch)
+    chains = iter(trace_chains(
+        [(start, ready, manner, leg[arm]) for (start, ready, _), manner, leg in zip(spans, manners, paths) for arm in ARMS],
+        [sign.get((arm, "wrist_position"), ()) for sign in [*moves, {}] for arm in ARMS],
+    ))  # fmt: skip
     timings: list[SignTiming] = []
     warnings: list[str] = []
-    for plan, (before, targets), way in zip(plans, legs, ways):
-        manner = "targetted" if plan.static else "lax"
-        ready = clock + _transition_time(before, targets, way, manner)
-        end = ready + plan.duration
-        pegs = TimePegs(clock, ready, ready, ready + 0.5 * plan.duration, end, end, end)
+    for plan, (_, targets), way, (start, ready, end), manner, sign in zip(plans, legs, ways, spans, manners, moves):
+        pegs = TimePegs(start, ready, ready, ready + 0.5 * plan.duration, end, end, end)
+        traced = {arm: next(chains) for arm in ARMS}
         lmps = [
             SignChannelLMP(
-                (arm, channel), pegs, targets[arm].channel(channel),
-                tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())), manner,
-                way[arm] if channel == "wrist_position" else None,
+                (arm, channel), pegs, targets[arm].channel(channel), sign[(arm, channel)], manner,
+                *((way[arm], traced[arm]) if channel == "wrist_position" else (None, None)),
             )
             for arm in ARMS for channel in CHANNELS
         ]  # fmt: skip
-        nonmanual = plan_nonmanuals(avatar, plan.gloss, plan.nonmanual, clock, ready, end, control.palm_centres)
+        nonmanual = plan_nonmanuals(avatar, plan.gloss, plan.nonmanual, start, ready, end, control.palm_centres)
         control.activate(SignProgram(plan.gloss, (*lmps, *nonmanual.lmps)))
-        timings.append(SignTiming(plan.gloss, clock, ready, end, tuple(sorted(plan.nonmanual))))
+        timings.append(SignTiming(plan.gloss, start, ready, end, tuple(sorted(plan.nonmanual))))
         warnings.extend(plan.warnings)
         warnings.extend(nonmanual.warnings)
-        clock = end
-    before, _ = legs[-1]
-    back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
     retract = TimePegs.movement(clock, clock + back)
+    traced = {arm: next(chains) for arm in ARMS}
     control.activate(SignProgram("rest", tuple(
         SignChannelLMP(
             (arm, channel), retract, rest[arm].channel(channel), (), "lax",
-            ways[-1][arm] if channel == "wrist_position" else None,
+            *((ways[-1][arm], traced[arm]) if channel == "wrist_position" else (None, None)),
         )
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
@@ -174,12 +191,17 @@ def _transition_ways(
     return ways
 
 
-def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose], way: dict[str, np.ndarray], manner: str) -> float:
+def _way_path(before: HandPose, after: HandPose, way: np.ndarray) -> np.ndarray:
+    """A wrist transition's path ``(k + 2, 3)``: from ``before`` through ``way`` to ``after``."""
+    return np.concatenate([before.wrist[None], way.reshape(-1, 3), after.wrist[None]])
+
+
+def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose], stopping: Sequence[float], manner: str) -> float:
     """Lax straight movement time, or Fitts' law for the farthest wrist, or the least time
-    the wrists' ways need within the speed budget of ``manner``, whichever is longest."""
+    the wrists' ways need within the speed budget of ``manner`` (their ``stopping``
+    lengths, metres: :func:`motor.signing.lmp.stopping_length`), whichever is longest."""
     distance = max(float(np.linalg.norm(targets[arm].wrist - here[arm].wrist)) for arm in ARMS)
-    paths = [np.concatenate([here[arm].wrist[None], way[arm].reshape(-1, 3), targets[arm].wrist[None]]) for arm in ARMS]
-    budgeted = max(shortest_duration(stopping_length(path), manner) for path in paths)
+    budgeted = max(shortest_duration(length, manner) for length in stopping)
     return max(movement_duration("straight", "lax"), float(fitts_duration(distance)), budgeted)
 
 

@@ -1,0 +1,357 @@
+"""Many wrist paths traced at once: the vectorized twins of :func:`motor.signing.lmp.smooth_pieces`
+and :func:`motor.signing.lmp.law_fractions`.
+
+A sequence of signs traces thousands of short wrist paths (every move, every transition).
+One at a time, each costs a scipy spline and a few dozen small numpy calls, and the calls'
+overhead is most of the synthesis time. Here the paths are grouped by their number of
+points and each group is traced in one pass over a ``(paths, points, 3)`` array: the
+interpolating spline by a batched tridiagonal solve (the same not-a-knot conditions and
+cubic Hermite pieces scipy's ``CubicSpline`` builds), the B-spline within the hull by its
+basis at the fixed parameters of a path of that size, the law time by the same grid,
+interpolation and Gaussian smoothing :func:`~motor.signing.lmp.law_fractions` uses, row by row.
+
+The results equal the one-path functions within rounding (a few ulps: the spline's linear
+solve orders its operations differently from LAPACK's); the paths the batch would treat
+differently — repeated points, a law-time grid too coarse for its kernel — go through the
+one-path functions. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Sequence
+from functools import cache
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from motor.signing.lmp import (
+    LAW_SMOOTHING,
+    PATH_DENSITY,
+    REVERSAL_ANGLE,
+    _SAME,
+    Move,
+    TracedChain,
+    law_fractions,
+    smooth_pieces,
+    stopping_times,
+)
+from motor.trajectory.power_law import EXPONENT, clamped_curvature
+from motor.trajectory.spline import HOLD_LENGTH
+
+#: Turning angles below this product of adjacent chord lengths count as zero (a hold), as
+#: in :func:`motor.trajectory.spline.turning_angles`.
+_HOLD = 1e-9
+#: Truncation of the Gaussian kernel in standard deviations (``gaussian_filter1d``'s default).
+_TRUNCATE = 4.0
+#: Largest kernel radius (grid steps) smoothed here; wider kernels (very short paths) go
+#: through :func:`motor.signing.lmp.law_fractions`.
+_MAX_RADIUS = 64
+
+
+def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
+    """:func:`motor.signing.lmp.stopping_length` of every path."""
+    out = []
+    for pieces in smooth_pieces_many(paths, through=False):
+        lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
+        out.append(float(np.sum(np.sqrt(lengths)) ** 2))
+    return out
+
+
+def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
+    """The wrist chains :meth:`motor.signing.lmp.SignChannelLMP.activate` would make, for
+    many LMPs at once: each a transition ``(start, ready, manner, way)`` — the way from the
+    activation's wrist position through the via points to the sign's first, traced through
+    them — then the sign's wrist moves, traced within their hulls; every move split at its
+    reversals (:func:`motor.signing.lmp.stopping_times`)."""
+    flat = [move for chain in moves for move in chain]
+    ways = smooth_pieces_many([way for _, _, _, way in transitions], through=True)
+    traced = iter(smooth_pieces_many([move.values for move in flat], through=False))
+    parts: list[list[tuple[float, float, str, list[np.ndarray]]]] = []
+    for (start, ready, manner, _), pieces, chain in zip(transitions, ways, moves):
+        parts.append([(start, ready, manner, pieces), *((m.start, m.end, m.manner, next(traced)) for m in chain)])
+    timed: list[list[tuple[float, float, str, np.ndarray]]] = []
+    for chain in parts:
+        split = []
+        for start, end, manner, pieces in chain:
+            lengths = np.array([np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() for piece in pieces])
+            times = stopping_times(lengths, start, end)
+            split.extend((float(a), float(b), manner, piece) for a, b, piece in zip(times[:-1], times[1:], pieces))
+        timed.append(split)
+    fractions = iter(law_fractions_many([piece for split in timed for _, _, _, piece in split]))
+    return [
+        TracedChain(
+            time=transition[0],
+            here=np.asarray(transition[3][0], dtype=float),
+            starts=np.array([a for a, _, _, _ in split]),
+            ends=np.array([b for _, b, _, _ in split]),
+            manners=tuple(manner for _, _, manner, _ in split),
+            values=tuple(piece for _, _, _, piece in split),
+            fractions=tuple(next(fractions) for _ in split),
+        )
+        for transition, split in zip(transitions, timed)
+    ]
+
+
+def _groups(arrays: Sequence[np.ndarray]) -> dict[int, list[int]]:
+    """Indices of ``arrays`` by their number of rows."""
+    groups: dict[int, list[int]] = defaultdict(list)
+    for index, array in enumerate(arrays):
+        groups[array.shape[0]].append(index)
+    return groups
+
+
+def _turning(points: np.ndarray) -> np.ndarray:
+    """:func:`motor.trajectory.spline.turning_angles` of every row of ``(g, m ≥ 3, 3)``."""
+    d = np.diff(points, axis=1)
+    a, b = d[:, :-1].reshape(-1, 3), d[:, 1:].reshape(-1, 3)
+    denom = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
+    cos = np.divide(np.einsum("ij,ij->i", a, b), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    return np.arccos(np.clip(cos, -1.0, 1.0)).reshape(points.shape[0], -1)
+
+
+def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
+    """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)``, in one pass per size."""
+    out: list[list[np.ndarray] | None] = [None] * len(paths)
+    pieces: list[tuple[int, int, np.ndarray]] = []  # (path, order, piece)
+    for m, members in _groups(paths).items():
+        if m < 3:
+            for index in members:
+                out[index] = [paths[index]]
+            continue
+        stacked = np.stack([paths[index] for index in members])
+        moving = np.all(np.linalg.norm(np.diff(stacked, axis=1), axis=2) > HOLD_LENGTH, axis=1)
+        angles = _turning(stacked)
+        for row, index in enumerate(members):
+            if not moving[row]:
+                out[index] = smooth_pieces(paths[index], through)
+                continue
+            cuts = np.concatenate([[0], np.flatnonzero(angles[row] >= REVERSAL_ANGLE) + 1, [m - 1]])
+            out[index] = [None] * (cuts.size - 1)
+            for order, (first, last) in enumerate(zip(cuts[:-1], cuts[1:])):
+                pieces.append((index, order, stacked[row, first : last + 1]))
+    traced = _trace([piece for _, _, piece in pieces], through)
+    for (index, order, _), dense in zip(pieces, traced):
+        out[index][order] = dense
+    return out
+
+
+def _trace(pieces: list[np.ndarray], through: bool) -> list[np.ndarray]:
+    """Each piece ``(k, 3)`` densely, starting with its first point (:func:`smooth_pieces`)."""
+    out: list[np.ndarray | None] = [None] * len(pieces)
+    for k, members in _groups(pieces).items():
+        stacked = np.stack([pieces[index] for index in members])
+        if k < 3:
+            dense = stacked.copy()
+        else:
+            dense = np.empty((len(members), PATH_DENSITY * (k - 1) + 1, 3))
+            dense[:, 0] = stacked[:, 0]
+            dense[:, 1:] = _through(stacked) if through else _within(stacked)
+        for row, index in enumerate(members):
+            out[index] = dense[row]
+    return out
+
+
+def _through(pieces: np.ndarray) -> np.ndarray:
+    """The not-a-knot cubic spline by chord length through every row of ``(g, k ≥ 3, 3)``,
+    :data:`PATH_DENSITY` points per chord without the first (``lmp._through``)."""
+    g, k, _ = pieces.shape
+    dx = np.linalg.norm(np.diff(pieces, axis=1), axis=2)
+    x = np.concatenate([np.zeros((g, 1)), np.cumsum(dx, axis=1)], axis=1)
+    dx = np.diff(x, axis=1)
+    slope = np.diff(pieces, axis=1) / dx[..., None]
+    slopes = _derivatives(x, dx, slope) if k > 3 else _parabola(dx, slope)
+    t = (slopes[:, :-1] + slopes[:, 1:] - 2 * slope) / dx[..., None]
+    c0 = t / dx[..., None]
+    c1 = (slope - slopes[:, :-1]) / dx[..., None] - t
+    c2, c3 = slopes[:, :-1], pieces[:, :-1]
+    fractions = np.linspace(0.0, 1.0, PATH_DENSITY + 1)[1:]
+    at = x[:, :-1, None] + dx[:, :, None] * fractions
+    s = (at - x[:, :-1, None])[..., None]  # (g, k - 1, density, 1)
+    z2 = s * s
+    dense = ((c3[:, :, None] + c2[:, :, None] * s) + c1[:, :, None] * z2) + c0[:, :, None] * (z2 * s)
+    dense[:, :, -1] = pieces[:, 1:]
+    return dense.reshape(g, -1, 3)
+
+
+def _parabola(dx: np.ndarray, slope: np.ndarray) -> np.ndarray:
+    """Derivatives at the three points of the parabola through them (scipy's case of three
+    points with not-a-knot ends)."""
+    g = dx.shape[0]
+    a = np.zeros((g, 3, 3))
+    a[:, 0, 0] = a[:, 0, 1] = a[:, 2, 1] = a[:, 2, 2] = 1.0
+    a[:, 1, 0] = dx[:, 1]
+    a[:, 1, 1] = 2 * (dx[:, 0] + dx[:, 1])
+    a[:, 1, 2] = dx[:, 0]
+    b = np.stack([2 * slope[:, 0], 3 * (dx[:, 0, None] * slope[:, 1] + dx[:, 1, None] * slope[:, 0]), 2 * slope[:, 1]], axis=1)
+    return np.linalg.solve(a, b)
+
+
+def _derivatives(x: np.ndarray, dx: np.ndarray, slope: np.ndarray) -> np.ndarray:
+    """Derivatives ``(g, k, 3)`` at the points of not-a-knot cubic splines (k ≥ 4): scipy's
+    tridiagonal system, solved row by row of the batch (Thomas algorithm)."""
+    g, k = x.shape
+    lower = np.zeros((g, k))  # a[i, i - 1]
+    diag = np.empty((g, k))
+    upper = np.zeros((g, k))  # a[i, i + 1]
+    rhs = np.empty((g, k, 3))
+    diag[:, 1:-1] = 2 * (dx[:, :-1] + dx[:, 1:])
+    upper[:, 1:-1] = dx[:, :-1]
+    lower[:, 1:-1] = dx[:, 1:]
+    rhs[:, 1:-1] = 3 * (dx[:, 1:, None] * slope[:, :-1] + dx[:, :-1, None] * slope[:, 1:])
+    d = x[:, 2] - x[:, 0]
+    diag[:, 0], upper[:, 0] = dx[:, 1], d
+    rhs[:, 0] = ((dx[:, 0, None] + 2 * d[:, None]) * dx[:, 1, None] * slope[:, 0] + dx[:, 0, None] ** 2 * slope[:, 1]) / d[:, None]
+    d = x[:, -1] - x[:, -3]
+    diag[:, -1], lower[:, -1] = dx[:, -2], d
+    rhs[:, -1] = (dx[:, -1, None] ** 2 * slope[:, -2] + (2 * d[:, None] + dx[:, -1, None]) * dx[:, -2, None] * slope[:, -1]) / d[:, None]
+    for i in range(1, k):
+        factor = lower[:, i] / diag[:, i - 1]
+        diag[:, i] = diag[:, i] - factor * upper[:, i - 1]
+        rhs[:, i] = rhs[:, i] - factor[:, None] * rhs[:, i - 1]
+    out = np.empty((g, k, 3))
+    out[:, -1] = rhs[:, -1] / diag[:, -1, None]
+    for i in range(k - 2, -1, -1):
+        out[:, i] = (rhs[:, i] - upper[:, i, None] * out[:, i + 1]) / diag[:, i, None]
+    return out
+
+
+@cache
+def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The clamped B-spline of a ``k``-point control polygon (``lmp._within``) at its dense
+    parameters: the first control point each parameter depends on ``(n,)`` and the weights
+    of it and the next ``degree`` points ``(n, degree + 1)``, as scipy's de Boor gives them."""
+    degree = min(3, k - 1)
+    interior = k - degree - 1
+    knots = np.concatenate([np.zeros(degree + 1), np.arange(1, interior + 1) / (interior + 1), np.ones(degree + 1)])
+    at = np.linspace(0.0, 1.0, PATH_DENSITY * (k - 1) + 1)[1:]
+    matrix = BSpline(knots, np.eye(k), degree)(at)
+    interval = np.clip(np.searchsorted(knots, at, side="right") - 1, degree, knots.size - degree - 2)
+    first = interval - degree
+    weights = matrix[np.arange(at.size)[:, None], first[:, None] + np.arange(degree + 1)]
+    return first, weights
+
+
+def _within(pieces: np.ndarray) -> np.ndarray:
+    """The clamped B-spline with control polygon each row of ``(g, k ≥ 3, 3)``, densely,
+    without the first point (``lmp._within``)."""
+    first, weights = _basis(pieces.shape[1])
+    dense = np.zeros((pieces.shape[0], first.size, 3))
+    for a in range(weights.shape[1]):
+        dense = dense + pieces[:, first + a] * weights[None, :, a, None]
+    dense[:, -1] = pieces[:, -1]
+    return dense
+
+
+def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """:func:`motor.signing.lmp.law_fractions` of every dense path ``(m, 3)``."""
+    out: list[np.ndarray | None] = [None] * len(paths)
+    for m, members in _groups(paths).items():
+        if m < 3:
+            for index in members:
+                out[index] = law_fractions(paths[index])
+            continue
+        stacked = np.stack([paths[index] for index in members])
+        fractions, done = _law_fractions(stacked)
+        for row, index in enumerate(members):
+            out[index] = fractions[row] if done[row] else law_fractions(paths[index])
+    return out
+
+
+def _law_fractions(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Law-time fractions of every row of ``(g, m ≥ 3, 3)`` and which rows they hold
+    (the others: no length, or a kernel wider than :data:`_MAX_RADIUS`)."""
+    g, m, _ = points.shape
+    chords = np.linalg.norm(np.diff(points, axis=1), axis=2)
+    arc = np.concatenate([np.zeros((g, 1)), np.cumsum(chords, axis=1)], axis=1)
+    total = arc[:, -1]
+    spans = np.maximum(0.5 * (chords[:, :-1] + chords[:, 1:]), _SAME)
+    curvature = np.empty((g, m))
+    curvature[:, 1:-1] = _turning(points) / spans
+    curvature[:, 0], curvature[:, -1] = curvature[:, 1], curvature[:, -2]
+    log_curvature = np.log(clamped_curvature(curvature))
+    step = np.minimum(LAW_SMOOTHING / 4.0, total / 8.0)
+    valid = total >= _SAME
+    counts = np.where(valid, np.ceil(total / np.where(valid, step, 1.0)), 1.0).astype(int) + 1
+    spacing = total / (counts - 1)
+    sigma = LAW_SMOOTHING / np.where(valid, spacing, LAW_SMOOTHING)
+    done = valid & (_TRUNCATE * sigma + 0.5 < _MAX_RADIUS + 1)
+    rows = np.flatnonzero(done)
+    fractions = np.zeros((g, m))
+    if rows.size == 0:
+        return fractions, done
+    arc, log_curvature, chords, total, counts, spacing = arc[rows], log_curvature[rows], chords[rows], total[rows], counts[rows], spacing[rows]
+    width = int(counts.max())
+    columns = np.arange(width)
+    grid = columns * spacing[:, None] + 0.0
+    grid[np.arange(rows.size), counts - 1] = total
+    inside = columns < counts[:, None]
+    grid = np.where(inside, grid, np.inf)
+    # the grid index each arc point falls after, exactly: the uniform estimate, corrected
+    after = _last_at_or_below(grid, arc, np.clip((arc / spacing[:, None]).astype(int), 0, counts[:, None] - 1), counts)
+    # the arc index each grid point falls after: count the arc points at or below it
+    first_above = np.minimum(after + (grid[np.arange(rows.size)[:, None], after] < arc), width)  # first grid ≥ arc point
+    tally = np.zeros((rows.size, width + 1), dtype=int)
+    np.add.at(tally, (np.repeat(np.arange(rows.size), m), first_above.ravel()), 1)
+    below = np.cumsum(tally[:, :width], axis=1) - 1  # last arc index ≤ each grid point
+    values = _interp(grid, arc, log_curvature, np.clip(below, 0, m - 1), np.full(rows.size, m))
+    smooth = _gaussian(values, spacing, counts)
+    density = np.exp(EXPONENT * _interp(arc, grid, smooth, after, counts))
+    tau = np.concatenate([np.zeros((rows.size, 1)), np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * chords, axis=1)], axis=1)
+    fractions[rows] = tau / tau[:, -1:]
+    return fractions, done
+
+
+def _last_at_or_below(xp: np.ndarray, x: np.ndarray, guess: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Per row, the last index ``j < counts`` with ``xp[j] ≤ x`` (xp sorted, ``x ≥ xp[0]``),
+    from a guess at most a few places off."""
+    rows = np.arange(x.shape[0])[:, None]
+    j = guess
+    for _ in range(3):
+        j = np.where(xp[rows, j] > x, np.maximum(j - 1, 0), j)
+        ahead = np.minimum(j + 1, counts[:, None] - 1)
+        j = np.where((ahead > j) & (xp[rows, ahead] <= x), ahead, j)
+    if np.any(xp[rows, j] > x) or np.any((j + 1 < counts[:, None]) & (xp[rows, np.minimum(j + 1, counts[:, None] - 1)] <= x)):
+        raise ArithmeticError("law-time grid search did not converge")
+    return j
+
+
+def _interp(x: np.ndarray, xp: np.ndarray, fp: np.ndarray, j: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``np.interp`` row by row, given ``j``: the last index with ``xp[j] ≤ x`` (rows of
+    ``xp`` hold ``counts`` values); arithmetic as numpy's."""
+    rows = np.arange(x.shape[0])[:, None]
+    last = counts[:, None] - 1
+    ahead = np.minimum(j + 1, last)
+    low, high = xp[rows, j], xp[rows, ahead]
+    flow, fhigh = fp[rows, j], fp[rows, ahead]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slope = (fhigh - flow) / (high - low)
+        value = slope * (x - low) + flow
+    exact = (j >= last) | (low == x)
+    value = np.where(exact, flow, value)
+    value = np.where(x > xp[rows, last], fp[rows, last], value)
+    return np.where(x < xp[:, :1], fp[:, :1], value)
+
+
+def _gaussian(values: np.ndarray, spacing: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``gaussian_filter1d(row, LAW_SMOOTHING / spacing, mode="nearest")`` of every row's
+    first ``counts`` values, with scipy's kernel and order of sums."""
+    rows = np.arange(values.shape[0])
+    sigma = LAW_SMOOTHING / spacing
+    radius = (_TRUNCATE * sigma + 0.5).astype(int)
+    out = np.empty_like(values)
+    for r in np.unique(radius):
+        members = rows[radius == r]
+        offsets = np.arange(-r, r + 1)
+        phi = np.exp(-0.5 / (sigma[members] * sigma[members])[:, None] * offsets**2)
+        kernel = phi / phi.sum(axis=1, keepdims=True)
+        v = values[members]
+        last = counts[members][:, None] - 1
+        position = np.arange(values.shape[1])
+        own = np.arange(members.size)[:, None]
+        smoothed = v * kernel[:, r, None]
+        for j in range(r, 0, -1):
+            left, right = v[own, np.clip(position - j, 0, last)], v[own, np.clip(position + j, 0, last)]
+            smoothed = smoothed + (left + right) * kernel[:, r - j, None]
+        out[members] = smoothed
+    return out

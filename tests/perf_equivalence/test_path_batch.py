@@ -1,0 +1,85 @@
+"""The batched wrist-path tracing (motor.signing.path_batch) equals the one-path functions.
+
+Cases are synthetic wrist paths (labelled by kind): smooth arcs, zigzags that reverse,
+paths with repeated points (holds), two and three points, and paths so short that their
+law-time kernel is wider than the batch smooths; each case is traced together with the
+others of the table, as the batch sees them in a sequence of signs.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from motor.program.lmp import ChannelState, TimePegs
+from motor.signing.lmp import Move, SignChannelLMP, law_fractions, smooth_pieces, stopping_length
+from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
+
+
+def _path(kind: str, count: int, seed: int) -> np.ndarray:
+    """A synthetic wrist path (metres) of ``count`` points."""
+    rng = np.random.default_rng(seed)
+    start = np.array([0.1, 1.2, 0.3]) + 0.05 * rng.standard_normal(3)
+    if kind == "arc":
+        angle = np.linspace(0.0, rng.uniform(0.5, 3.0), count)
+        radius = rng.uniform(0.03, 0.2)
+        return start + radius * np.stack([np.cos(angle), np.sin(angle), 0.3 * angle], axis=1)
+    if kind == "zigzag":  # back and forth: reversals
+        steps = np.where(np.arange(count - 1) % 3 == 2, -1.0, 1.0)[:, None] * rng.uniform(0.02, 0.06, (count - 1, 1)) * np.array([1.0, 0.2, 0.1])
+        return start + np.concatenate([np.zeros((1, 3)), np.cumsum(steps + 0.004 * rng.standard_normal((count - 1, 3)), axis=0)])
+    if kind == "holds":  # some points repeated
+        points = start + np.cumsum(0.03 * rng.standard_normal((count, 3)), axis=0)
+        points[count // 2] = points[count // 2 - 1]
+        return points
+    if kind == "tiny":  # micrometres long: a wide law-time kernel
+        return start + np.cumsum(2e-6 * rng.standard_normal((count, 3)), axis=0)
+    return start + np.cumsum(0.03 * rng.standard_normal((count, 3)), axis=0)  # "random"
+
+
+CASES = [(kind, count) for kind in ("arc", "zigzag", "holds", "random") for count in (2, 3, 4, 5, 8, 13, 33)] + [("tiny", 6), ("tiny", 9)]
+PATHS = [_path(kind, count, seed) for seed, (kind, count) in enumerate(CASES)]
+IDS = [f"{kind}-{count}" for kind, count in CASES]
+
+
+@pytest.mark.parametrize("through", [False, True], ids=["within", "through"])
+@pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
+def test_batched_pieces_equal_one_path_pieces(case: int, through: bool) -> None:
+    batched = smooth_pieces_many(PATHS, through)[case]
+    plain = smooth_pieces(PATHS[case], through)
+    assert len(batched) == len(plain)
+    for fast, slow in zip(batched, plain):
+        assert fast.shape == slow.shape
+        np.testing.assert_allclose(fast, slow, rtol=0.0, atol=1e-12)
+        if not through:  # the B-spline's basis sums in scipy's order: identical
+            np.testing.assert_array_equal(fast, slow)
+
+
+@pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
+def test_batched_law_fractions_equal_one_path_fractions(case: int) -> None:
+    dense = [piece for pieces in smooth_pieces_many(PATHS, through=False) for piece in pieces]
+    index = sum(len(smooth_pieces(path, False)) for path in PATHS[:case])
+    for offset, piece in enumerate(smooth_pieces(PATHS[case], False)):
+        np.testing.assert_array_equal(law_fractions_many(dense)[index + offset], law_fractions(piece))
+
+
+@pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
+def test_batched_stopping_length_equals_one_path_length(case: int) -> None:
+    assert stopping_lengths(PATHS)[case] == stopping_length(PATHS[case])
+
+
+@pytest.mark.parametrize("manner", ["lax", "targetted"])
+@pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
+def test_traced_chain_samples_as_the_plain_activation(case: int, manner: str) -> None:
+    """A wrist LMP given its chain traced ahead samples as the one that traces at activation,
+    and one activated from another state than the chain's falls back to tracing."""
+    way = PATHS[case]
+    moves = (Move(0.9, 1.4, "lax", PATHS[(case + 1) % len(PATHS)]), Move(1.5, 1.8, manner, PATHS[(case + 3) % len(PATHS)]))
+    pegs = TimePegs(0.2, 0.7, 0.7, 1.2, 1.8, 1.8, 1.8)
+    chain = trace_chains([(0.2, 0.7, manner, way)], [moves])[0]
+    traced = SignChannelLMP(("right", "wrist_position"), pegs, way[-1], moves, manner, way[1:-1], chain)
+    plain = SignChannelLMP(("right", "wrist_position"), pegs, way[-1], moves, manner, way[1:-1])
+    times = np.linspace(0.0, 2.0, 401)
+    state = ChannelState(way[0].copy(), np.zeros(3), 0.2)
+    np.testing.assert_allclose(traced.activate(state).sample(times), plain.activate(state).sample(times), rtol=0.0, atol=1e-12)
+    elsewhere = ChannelState(way[0] + 1e-3, np.zeros(3), 0.2)
+    np.testing.assert_array_equal(traced.activate(elsewhere).sample(times), plain.activate(elsewhere).sample(times))
