@@ -51,11 +51,9 @@ _MAX_RADIUS = 64
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     """:func:`motor.signing.lmp.stopping_length` of every path."""
-    out = []
-    for pieces in smooth_pieces_many(paths, through=False):
-        lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
-        out.append(float(np.sum(np.sqrt(lengths)) ** 2))
-    return out
+    pieces = smooth_pieces_many(paths, through=False)
+    lengths = iter(_lengths([piece for split in pieces for piece in split]))
+    return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
@@ -65,17 +63,20 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
     them — then the sign's wrist moves, traced within their hulls; every move split at its
     reversals (:func:`motor.signing.lmp.stopping_times`)."""
     flat = [move for chain in moves for move in chain]
-    ways = smooth_pieces_many([way for _, _, _, way in transitions], through=True)
     traced = iter(smooth_pieces_many([move.values for move in flat], through=False))
-    parts: list[list[tuple[float, float, str, list[np.ndarray]]]] = []
-    for (start, ready, manner, _), pieces, chain in zip(transitions, ways, moves):
+    parts = []  # per chain: (start, end, manner, pieces) of its transition and moves
+    for (start, ready, manner, _), pieces, chain in zip(transitions, smooth_pieces_many([way for _, _, _, way in transitions], through=True), moves):
         parts.append([(start, ready, manner, pieces), *((m.start, m.end, m.manner, next(traced)) for m in chain)])
-    timed: list[list[tuple[float, float, str, np.ndarray]]] = []
+    lengths = iter(_lengths([piece for chain in parts for _, _, _, pieces in chain for piece in pieces]))
+    timed = []
     for chain in parts:
         split = []
         for start, end, manner, pieces in chain:
-            lengths = np.array([np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() for piece in pieces])
-            times = stopping_times(lengths, start, end)
+            if len(pieces) == 1:  # stopping_times of one piece
+                next(lengths)
+                split.append((start, float(start + (end - start) * 1.0), manner, pieces[0]))
+                continue
+            times = stopping_times(np.array([next(lengths) for _ in pieces]), start, end)
             split.extend((float(a), float(b), manner, piece) for a, b, piece in zip(times[:-1], times[1:], pieces))
         timed.append(split)
     fractions = iter(law_fractions_many([piece for split in timed for _, _, _, piece in split]))
@@ -91,6 +92,14 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
         )
         for transition, split in zip(transitions, timed)
     ]
+
+
+def _lengths(pieces: Sequence[np.ndarray]) -> np.ndarray:
+    """Length (m) of every polyline ``(k, 3)``: its chords summed as numpy sums one."""
+    out = np.empty(len(pieces))
+    for k, members in _groups(pieces).items():
+        out[members] = np.linalg.norm(np.diff(np.stack([pieces[index] for index in members]), axis=1), axis=2).sum(axis=1)
+    return out
 
 
 def _groups(arrays: Sequence[np.ndarray]) -> dict[int, list[int]]:
@@ -248,8 +257,8 @@ def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
     out: list[np.ndarray | None] = [None] * len(paths)
     for m, members in _groups(paths).items():
         if m < 3:
-            for index in members:
-                out[index] = law_fractions(paths[index])
+            for index in members:  # two points: the way's two ends, [0, 1] (none: as given)
+                out[index] = np.array([0.0, 1.0]) if m == 2 and np.all(np.isfinite(paths[index])) else law_fractions(paths[index])
             continue
         stacked = np.stack([paths[index] for index in members])
         fractions, done = _law_fractions(stacked)
@@ -337,6 +346,7 @@ def _gaussian(values: np.ndarray, spacing: np.ndarray, counts: np.ndarray) -> np
     """``gaussian_filter1d(row, LAW_SMOOTHING / spacing, mode="nearest")`` of every row's
     first ``counts`` values, with scipy's kernel and order of sums."""
     rows = np.arange(values.shape[0])
+    width = values.shape[1]
     sigma = LAW_SMOOTHING / spacing
     radius = (_TRUNCATE * sigma + 0.5).astype(int)
     out = np.empty_like(values)
@@ -345,13 +355,14 @@ def _gaussian(values: np.ndarray, spacing: np.ndarray, counts: np.ndarray) -> np
         offsets = np.arange(-r, r + 1)
         phi = np.exp(-0.5 / (sigma[members] * sigma[members])[:, None] * offsets**2)
         kernel = phi / phi.sum(axis=1, keepdims=True)
-        v = values[members]
-        last = counts[members][:, None] - 1
-        position = np.arange(values.shape[1])
-        own = np.arange(members.size)[:, None]
-        smoothed = v * kernel[:, r, None]
+        # each row extended by its edge values ("nearest"), past its own count too
+        last = counts[members] - 1
+        padded = np.empty((members.size, width + 2 * r))
+        padded[:, r : r + width] = np.where(np.arange(width) <= last[:, None], values[members], values[members, last][:, None])
+        padded[:, :r] = values[members, :1]
+        padded[:, r + width :] = padded[:, r + width - 1 : r + width]
+        smoothed = padded[:, r : r + width] * kernel[:, r, None]
         for j in range(r, 0, -1):
-            left, right = v[own, np.clip(position - j, 0, last)], v[own, np.clip(position + j, 0, last)]
-            smoothed = smoothed + (left + right) * kernel[:, r - j, None]
+            smoothed = smoothed + (padded[:, r - j : r - j + width] + padded[:, r + j : r + j + width]) * kernel[:, r - j, None]
         out[members] = smoothed
     return out
