@@ -84,6 +84,7 @@ from motor.program.lmp import (
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
+from motor.signing.lmp import sample_tracks
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.trajectory.spline import fitts_duration
 from motor.verbs.behavior import VerbBehaviorPlanner
@@ -590,6 +591,12 @@ def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
         return out
     owner = np.searchsorted(timeline.starts, times, side="right") - 1
     first, last = int(owner[0]), int(owner[-1])
+    lo = int(np.searchsorted(owner, 0, side="left"))
+    if lo < times.size:  # sign tracks: all in one pass
+        values = sample_tracks(timeline.realizations[max(first, 0) : last + 1], owner[lo:] - max(first, 0), times[lo:])
+        if values is not None:
+            out[lo:] = values
+            return out
     for index in range(max(first, 0), last + 1):
         lo = np.searchsorted(owner, index, side="left")
         hi = np.searchsorted(owner, index, side="right")

@@ -30,6 +30,7 @@ stops at rest with zero acceleration (the manner profiles,
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -280,6 +281,57 @@ class _Track:
         else:
             velocity = (3.0 * v[2] - 4.0 * v[1] + v[0]) / (2.0 * _STEP)
         return ChannelState(v[2], velocity, float(time))
+
+
+def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.ndarray) -> np.ndarray | None:
+    """Values at sorted ``times`` of ``realizations[owner]`` (``owner`` ``(n,)``, indices
+    into ``realizations``, non-decreasing), all in one pass: what each realization's
+    ``sample`` gives for its times, when all are sign tracks of one kind; else None.
+
+    The tracks' arrays are joined; a move or value is found by the pair (track, time) or
+    (track, key) — complex numbers, which numpy orders lexicographically — so that every
+    number is computed as the track's own :meth:`_Track.sample` computes it."""
+    if not realizations or not all(type(r) is _Track for r in realizations):
+        return None
+    rotation = realizations[0].rotation
+    widths = {r.tables.shape[1] for r in realizations}
+    if any(r.rotation != rotation for r in realizations) or len(widths) != 1:
+        return None
+    moves = np.array([r.starts.size for r in realizations])
+    sizes = np.array([r.values.shape[0] for r in realizations])
+    move_base = np.concatenate([[0], np.cumsum(moves)[:-1]])
+    value_base = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    starts = np.concatenate([r.starts for r in realizations])
+    ends = np.concatenate([r.ends for r in realizations])
+    tables = np.concatenate([r.tables for r in realizations])
+    values = np.concatenate([r.values for r in realizations])
+    keys = np.concatenate([r.keys for r in realizations])
+    first = np.concatenate([r.first for r in realizations]) + np.repeat(value_base, moves)
+    last = np.concatenate([r.last for r in realizations]) + np.repeat(value_base, moves)
+    t = np.asarray(times, dtype=float)
+    tracks = owner.astype(float)
+    found = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), moves) + 1j * starts, tracks + 1j * t, side="right") - 1
+    local = found - move_base[owner]
+    before = local < 0
+    move = np.maximum(local, 0)
+    row = move_base[owner] + move
+    u = np.clip((t - starts[row]) / (ends[row] - starts[row]), 0.0, 1.0)
+    position = u * (tables.shape[1] - 1)
+    low = np.minimum(position.astype(int), tables.shape[1] - 2)
+    weight = position - low
+    s = (1.0 - weight) * tables[row, low] + weight * tables[row, low + 1]
+    wanted = 2.0 * move + s
+    index = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), sizes) + 1j * keys, tracks + 1j * wanted, side="right") - 1
+    index = np.clip(index, first[row], last[row] - 1)
+    width = keys[index + 1] - keys[index]
+    fraction = np.clip((wanted - keys[index]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
+    if rotation:
+        out = quat.slerp(values[index], values[index + 1], fraction)
+    else:
+        out = values[index] + fraction[:, None] * (values[index + 1] - values[index])
+    if np.any(before):
+        out[before] = np.stack([realizations[i].initial for i in owner[before]])
+    return out
 
 
 @dataclass(frozen=True, eq=False)

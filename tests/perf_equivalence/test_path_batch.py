@@ -1,4 +1,5 @@
-"""The batched wrist-path tracing (motor.signing.path_batch) equals the one-path functions.
+"""The batched wrist-path tracing (motor.signing.path_batch) equals the one-path functions,
+and sign tracks sampled in one pass (motor.signing.lmp.sample_tracks) equal each track's own.
 
 Cases are synthetic wrist paths (labelled by kind): smooth arcs, zigzags that reverse,
 paths with repeated points (holds), two and three points, and paths so short that their
@@ -11,8 +12,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.program.lmp import ChannelState, TimePegs
-from motor.signing.lmp import Move, SignChannelLMP, law_fractions, smooth_pieces, stopping_length
+from motor.control import _sample
+from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
+from motor.signing.lmp import Move, SignChannelLMP, law_fractions, sample_tracks, smooth_pieces, stopping_length
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 
 
@@ -83,3 +85,44 @@ def test_traced_chain_samples_as_the_plain_activation(case: int, manner: str) ->
     np.testing.assert_allclose(traced.activate(state).sample(times), plain.activate(state).sample(times), rtol=0.0, atol=1e-12)
     elsewhere = ChannelState(way[0] + 1e-3, np.zeros(3), 0.2)
     np.testing.assert_array_equal(traced.activate(elsewhere).sample(times), plain.activate(elsewhere).sample(times))
+
+
+def _timeline(channel: str, signs: int, seed: int) -> ChannelTimeline:
+    """A channel's timeline of ``signs`` synthetic sign LMPs one after another."""
+    rng = np.random.default_rng(seed)
+    size = {"wrist_position": 3, "hand_rotation": 4, "handshape": 5}[channel]
+
+    def values(count: int) -> np.ndarray:
+        if channel == "wrist_position":
+            return _path(("arc", "zigzag", "random")[int(rng.integers(3))], count, int(rng.integers(1000)))
+        points = rng.standard_normal((count, size))
+        return points / np.linalg.norm(points, axis=1, keepdims=True) if channel == "hand_rotation" else points
+
+    lmps, clock = [], 0.1
+    for _ in range(signs):
+        ready = clock + rng.uniform(0.1, 0.4)
+        moves, at = [], ready
+        for _ in range(int(rng.integers(0, 3))):
+            moves.append(Move(at, at + rng.uniform(0.1, 0.5), ("lax", "targetted", "fast")[int(rng.integers(3))], values(int(rng.integers(2, 9)))))
+            at = moves[-1].end + rng.uniform(0.0, 0.1)
+        end = at + 0.05
+        pegs = TimePegs(clock, ready, ready, ready, end, end, end)
+        via = values(4)[1:3] if channel == "wrist_position" else None
+        lmps.append(SignChannelLMP(("right", channel), pegs, values(1)[0], tuple(moves), "lax", via))
+        clock = end
+    initial = values(1)[0]
+    return ChannelTimeline.build(("right", channel), lmps, ChannelState(initial, np.zeros(3 if size == 4 else size), 0.0))
+
+
+@pytest.mark.parametrize("channel", ["wrist_position", "hand_rotation", "handshape"])
+@pytest.mark.parametrize("signs", [1, 2, 7])
+def test_sign_tracks_sampled_in_one_pass_equal_each_track(channel: str, signs: int) -> None:
+    timeline = _timeline(channel, signs, seed=signs)
+    times = np.linspace(0.0, float(timeline.starts[-1]) + 1.0, 997)
+    owner = np.searchsorted(timeline.starts, times, side="right") - 1
+    inside = owner >= 0
+    joined = sample_tracks(timeline.realizations, owner[inside], times[inside])
+    assert joined is not None
+    each = np.concatenate([timeline.realizations[i].sample(times[inside][owner[inside] == i]) for i in range(len(timeline.realizations))])
+    np.testing.assert_array_equal(joined, each)
+    np.testing.assert_array_equal(_sample(timeline, times), timeline.sample(times))
