@@ -32,6 +32,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from functools import cache
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -39,7 +40,7 @@ from scipy.ndimage import gaussian_filter1d
 
 from motor import quaternion as quat
 from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
-from motor.trajectory.biocontrol import profile
+from motor.trajectory.biocontrol import MANNERS, profile
 from motor.trajectory.power_law import EXPONENT, clamped_curvature, path_spline
 from motor.trajectory.spline import HOLD_LENGTH, turning_angles
 
@@ -199,14 +200,15 @@ class _Track:
 
     The moves' values are flattened into one array; each value's *key* is
     ``2 · move + fraction of the way`` (strictly increasing), so one ``searchsorted``
-    finds every sample's segment in every move.
+    finds every sample's segment in every move. ``manners`` are the moves' rows in
+    :func:`manner_tables`.
     """
 
     rotation: bool
     initial: np.ndarray
     starts: np.ndarray
     ends: np.ndarray
-    tables: np.ndarray
+    manners: np.ndarray
     values: np.ndarray
     keys: np.ndarray
     first: np.ndarray
@@ -223,7 +225,7 @@ class _Track:
             initial=initial,
             starts=chain.starts,
             ends=chain.ends,
-            tables=np.stack([profile(manner).fractions for manner in chain.manners]),
+            manners=np.array([MANNER_ROWS[manner] for manner in chain.manners]),
             values=np.concatenate(chain.values),
             keys=np.concatenate([2.0 * i + f for i, f in enumerate(chain.fractions)]),
             first=first,
@@ -240,7 +242,7 @@ class _Track:
             initial=initial,
             starts=np.array([m.start for m in moves]),
             ends=np.array([m.end for m in moves]),
-            tables=np.stack([profile(m.manner).fractions for m in moves]),
+            manners=np.array([MANNER_ROWS[m.manner] for m in moves]),
             values=np.concatenate([m.values for m in moves]),
             keys=np.concatenate([2.0 * i + f for i, f in enumerate(fractions)]),
             first=first,
@@ -254,10 +256,12 @@ class _Track:
         move = np.maximum(owner, 0)
         u = np.clip((t - self.starts[move]) / (self.ends[move] - self.starts[move]), 0.0, 1.0)
         # the move's time profile, read from its table (linear interpolation)
-        position = u * (self.tables.shape[1] - 1)
-        low = np.minimum(position.astype(int), self.tables.shape[1] - 2)
+        tables = manner_tables()
+        position = u * (tables.shape[1] - 1)
+        low = np.minimum(position.astype(int), tables.shape[1] - 2)
         weight = position - low
-        s = (1.0 - weight) * self.tables[move, low] + weight * self.tables[move, low + 1]
+        rows = self.manners[move]
+        s = (1.0 - weight) * tables[rows, low] + weight * tables[rows, low + 1]
         # the segment of the move's values that fraction s of the way falls in
         index = np.searchsorted(self.keys, 2.0 * move + s, side="right") - 1
         index = np.clip(index, self.first[move], self.last[move] - 1)
@@ -283,6 +287,16 @@ class _Track:
         return ChannelState(v[2], velocity, float(time))
 
 
+#: Row of each manner in :func:`manner_tables`.
+MANNER_ROWS: dict[str, int] = {name: row for row, name in enumerate(MANNERS)}
+
+
+@cache
+def manner_tables() -> np.ndarray:
+    """The tables ``f: [0, 1] → [0, 1]`` of every manner (:data:`MANNER_ROWS`), one per row."""
+    return np.stack([profile(name).fractions for name in MANNERS])
+
+
 def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.ndarray) -> np.ndarray | None:
     """Values at sorted ``times`` of ``realizations[owner]`` (``owner`` ``(n,)``, indices
     into ``realizations``, non-decreasing), all in one pass: what each realization's
@@ -294,8 +308,7 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     if not realizations or not all(type(r) is _Track for r in realizations):
         return None
     rotation = realizations[0].rotation
-    widths = {r.tables.shape[1] for r in realizations}
-    if any(r.rotation != rotation for r in realizations) or len(widths) != 1:
+    if any(r.rotation != rotation for r in realizations):
         return None
     moves = np.array([r.starts.size for r in realizations])
     sizes = np.array([r.values.shape[0] for r in realizations])
@@ -303,7 +316,8 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     value_base = np.concatenate([[0], np.cumsum(sizes)[:-1]])
     starts = np.concatenate([r.starts for r in realizations])
     ends = np.concatenate([r.ends for r in realizations])
-    tables = np.concatenate([r.tables for r in realizations])
+    manners = np.concatenate([r.manners for r in realizations])
+    tables = manner_tables()
     values = np.concatenate([r.values for r in realizations])
     keys = np.concatenate([r.keys for r in realizations])
     first = np.concatenate([r.first for r in realizations]) + np.repeat(value_base, moves)
@@ -319,7 +333,7 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     position = u * (tables.shape[1] - 1)
     low = np.minimum(position.astype(int), tables.shape[1] - 2)
     weight = position - low
-    s = (1.0 - weight) * tables[row, low] + weight * tables[row, low + 1]
+    s = (1.0 - weight) * tables[manners[row], low] + weight * tables[manners[row], low + 1]
     wanted = 2.0 * move + s
     index = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), sizes) + 1j * keys, tracks + 1j * wanted, side="right") - 1
     index = np.clip(index, first[row], last[row] - 1)
