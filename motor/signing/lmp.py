@@ -218,32 +218,30 @@ class _Track:
     @classmethod
     def traced(cls, initial: np.ndarray, chain: TracedChain) -> _Track:
         """The wrist track of a chain traced ahead: what :meth:`of` makes of the same moves."""
-        sizes = np.array([values.shape[0] for values in chain.values])
-        first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-        return cls(
-            rotation=False,
-            initial=initial,
-            starts=chain.starts,
-            ends=chain.ends,
-            manners=np.array([MANNER_ROWS[manner] for manner in chain.manners]),
-            values=np.concatenate(chain.values),
-            keys=np.concatenate([2.0 * i + f for i, f in enumerate(chain.fractions)]),
-            first=first,
-            last=first + sizes - 1,
-        )
+        return cls.keyed(False, initial, chain.starts, chain.ends, chain.manners, chain.values, chain.fractions)
 
     @classmethod
     def of(cls, rotation: bool, initial: np.ndarray, moves: list[Move], by_distance: bool) -> _Track:
-        fractions = [path_fractions(m.values, by_distance) for m in moves]
-        sizes = np.array([m.values.shape[0] for m in moves])
+        return cls.keyed(
+            rotation, initial, np.array([m.start for m in moves]), np.array([m.end for m in moves]), [m.manner for m in moves],
+            [m.values for m in moves], [path_fractions(m.values, by_distance) for m in moves],
+        )  # fmt: skip
+
+    @classmethod
+    def keyed(
+        cls, rotation: bool, initial: np.ndarray, starts: np.ndarray, ends: np.ndarray, manners: Sequence[str],
+        values: Sequence[np.ndarray], fractions: Sequence[np.ndarray],
+    ) -> _Track:  # fmt: skip
+        """The track of moves given by their times, manners, values and fractions of the way."""
+        sizes = np.array([v.shape[0] for v in values])
         first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
         return cls(
             rotation=rotation,
             initial=initial,
-            starts=np.array([m.start for m in moves]),
-            ends=np.array([m.end for m in moves]),
-            manners=np.array([MANNER_ROWS[m.manner] for m in moves]),
-            values=np.concatenate([m.values for m in moves]),
+            starts=starts,
+            ends=ends,
+            manners=np.array([MANNER_ROWS[manner] for manner in manners]),
+            values=np.concatenate(values),
             keys=np.concatenate([2.0 * i + f for i, f in enumerate(fractions)]),
             first=first,
             last=first + sizes - 1,
@@ -422,6 +420,8 @@ class SignChannelLMP:
         by_distance = self.channel[1] == "wrist_position"
         way = np.stack([here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first])
         transition = Move(state.time, self.pegs.ready, self.transition, way)
+        if not by_distance:
+            return self._keyframes(rotation, here, transition)
         chain = _stopping_at_reversals(transition, through=True) if by_distance else [transition]
         previous = first
         for move in self.moves:
@@ -433,3 +433,23 @@ class SignChannelLMP:
                 chain.append(move)
             previous = chain[-1].values[-1]
         return _Track.of(rotation, here, chain, by_distance)
+
+    def _keyframes(self, rotation: bool, here: np.ndarray, transition: Move) -> _Track:
+        """The track of a channel moved by even fractions of its values (hand rotation, hand
+        shape): the transition, then the moves (rotations kept in the hemisphere of the
+        value before them), as :meth:`activate` chains them, without a :class:`Move` per move."""
+        values = [transition.values]
+        for move in self.moves:
+            values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
+        return _Track.keyed(
+            rotation, here, np.array([transition.start, *(m.start for m in self.moves)]), np.array([transition.end, *(m.end for m in self.moves)]),
+            [transition.manner, *(m.manner for m in self.moves)], values, [_even(v.shape[0]) for v in values],
+        )  # fmt: skip
+
+
+@cache
+def _even(count: int) -> np.ndarray:
+    """``count`` even fractions of the way, 0 to 1 (read-only, shared)."""
+    fractions = np.linspace(0.0, 1.0, count)
+    fractions.flags.writeable = False
+    return fractions

@@ -14,7 +14,8 @@ import pytest
 
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
-from motor.signing.lmp import Move, SignChannelLMP, law_fractions, sample_tracks, smooth_pieces, stopping_length
+from motor.quaternion import continuous
+from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, sample_tracks, smooth_pieces, stopping_length
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 
 
@@ -126,3 +127,25 @@ def test_sign_tracks_sampled_in_one_pass_equal_each_track(channel: str, signs: i
     each = np.concatenate([timeline.realizations[i].sample(times[inside][owner[inside] == i]) for i in range(len(timeline.realizations))])
     np.testing.assert_array_equal(joined, each)
     np.testing.assert_array_equal(_sample(timeline, times), timeline.sample(times))
+
+
+@pytest.mark.parametrize("flip", [False, True], ids=["same-hemisphere", "opposite-hemisphere"])
+@pytest.mark.parametrize("channel", ["hand_rotation", "handshape"])
+@pytest.mark.parametrize("seed", range(4))
+def test_keyframe_activation_equals_the_chain_of_moves(channel: str, seed: int, flip: bool) -> None:
+    """Rotation and hand-shape LMPs activate into the track that the chain of their moves
+    (the transition, then each move, rotations continued from the value before) makes."""
+    timeline = _timeline(channel, 3, seed=10 + seed)
+    lmp = timeline.lmps[-1]
+    here = np.asarray(timeline.realizations[-2].state(lmp.pegs.start).value)
+    here = -here if flip and channel == "hand_rotation" else here
+    state = ChannelState(here, np.zeros(3 if channel == "hand_rotation" else here.size), lmp.pegs.start)
+    first = np.asarray(lmp.first, dtype=float)
+    first = -first if channel == "hand_rotation" and here @ first < 0.0 else first
+    chain = [Move(lmp.pegs.start, lmp.pegs.ready, lmp.transition, np.stack([here, first]))]
+    for move in lmp.moves:
+        values = continuous(np.concatenate([chain[-1].values[-1:], move.values]))[1:] if channel == "hand_rotation" else move.values
+        chain.append(Move(move.start, move.end, move.manner, values))
+    expected = _Track.of(channel == "hand_rotation", here, chain, by_distance=False)
+    times = np.linspace(lmp.pegs.start - 0.1, lmp.pegs.end + 0.2, 301)
+    np.testing.assert_array_equal(lmp.activate(state).sample(times), expected.sample(times))
