@@ -86,7 +86,13 @@ class Move:
         object.__setattr__(self, "values", values)
 
     def shifted(self, offset: float) -> Move:
-        return replace(self, start=self.start + offset, end=self.end + offset)
+        """The same move ``offset`` seconds later (its values, already checked, shared)."""
+        moved = object.__new__(Move)
+        for name, value in (("start", self.start + offset), ("end", self.end + offset), ("manner", self.manner), ("values", self.values)):
+            object.__setattr__(moved, name, value)
+        if not moved.end > moved.start:
+            raise ValueError(f"move must end after it starts, got [{moved.start}, {moved.end}]")
+        return moved
 
 
 def _through(piece: np.ndarray) -> np.ndarray:
@@ -249,10 +255,11 @@ class _Track:
 
     def sample(self, times: np.ndarray) -> np.ndarray:
         t = np.asarray(times, dtype=float)
-        owner = np.searchsorted(self.starts, t, side="right") - 1
+        owner = self.starts.searchsorted(t, side="right") - 1
         before = owner < 0
         move = np.maximum(owner, 0)
-        u = np.clip((t - self.starts[move]) / (self.ends[move] - self.starts[move]), 0.0, 1.0)
+        start = self.starts[move]
+        u = np.minimum(np.maximum((t - start) / (self.ends[move] - start), 0.0), 1.0)
         # the move's time profile, read from its table (linear interpolation)
         tables = manner_tables()
         position = u * (tables.shape[1] - 1)
@@ -261,24 +268,22 @@ class _Track:
         rows = self.manners[move]
         s = (1.0 - weight) * tables[rows, low] + weight * tables[rows, low + 1]
         # the segment of the move's values that fraction s of the way falls in
-        index = np.searchsorted(self.keys, 2.0 * move + s, side="right") - 1
-        index = np.clip(index, self.first[move], self.last[move] - 1)
-        width = self.keys[index + 1] - self.keys[index]
-        local = np.clip((2.0 * move + s - self.keys[index]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
-        if self.rotation:
-            out = quat.slerp(self.values[index], self.values[index + 1], local)
-        else:
-            out = self.values[index] + local[:, None] * (self.values[index + 1] - self.values[index])
-        out[before] = self.initial
+        wanted = 2.0 * move + s
+        index = np.minimum(np.maximum(self.keys.searchsorted(wanted, side="right") - 1, self.first[move]), self.last[move] - 1)
+        low_key = self.keys[index]
+        width = self.keys[index + 1] - low_key
+        local = np.minimum(np.maximum((wanted - low_key) / np.where(width > _SAME, width, 1.0), 0.0), 1.0)
+        a, b = self.values[index], self.values[index + 1]
+        out = quat.slerp(a, b, local) if self.rotation else a + local[:, None] * (b - a)
+        if before.any():
+            out[before] = self.initial
         return out
 
     def state(self, time: float) -> ChannelState:
         """Value and velocity (angular velocity for rotations) looking back from ``time``."""
-        t = np.array([time - 2 * _STEP, time - _STEP, time])
-        v = self.sample(t)
+        v = self.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
         if self.rotation:
-            one = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1])))
-            two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[0])))
+            one, two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1::-1])))
             velocity = (4.0 * one - two) / (2.0 * _STEP)
         else:
             velocity = (3.0 * v[2] - 4.0 * v[1] + v[0]) / (2.0 * _STEP)

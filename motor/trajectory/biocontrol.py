@@ -242,13 +242,19 @@ def shortest_duration(length: float, manner: str) -> float:
     acceleration ``length · max |f″| / T²``."""
     if length <= 0.0:
         return 0.0
-    shape = profile(manner)
+    peak_rate, peak_acceleration = _profile_peaks(manner)
     limits = budget(manner)
-    u = np.linspace(0.0, 1.0, shape.rates.size)
-    peak_acceleration = float(np.max(np.abs(np.gradient(shape.rates, u))))
-    by_speed = length * float(shape.rates.max()) / limits.peak_speed
+    by_speed = length * peak_rate / limits.peak_speed
     by_acceleration = float(np.sqrt(length * peak_acceleration / limits.peak_acceleration))
     return max(by_speed, by_acceleration)
+
+
+@cache
+def _profile_peaks(manner: str) -> tuple[float, float]:
+    """Peak ``f′`` and peak ``|f″|`` of the profile of ``manner`` (per unit time fraction)."""
+    shape = profile(manner)
+    u = np.linspace(0.0, 1.0, shape.rates.size)
+    return float(shape.rates.max()), float(np.max(np.abs(np.gradient(shape.rates, u))))
 
 
 def movement_duration(kind: str, manner: str = "targetted", base: float = BASE_DURATION) -> float:
