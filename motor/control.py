@@ -84,7 +84,7 @@ from motor.program.lmp import (
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
-from motor.signing.lmp import sample_tracks
+from motor.signing.lmp import SignChannelLMP, activate_in_turn, sample_tracks
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.trajectory.spline import fitts_duration
 from motor.verbs.behavior import VerbBehaviorPlanner
@@ -122,6 +122,10 @@ MAX_FRAME_LOOKAHEAD = 16.0
 REACHED_ALLOWANCE = 0.003
 #: Most times the hands as the arms turned them are moved apart and the arms solved again.
 HANDS_APART_ROUNDS = 3
+#: Frames solved in one pass: a long span is solved this many frames at a time, which
+#: gives the same frames (they depend only on their times and the activated LMPs, module
+#: docstring) with per-frame arrays that stay in the CPU's cache.
+FRAME_CHUNK = 2048
 #: Frame times are ``k / fps``; a time within this of a frame counts as on it.
 _FRAME_TOLERANCE = 1e-9
 #: Module of a channel that is not an arm's: its LMPs go to the neck or the face.
@@ -326,8 +330,9 @@ class MotorControl:
             return self._timelines[channel]
         built = self._timelines.get(channel)
         if built is not None and all(a.pegs.start <= b.pegs.start for a, b in zip(built.lmps[-1:] + tuple(pending), pending)):
-            for lmp in pending:
-                built = built.extended(lmp)
+            built = _extended(built, pending)
+        elif all(isinstance(lmp, SignChannelLMP) for lmp in self._lmps[channel]) and _in_order(self._lmps[channel]):
+            built = _extended(ChannelTimeline(channel, self._initial[channel], (), (), np.empty(0)), self._lmps[channel])
         else:
             built = ChannelTimeline.build(channel, self._lmps[channel], self._initial[channel])
         self._timelines[channel] = built
@@ -415,8 +420,11 @@ class MotorControl:
         return rotations[:count].copy(), faces[:count].copy()
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
-        """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order)."""
-        return self._solve_frames(times)[0]
+        """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order),
+        solved :data:`FRAME_CHUNK` frames at a time."""
+        if times.size <= FRAME_CHUNK:
+            return self._solve_frames(times)[0]
+        return np.concatenate([self._solve_frames(times[start : start + FRAME_CHUNK])[0] for start in range(0, times.size, FRAME_CHUNK)])
 
     def _solve_frames(self, times: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
         """Joint rotations ``(n, J, 4)`` at ``times``, the wrist positions each arm was
@@ -580,6 +588,27 @@ def _chain_rotation(local: np.ndarray) -> np.ndarray:
     for index in range(1, local.shape[1]):
         total = quat.multiply(total, local[:, index])
     return total
+
+
+def _in_order(lmps: Sequence[LMP]) -> bool:
+    return all(a.pegs.start <= b.pegs.start for a, b in zip(lmps, lmps[1:]))
+
+
+def _extended(timeline: ChannelTimeline, lmps: Sequence[LMP]) -> ChannelTimeline:
+    """``timeline`` extended by ``lmps`` (in start order) one after another
+    (:meth:`ChannelTimeline.extended`); sign LMPs all at once
+    (:func:`motor.signing.lmp.activate_in_turn`, the same tracks)."""
+    if len(lmps) < 2 or not all(isinstance(lmp, SignChannelLMP) for lmp in lmps):
+        for lmp in lmps:
+            timeline = timeline.extended(lmp)
+        return timeline
+    start = lmps[0].pegs.start
+    if timeline.starts.size and start < timeline.starts[-1]:
+        raise ValueError(f"{timeline.channel}: an LMP starting at {start} cannot follow one starting at {timeline.starts[-1]}")
+    here = timeline.realizations[-1].state(start).value if timeline.realizations else timeline.initial.value
+    tracks = activate_in_turn(lmps, np.asarray(here, dtype=float), start)
+    starts = np.append(timeline.starts, [float(lmp.pegs.start) for lmp in lmps])
+    return ChannelTimeline(timeline.channel, timeline.initial, (*timeline.lmps, *lmps), (*timeline.realizations, *tracks), starts)
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:

@@ -31,7 +31,7 @@ stops at rest with zero acceleration (the manner profiles,
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cache
 
 import numpy as np
@@ -236,11 +236,14 @@ class _Track:
     @classmethod
     def keyed(
         cls, rotation: bool, initial: np.ndarray, starts: np.ndarray, ends: np.ndarray, manners: Sequence[str],
-        values: Sequence[np.ndarray], fractions: Sequence[np.ndarray],
+        values: Sequence[np.ndarray], fractions: Sequence[np.ndarray] | None,
     ) -> _Track:  # fmt: skip
-        """The track of moves given by their times, manners, values and fractions of the way."""
-        sizes = np.array([v.shape[0] for v in values])
-        first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        """The track of moves given by their times, manners, values and fractions of the way
+        (None: even fractions)."""
+        if fractions is None:
+            keys, first, last = _even_layout(tuple(v.shape[0] for v in values))
+        else:
+            keys, first, last = _layout([f.shape[0] for f in fractions], fractions)
         return cls(
             rotation=rotation,
             initial=initial,
@@ -248,9 +251,9 @@ class _Track:
             ends=ends,
             manners=np.array([MANNER_ROWS[manner] for manner in manners]),
             values=np.concatenate(values),
-            keys=np.concatenate([2.0 * i + f for i, f in enumerate(fractions)]),
+            keys=keys,
             first=first,
-            last=first + sizes - 1,
+            last=last,
         )
 
     def sample(self, times: np.ndarray) -> np.ndarray:
@@ -375,8 +378,8 @@ class TracedChain:
     values: tuple[np.ndarray, ...]
     fractions: tuple[np.ndarray, ...]
 
-    def fits(self, state: ChannelState) -> bool:
-        return state.time == self.time and np.array_equal(np.asarray(state.value, dtype=float), self.here)
+    def fits(self, here: np.ndarray, time: float) -> bool:
+        return time == self.time and np.array_equal(here, self.here)
 
 
 @dataclass(frozen=True, eq=False)
@@ -404,6 +407,7 @@ class SignChannelLMP:
     transition: str = "lax"
     via: np.ndarray | None = None
     traced: TracedChain | None = None
+    _templates: dict[bool, _Template] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if not self.pegs.ready > self.pegs.start:
@@ -415,18 +419,23 @@ class SignChannelLMP:
             previous = move.end
 
     def activate(self, state: ChannelState) -> _Track:
+        return self.realize(np.asarray(state.value, dtype=float), state.time)
+
+    def realize(self, here: np.ndarray, time: float) -> _Track:
+        """The track of an activation at ``time`` seconds with the channel at ``here``
+        (only the state's value and time matter, not its velocity)."""
         rotation = self.channel[1] in ROTATION_CHANNELS
-        here = np.asarray(state.value, dtype=float)
-        if self.traced is not None and self.traced.fits(state):
+        if self.traced is not None and self.traced.fits(here, time):
             return _Track.traced(here, self.traced)
         first = np.asarray(self.first, dtype=float)
-        if rotation and here @ first < 0.0:
+        flip = bool(rotation and here @ first < 0.0)
+        if flip:
             first = -first
         by_distance = self.channel[1] == "wrist_position"
+        if not by_distance and self.pegs.ready > time and np.all(np.isfinite(here)):
+            return self._template(rotation, flip, first).track(here, time)
         way = np.stack([here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first])
-        transition = Move(state.time, self.pegs.ready, self.transition, way)
-        if not by_distance:
-            return self._keyframes(rotation, here, transition)
+        transition = Move(time, self.pegs.ready, self.transition, way)
         chain = _stopping_at_reversals(transition, through=True) if by_distance else [transition]
         previous = first
         for move in self.moves:
@@ -439,22 +448,101 @@ class SignChannelLMP:
             previous = chain[-1].values[-1]
         return _Track.of(rotation, here, chain, by_distance)
 
-    def _keyframes(self, rotation: bool, here: np.ndarray, transition: Move) -> _Track:
+    def _template(self, rotation: bool, flip: bool, first: np.ndarray) -> _Template:
         """The track of a channel moved by even fractions of its values (hand rotation, hand
-        shape): the transition, then the moves (rotations kept in the hemisphere of the
-        value before them), as :meth:`activate` chains them, without a :class:`Move` per move."""
-        values = [transition.values]
-        for move in self.moves:
-            values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
-        return _Track.keyed(
-            rotation, here, np.array([transition.start, *(m.start for m in self.moves)]), np.array([transition.end, *(m.end for m in self.moves)]),
-            [transition.manner, *(m.manner for m in self.moves)], values, [_even(v.shape[0]) for v in values],
-        )  # fmt: skip
+        shape) but for where it starts, made once per sign of ``first``: the transition to
+        ``first`` (through :attr:`via`), then the moves (rotations kept in the hemisphere of
+        the value before them), as the chain of :class:`Move` would make it."""
+        templates = self._templates
+        if flip not in templates:
+            way = np.stack([first, first] if self.via is None else [first, *np.asarray(self.via, dtype=float), first])
+            values = [way]
+            for move in self.moves:
+                values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
+            templates[flip] = _Template(_Track.keyed(
+                rotation, first, np.array([self.pegs.start, *(m.start for m in self.moves)]), np.array([self.pegs.ready, *(m.end for m in self.moves)]),
+                [self.transition, *(m.manner for m in self.moves)], values, None,
+            ))  # fmt: skip
+        return templates[flip]
+
+
+@dataclass(frozen=True, eq=False)
+class _Template:
+    """A keyframe channel's track with the place and time it starts left open."""
+
+    base: _Track
+
+    def track(self, here: np.ndarray, time: float) -> _Track:
+        values = self.base.values.copy()
+        values[0] = here
+        starts = self.base.starts.copy()
+        starts[0] = time
+        return replace(self.base, initial=here, starts=starts, values=values)
+
+
+#: Rounds that correct the guessed activation values of :func:`activate_in_turn` before
+#: its pass in order.
+GUESS_ROUNDS = 1
+
+
+def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[_Track]:
+    """The tracks of sign LMPs of one channel activated one after another, as
+    :meth:`motor.program.lmp.ChannelTimeline.build` activates them: the first at ``time``
+    from ``here``, each next at its start from the value the track before has then.
+
+    Each activation's value is first guessed: the value the previous LMP's track has at
+    its start when that track is made from a guess of its own value (:data:`GUESS_ROUNDS`
+    times, after which most guesses are exact), all tracks sampled at once (:func:`sample_tracks`). Then the LMPs
+    are taken in order: an activation whose guess is the value the track before gives
+    keeps its track; any other is made again from that value, and the value after it is
+    sampled anew. The result is the sequential one, with most of its work in vectorized
+    passes."""
+    starts = [lmp.pegs.start for lmp in lmps]
+    guesses = [here] + [_last_value(lmp) for lmp in lmps[:-1]]
+    tracks = [lmps[0].realize(here, time)] + [lmp.realize(guess, start) for lmp, guess, start in zip(lmps[1:], guesses[1:], starts[1:])]
+    for _ in range(GUESS_ROUNDS):
+        sampled = _values_at(tracks[:-1], starts[1:])
+        if sampled is None:
+            break
+        for i in range(1, len(lmps)):
+            if not np.array_equal(sampled[i - 1], guesses[i]):
+                guesses[i] = sampled[i - 1]
+                tracks[i] = lmps[i].realize(guesses[i], starts[i])
+    sampled = _values_at(tracks[:-1], starts[1:])
+    fresh = False  # the track before was made again after the values were sampled
+    for i in range(1, len(lmps)):
+        value = tracks[i - 1].sample(np.array([starts[i]]))[0] if fresh or sampled is None else sampled[i - 1]
+        fresh = not np.array_equal(value, guesses[i])
+        if fresh:
+            tracks[i] = lmps[i].realize(value, starts[i])
+    return tracks
+
+
+def _last_value(lmp: SignChannelLMP) -> np.ndarray:
+    """Where the channel is when ``lmp`` is done, about (a guess, exact for most)."""
+    if lmp.traced is not None:
+        return lmp.traced.values[-1][-1]
+    return np.asarray(lmp.moves[-1].values[-1] if lmp.moves else lmp.first, dtype=float)
+
+
+def _values_at(tracks: Sequence[_Track], times: Sequence[float]) -> np.ndarray | None:
+    """Each track's value at its time, all at once (the values its own ``sample`` gives)."""
+    if not tracks:
+        return np.empty((0, 0))
+    return sample_tracks(tracks, np.arange(len(tracks)), np.asarray(times, dtype=float))
+
+
+def _layout(sizes: Sequence[int], fractions: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A track's keys (``2 · move + fraction``) and each move's first and last value."""
+    sizes = np.array(sizes)
+    first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    return np.concatenate([2.0 * i + f for i, f in enumerate(fractions)]), first, first + sizes - 1
 
 
 @cache
-def _even(count: int) -> np.ndarray:
-    """``count`` even fractions of the way, 0 to 1 (read-only, shared)."""
-    fractions = np.linspace(0.0, 1.0, count)
-    fractions.flags.writeable = False
-    return fractions
+def _even_layout(sizes: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_layout` of moves of ``sizes`` values at even fractions (read-only, shared)."""
+    arrays = _layout(sizes, [np.linspace(0.0, 1.0, size) for size in sizes])
+    for array in arrays:
+        array.flags.writeable = False
+    return arrays

@@ -15,7 +15,7 @@ import pytest
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
-from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, sample_tracks, smooth_pieces, stopping_length
+from motor.signing.lmp import Move, SignChannelLMP, _Track, activate_in_turn, law_fractions, sample_tracks, smooth_pieces, stopping_length
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 
 
@@ -149,3 +149,16 @@ def test_keyframe_activation_equals_the_chain_of_moves(channel: str, seed: int, 
     expected = _Track.of(channel == "hand_rotation", here, chain, by_distance=False)
     times = np.linspace(lmp.pegs.start - 0.1, lmp.pegs.end + 0.2, 301)
     np.testing.assert_array_equal(lmp.activate(state).sample(times), expected.sample(times))
+
+
+@pytest.mark.parametrize("channel", ["wrist_position", "hand_rotation", "handshape"])
+@pytest.mark.parametrize("signs", [1, 2, 9, 30])
+def test_sign_lmps_activated_in_turn_equal_the_sequential_timeline(channel: str, signs: int) -> None:
+    """activate_in_turn (guessed values, vectorized samples, then a pass in order) makes
+    the tracks ChannelTimeline.build makes one after another; the synthetic LMPs include
+    runs without moves, whose values chain from one activation to the next."""
+    sequential = _timeline(channel, signs, seed=100 + signs)
+    tracks = activate_in_turn(sequential.lmps, np.asarray(sequential.initial.value, dtype=float), sequential.lmps[0].pegs.start)
+    times = np.linspace(0.0, float(sequential.starts[-1]) + 1.0, 1201)
+    for track, realization in zip(tracks, sequential.realizations, strict=True):
+        np.testing.assert_array_equal(track.sample(times), realization.sample(times))
