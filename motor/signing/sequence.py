@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from functools import cache
 
 import numpy as np
 
@@ -38,7 +39,7 @@ from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.path_batch import stopping_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
-from motor.signing.reach import clear_paths, rotations_along
+from motor.signing.reach import clear_paths
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
@@ -178,22 +179,33 @@ def _transition_ways(
     (:func:`motor.signing.planning.clear_paths`; a transition is not a path the sign chose)."""
     ways: list[dict[str, np.ndarray]] = [{} for _ in legs]
     for arm in ARMS:
-        paths, turns = [], []
-        for before, after in legs:
-            distance = float(np.linalg.norm(after[arm].wrist - before[arm].wrist))
-            count = max(MIN_TRANSITION_POINTS, int(np.ceil(distance / TRANSITION_SPACING)))
-            fractions = np.linspace(0.0, 1.0, count + 2)
-            paths.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
-            turns.append(rotations_along(np.stack([before[arm].rotation, after[arm].rotation]), fractions))
-        cleared, _ = clear_paths(avatar, arm, paths, turns, keep_ends=True)
-        for way, points in zip(ways, cleared):
-            way[arm] = points[1:-1]
+        starts = np.array([before[arm].wrist for before, _ in legs])
+        steps = np.array([after[arm].wrist for _, after in legs]) - starts
+        distances = [float(np.linalg.norm(step)) for step in steps]
+        counts = np.array([max(MIN_TRANSITION_POINTS, int(np.ceil(distance / TRANSITION_SPACING))) + 2 for distance in distances])
+        fractions = np.concatenate([_even_fractions(int(count)) for count in counts])
+        leg = np.repeat(np.arange(len(legs)), counts)
+        points = starts[leg] + fractions[:, None] * steps[leg]
+        # the slerp between the leg's two hand rotations (rotations_along of two keys)
+        turns = quat.slerp(np.array([before[arm].rotation for before, _ in legs])[leg], np.array([after[arm].rotation for _, after in legs])[leg], np.clip(fractions, 0.0, 1.0))
+        split = np.cumsum(counts)[:-1]
+        cleared, _ = clear_paths(avatar, arm, np.split(points, split), np.split(turns, split), keep_ends=True)
+        for way, path in zip(ways, cleared):
+            way[arm] = path[1:-1]
     return ways
 
 
 def _way_path(before: HandPose, after: HandPose, way: np.ndarray) -> np.ndarray:
     """A wrist transition's path ``(k + 2, 3)``: from ``before`` through ``way`` to ``after``."""
     return np.concatenate([before.wrist[None], way.reshape(-1, 3), after.wrist[None]])
+
+
+@cache
+def _even_fractions(count: int) -> np.ndarray:
+    """``count`` evenly spaced fractions from 0 to 1 (read-only, shared)."""
+    fractions = np.linspace(0.0, 1.0, count)
+    fractions.flags.writeable = False
+    return fractions
 
 
 def _transition_time(here: dict[str, HandPose], targets: dict[str, HandPose], stopping: Sequence[float], manner: str) -> float:

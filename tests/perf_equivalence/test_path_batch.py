@@ -12,11 +12,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from motor.body.avatar import ARMS, load_avatar
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
 from motor.signing.lmp import Move, SignChannelLMP, _Track, activate_in_turn, law_fractions, sample_tracks, smooth_pieces, stopping_length
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
+from motor.signing.plan import HandPose
+from motor.signing.reach import clear_paths, rotations_along
+from motor.signing.sequence import MIN_TRANSITION_POINTS, TRANSITION_SPACING, _transition_ways
 
 
 def _path(kind: str, count: int, seed: int) -> np.ndarray:
@@ -162,3 +166,29 @@ def test_sign_lmps_activated_in_turn_equal_the_sequential_timeline(channel: str,
     times = np.linspace(0.0, float(sequential.starts[-1]) + 1.0, 1201)
     for track, realization in zip(tracks, sequential.realizations, strict=True):
         np.testing.assert_array_equal(track.sample(times), realization.sample(times))
+
+
+@pytest.mark.parametrize("legs", [1, 3, 12])
+def test_transition_ways_in_one_pass_equal_the_ways_leg_by_leg(legs: int) -> None:
+    """sequence._transition_ways builds every leg's straight path and hand turns in one
+    pass; leg by leg (linspace, rotations_along) gives the same paths to clear."""
+    avatar = load_avatar("max")
+    rng = np.random.default_rng(legs)
+
+    def pose() -> HandPose:
+        rotation = rng.standard_normal(4)
+        return HandPose(np.array([0.0, 1.2, 0.35]) + 0.15 * rng.standard_normal(3), rotation / np.linalg.norm(rotation), np.zeros(5))
+
+    chain = [{arm: pose() for arm in ARMS} for _ in range(legs + 1)]
+    pairs = list(zip(chain[:-1], chain[1:]))
+    ways = _transition_ways(avatar, pairs)
+    for arm in ARMS:
+        paths, turns = [], []
+        for before, after in pairs:
+            count = max(MIN_TRANSITION_POINTS, int(np.ceil(float(np.linalg.norm(after[arm].wrist - before[arm].wrist)) / TRANSITION_SPACING)))
+            fractions = np.linspace(0.0, 1.0, count + 2)
+            paths.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
+            turns.append(rotations_along(np.stack([before[arm].rotation, after[arm].rotation]), fractions))
+        cleared, _ = clear_paths(avatar, arm, paths, turns, keep_ends=True)
+        for way, path in zip(ways, cleared, strict=True):
+            np.testing.assert_array_equal(way[arm], path[1:-1])
