@@ -119,8 +119,27 @@ def _turning(points: np.ndarray) -> np.ndarray:
     return np.arccos(np.clip(cos, -1.0, 1.0)).reshape(points.shape[0], -1)
 
 
+def _distinct(arrays: Sequence[np.ndarray]) -> tuple[list[np.ndarray], list[int]]:
+    """The distinct arrays (bit for bit; a corpus repeats many moves) and, for each array,
+    the index of its twin among them."""
+    seen: dict[tuple, int] = {}
+    twins = [seen.setdefault((array.shape, array.tobytes()), len(seen)) for array in arrays]
+    distinct: list[np.ndarray | None] = [None] * len(seen)
+    for array, twin in zip(arrays, twins):
+        if distinct[twin] is None:
+            distinct[twin] = array
+    return distinct, twins
+
+
 def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
-    """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)``, in one pass per size."""
+    """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)``, in one pass per
+    size (each distinct path once)."""
+    distinct, twins = _distinct([np.asarray(path) for path in paths])
+    traced = _smooth_pieces_many(distinct, through)
+    return [traced[twin] for twin in twins]
+
+
+def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
     out: list[list[np.ndarray] | None] = [None] * len(paths)
     pieces: list[tuple[int, int, np.ndarray]] = []  # (path, order, piece)
     for m, members in _groups(paths).items():
@@ -253,23 +272,45 @@ def _within(pieces: np.ndarray) -> np.ndarray:
 
 
 def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
-    """:func:`motor.signing.lmp.law_fractions` of every dense path ``(m, 3)``."""
+    """:func:`motor.signing.lmp.law_fractions` of every dense path ``(m, 3)``: the curvature
+    per group of paths of one size, the law-time grid (its interpolations and smoothing)
+    per batch of paths with grids of about one size (each distinct path once)."""
+    distinct, twins = _distinct([np.asarray(path) for path in paths])
+    fractions = _law_fractions_many(distinct)
+    return [fractions[twin] for twin in twins]
+
+
+def _law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
     out: list[np.ndarray | None] = [None] * len(paths)
+    rows: list[tuple[int, np.ndarray, np.ndarray, np.ndarray, float, int, float]] = []
     for m, members in _groups(paths).items():
         if m < 3:
             for index in members:  # two points: the way's two ends, [0, 1] (none: as given)
                 out[index] = np.array([0.0, 1.0]) if m == 2 and np.all(np.isfinite(paths[index])) else law_fractions(paths[index])
             continue
-        stacked = np.stack([paths[index] for index in members])
-        fractions, done = _law_fractions(stacked)
+        chords, arc, log_curvature, counts, spacing, done = _law_curvature(np.stack([paths[index] for index in members]))
         for row, index in enumerate(members):
-            out[index] = fractions[row] if done[row] else law_fractions(paths[index])
+            if done[row]:
+                rows.append((index, chords[row], arc[row], log_curvature[row], float(spacing[row]), int(counts[row]), 0.0))
+            else:
+                out[index] = law_fractions(paths[index])
+    batches: dict[tuple[int, int], list[tuple]] = defaultdict(list)
+    for row in rows:  # paths and grids of about one size each
+        batches[(int(np.log(row[2].size) / _LOG_SPREAD), int(np.log(row[5]) / _LOG_SPREAD))].append(row)
+    for batch in batches.values():
+        for (index, *_), fractions in zip(batch, _law_grid(batch)):
+            out[index] = fractions
     return out
 
 
-def _law_fractions(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Law-time fractions of every row of ``(g, m ≥ 3, 3)`` and which rows they hold
-    (the others: no length, or a kernel wider than :data:`_MAX_RADIUS`)."""
+#: Paths whose sizes and law-time grids differ by less than this factor share a pass.
+_LOG_SPREAD = float(np.log(1.4))
+
+
+def _law_curvature(points: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Chords, arc length, log clamped curvature, grid size and spacing of every row of
+    ``(g, m ≥ 3, 3)`` (:func:`motor.signing.lmp.law_fractions`), and which rows the grid
+    pass takes (the others: no length, or a kernel wider than :data:`_MAX_RADIUS`)."""
     g, m, _ = points.shape
     chords = np.linalg.norm(np.diff(points, axis=1), axis=2)
     arc = np.concatenate([np.zeros((g, 1)), np.cumsum(chords, axis=1)], axis=1)
@@ -285,30 +326,44 @@ def _law_fractions(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     spacing = total / (counts - 1)
     sigma = LAW_SMOOTHING / np.where(valid, spacing, LAW_SMOOTHING)
     done = valid & (_TRUNCATE * sigma + 0.5 < _MAX_RADIUS + 1)
-    rows = np.flatnonzero(done)
-    fractions = np.zeros((g, m))
-    if rows.size == 0:
-        return fractions, done
-    arc, log_curvature, chords, total, counts, spacing = arc[rows], log_curvature[rows], chords[rows], total[rows], counts[rows], spacing[rows]
+    return chords, arc, log_curvature, counts, spacing, done
+
+
+def _law_grid(batch: list[tuple]) -> list[np.ndarray]:
+    """The law-time fractions of rows ``(index, chords, arc, log curvature, spacing,
+    grid size, _)`` of paths of any sizes, in one pass over arrays padded to the longest
+    (a path's arc padded with its length, its chords with zeros: what is computed for the
+    padding is never read)."""
+    n = len(batch)
+    sizes = np.array([row[2].size for row in batch])
+    longest = int(sizes.max())
+    arc = np.empty((n, longest))
+    log_curvature = np.empty((n, longest))
+    chords = np.zeros((n, longest - 1))
+    for r, (_, chord, length, logs, *_) in enumerate(batch):
+        arc[r, : length.size], arc[r, length.size :] = length, length[-1]
+        log_curvature[r, : logs.size], log_curvature[r, logs.size :] = logs, logs[-1]
+        chords[r, : chord.size] = chord
+    spacing = np.array([row[4] for row in batch])
+    counts = np.array([row[5] for row in batch])
+    total = arc[np.arange(n), sizes - 1]
     width = int(counts.max())
     columns = np.arange(width)
     grid = columns * spacing[:, None] + 0.0
-    grid[np.arange(rows.size), counts - 1] = total
-    inside = columns < counts[:, None]
-    grid = np.where(inside, grid, np.inf)
+    grid[np.arange(n), counts - 1] = total
+    grid = np.where(columns < counts[:, None], grid, np.inf)
     # the grid index each arc point falls after, exactly: the uniform estimate, corrected
     after = _last_at_or_below(grid, arc, np.clip((arc / spacing[:, None]).astype(int), 0, counts[:, None] - 1), counts)
     # the arc index each grid point falls after: count the arc points at or below it
-    first_above = np.minimum(after + (grid[np.arange(rows.size)[:, None], after] < arc), width)  # first grid ≥ arc point
-    tally = np.zeros((rows.size, width + 1), dtype=int)
-    np.add.at(tally, (np.repeat(np.arange(rows.size), m), first_above.ravel()), 1)
-    below = np.cumsum(tally[:, :width], axis=1) - 1  # last arc index ≤ each grid point
-    values = _interp(grid, arc, log_curvature, np.clip(below, 0, m - 1), np.full(rows.size, m))
+    first_above = np.minimum(after + (grid[np.arange(n)[:, None], after] < arc), width)  # first grid ≥ arc point
+    tally = np.zeros((n, width + 1), dtype=int)
+    np.add.at(tally, (np.repeat(np.arange(n), longest), first_above.ravel()), 1)
+    below = np.minimum(np.maximum(np.cumsum(tally[:, :width], axis=1) - 1, 0), sizes[:, None] - 1)
+    values = _interp(grid, arc, log_curvature, below, sizes)
     smooth = _gaussian(values, spacing, counts)
     density = np.exp(EXPONENT * _interp(arc, grid, smooth, after, counts))
-    tau = np.concatenate([np.zeros((rows.size, 1)), np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * chords, axis=1)], axis=1)
-    fractions[rows] = tau / tau[:, -1:]
-    return fractions, done
+    tau = np.concatenate([np.zeros((n, 1)), np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * chords, axis=1)], axis=1)
+    return [tau[r, :size] / tau[r, size - 1] for r, size in enumerate(sizes)]
 
 
 def _last_at_or_below(xp: np.ndarray, x: np.ndarray, guess: np.ndarray, counts: np.ndarray) -> np.ndarray:
