@@ -455,6 +455,8 @@ class SignChannelLMP:
         the value before them), as the chain of :class:`Move` would make it."""
         templates = self._templates
         if flip not in templates:
+            for manner in (self.transition, *(m.manner for m in self.moves)):
+                profile(manner)  # an unknown manner: the error a Move gives
             way = np.stack([first, first] if self.via is None else [first, *np.asarray(self.via, dtype=float), first])
             values = [way]
             for move in self.moves:

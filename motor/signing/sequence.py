@@ -9,8 +9,10 @@ the wrists travel, then performs its moves; after the last sign the hands return
 along the lax profile in :func:`motor.program.gesture.retraction_duration` and stay there for
 :data:`REST_TAIL` seconds. A hand a sign does not use goes back to rest during that sign.
 
-The sign LMPs (:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and
-sign) are activated on :class:`motor.control.MotorControl`, which samples them and solves
+The wrist paths of every transition and move of the sequence are traced in one batch
+(:mod:`motor.signing.path_batch`) and handed to the sign LMPs
+(:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and sign),
+activated on :class:`motor.control.MotorControl`, which samples them and solves
 both arms (analytic IK with a smooth swivel track that keeps the arms clear of the body
 and of each other, :mod:`motor.control`) and hands for every frame. Each sign's
 non-manual tiers (head, eye gaze, torso, shoulders, eyebrows, eyelids, nose, mouth
@@ -98,26 +100,11 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     plans = [item if isinstance(item, SignPlan) else plan_sign(avatar, item) for item in signs]
     control = MotorControl(avatar, fps)
     rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
-    here = dict(rest)
-    legs: list[tuple[dict[str, HandPose], dict[str, HandPose]]] = []
-    for plan in plans:
-        targets = {arm: plan.first.get(arm, rest[arm]) for arm in ARMS}
-        legs.append((dict(here), targets))
-        here = {arm: _last_pose(plan, arm, targets[arm]) for arm in ARMS}
-    legs.append((dict(here), rest))
+    legs = _legs(plans, rest)
     ways = _transition_ways(avatar, legs)
     paths = [{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(legs, ways)]
-    stopping = iter(stopping_lengths([leg[arm] for leg in paths for arm in ARMS]))
-    clock = REST_LEAD
-    spans: list[tuple[float, float, float]] = []
-    for plan, (before, targets) in zip(plans, legs):
-        manner = "targetted" if plan.static else "lax"
-        ready = clock + _transition_time(before, targets, [next(stopping) for _ in ARMS], manner)
-        spans.append((clock, ready, ready + plan.duration))
-        clock = ready + plan.duration
-    before, _ = legs[-1]
-    back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
-    spans.append((clock, clock + back, clock + back))
+    spans = _spans(plans, legs, paths)
+    clock, back = spans[-1][0], spans[-1][1] - spans[-1][0]
     moves = [
         {(arm, channel): tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())) for arm in ARMS for channel in CHANNELS}
         for plan, (_, ready, _) in zip(plans, spans)
@@ -156,6 +143,40 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     )))  # fmt: skip
     motion = control.frames(0.0, clock + back + REST_TAIL)
     return SignedMotion(motion, tuple(timings), tuple(warnings), control)
+
+
+def _legs(plans: Sequence[SignPlan], rest: dict[str, HandPose]) -> list[tuple[dict[str, HandPose], dict[str, HandPose]]]:
+    """Per sign, where the hands are before its transition and its first postures (a hand
+    the sign does not use goes to rest); and last, from the last sign back to ``rest``."""
+    here = dict(rest)
+    legs = []
+    for plan in plans:
+        targets = {arm: plan.first.get(arm, rest[arm]) for arm in ARMS}
+        legs.append((dict(here), targets))
+        here = {arm: _last_pose(plan, arm, targets[arm]) for arm in ARMS}
+    legs.append((dict(here), rest))
+    return legs
+
+
+def _spans(
+    plans: Sequence[SignPlan], legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]], paths: Sequence[dict[str, np.ndarray]]
+) -> list[tuple[float, float, float]]:
+    """Per sign, when its transition starts, when its first posture is reached and when it
+    ends (seconds), one after another from :data:`REST_LEAD`; and last, the retraction to
+    rest (start, arrival, arrival). The transitions' times come from their wrist ``paths``
+    (:func:`_transition_time`, the stopping lengths of all paths in one batch)."""
+    stopping = iter(stopping_lengths([leg[arm] for leg in paths for arm in ARMS]))
+    clock = REST_LEAD
+    spans = []
+    for plan, (before, targets) in zip(plans, legs):
+        manner = "targetted" if plan.static else "lax"
+        ready = clock + _transition_time(before, targets, [next(stopping) for _ in ARMS], manner)
+        spans.append((clock, ready, ready + plan.duration))
+        clock = ready + plan.duration
+    before, rest = legs[-1]
+    back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
+    spans.append((clock, clock + back, clock + back))
+    return spans
 
 
 def _rest_pose(avatar: Avatar, arm: str) -> HandPose:
