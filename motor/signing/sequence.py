@@ -168,7 +168,7 @@ def _transition_ways(
             fractions = np.linspace(0.0, 1.0, count + 2)
             paths.append(before[arm].wrist + fractions[:, None] * (after[arm].wrist - before[arm].wrist))
             turns.append(rotations_along(np.stack([before[arm].rotation, after[arm].rotation]), fractions))
-        cleared, _ = clear_paths(avatar, arm, paths, turns, keep_ends=True)
+        cleared, _ = clear_paths(avatar, arm, paths, turns, keep_ends=True, across=False)
         for way, points in zip(ways, cleared):
             way[arm] = points[1:-1]
     return ways
