@@ -186,7 +186,10 @@ def law_fractions(points: np.ndarray) -> np.ndarray:
     log_curvature = np.log(clamped_curvature(curvature))
     step = min(LAW_SMOOTHING / 4.0, float(arc[-1]) / 8.0)
     grid = np.linspace(0.0, float(arc[-1]), int(np.ceil(float(arc[-1]) / step)) + 1)
-    smooth = gaussian_filter1d(np.interp(grid, arc, log_curvature), LAW_SMOOTHING / (grid[1] - grid[0]), mode="nearest")
+    # on a path much shorter than the smoothing the curvature is flat: a kernel of a few
+    # times the grid does the same, where one of LAW_SMOOTHING / step points would not fit in memory
+    sigma = min(LAW_SMOOTHING / (grid[1] - grid[0]), 4.0 * grid.size)
+    smooth = gaussian_filter1d(np.interp(grid, arc, log_curvature), sigma, mode="nearest")
     density = np.exp(EXPONENT * np.interp(arc, grid, smooth))
     tau = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * chords)])
     return tau / tau[-1]

@@ -288,10 +288,10 @@ def _law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
             for index in members:  # two points: the way's two ends, [0, 1] (none: as given)
                 out[index] = np.array([0.0, 1.0]) if m == 2 and np.all(np.isfinite(paths[index])) else law_fractions(paths[index])
             continue
-        chords, arc, log_curvature, counts, spacing, done = _law_curvature(np.stack([paths[index] for index in members]))
+        chords, arc, log_curvature, counts, sigma, done = _law_curvature(np.stack([paths[index] for index in members]))
         for row, index in enumerate(members):
             if done[row]:
-                rows.append((index, chords[row], arc[row], log_curvature[row], float(spacing[row]), int(counts[row]), 0.0))
+                rows.append((index, chords[row], arc[row], log_curvature[row], float(sigma[row]), int(counts[row])))
             else:
                 out[index] = law_fractions(paths[index])
     batches: dict[tuple[int, int], list[tuple]] = defaultdict(list)
@@ -308,7 +308,7 @@ _LOG_SPREAD = float(np.log(1.4))
 
 
 def _law_curvature(points: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Chords, arc length, log clamped curvature, grid size and spacing of every row of
+    """Chords, arc length, log clamped curvature, grid size and kernel width of every row of
     ``(g, m ≥ 3, 3)`` (:func:`motor.signing.lmp.law_fractions`), and which rows the grid
     pass takes (the others: no length, or a kernel wider than :data:`_MAX_RADIUS`)."""
     g, m, _ = points.shape
@@ -324,14 +324,15 @@ def _law_curvature(points: np.ndarray) -> tuple[np.ndarray, ...]:
     valid = total >= _SAME
     counts = np.where(valid, np.ceil(total / np.where(valid, step, 1.0)), 1.0).astype(int) + 1
     spacing = total / (counts - 1)
-    sigma = LAW_SMOOTHING / np.where(valid, spacing, LAW_SMOOTHING)
+    # the kernel's width in grid steps, at most four times the grid (law_fractions)
+    sigma = np.minimum(LAW_SMOOTHING / np.where(valid, spacing, LAW_SMOOTHING), 4.0 * counts)
     done = valid & (_TRUNCATE * sigma + 0.5 < _MAX_RADIUS + 1)
-    return chords, arc, log_curvature, counts, spacing, done
+    return chords, arc, log_curvature, counts, sigma, done
 
 
 def _law_grid(batch: list[tuple]) -> list[np.ndarray]:
-    """The law-time fractions of rows ``(index, chords, arc, log curvature, spacing,
-    grid size, _)`` of paths of any sizes, in one pass over arrays padded to the longest
+    """The law-time fractions of rows ``(index, chords, arc, log curvature, kernel width,
+    grid size)`` of paths of any sizes, in one pass over arrays padded to the longest
     (a path's arc padded with its length, its chords with zeros: what is computed for the
     padding is never read)."""
     n = len(batch)
@@ -344,9 +345,10 @@ def _law_grid(batch: list[tuple]) -> list[np.ndarray]:
         arc[r, : length.size], arc[r, length.size :] = length, length[-1]
         log_curvature[r, : logs.size], log_curvature[r, logs.size :] = logs, logs[-1]
         chords[r, : chord.size] = chord
-    spacing = np.array([row[4] for row in batch])
+    sigma = np.array([row[4] for row in batch])
     counts = np.array([row[5] for row in batch])
     total = arc[np.arange(n), sizes - 1]
+    spacing = total / (counts - 1)
     width = int(counts.max())
     columns = np.arange(width)
     grid = columns * spacing[:, None] + 0.0
@@ -360,7 +362,7 @@ def _law_grid(batch: list[tuple]) -> list[np.ndarray]:
     np.add.at(tally, (np.repeat(np.arange(n), longest), first_above.ravel()), 1)
     below = np.minimum(np.maximum(np.cumsum(tally[:, :width], axis=1) - 1, 0), sizes[:, None] - 1)
     values = _interp(grid, arc, log_curvature, below, sizes)
-    smooth = _gaussian(values, spacing, counts)
+    smooth = _gaussian(values, sigma, counts)
     density = np.exp(EXPONENT * _interp(arc, grid, smooth, after, counts))
     tau = np.concatenate([np.zeros((n, 1)), np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * chords, axis=1)], axis=1)
     return [tau[r, :size] / tau[r, size - 1] for r, size in enumerate(sizes)]
@@ -397,12 +399,11 @@ def _interp(x: np.ndarray, xp: np.ndarray, fp: np.ndarray, j: np.ndarray, counts
     return np.where(x < xp[:, :1], fp[:, :1], value)
 
 
-def _gaussian(values: np.ndarray, spacing: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``gaussian_filter1d(row, LAW_SMOOTHING / spacing, mode="nearest")`` of every row's
-    first ``counts`` values, with scipy's kernel and order of sums."""
+def _gaussian(values: np.ndarray, sigma: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``gaussian_filter1d(row, sigma, mode="nearest")`` of every row's first ``counts``
+    values, with scipy's kernel and order of sums."""
     rows = np.arange(values.shape[0])
     width = values.shape[1]
-    sigma = LAW_SMOOTHING / spacing
     radius = (_TRUNCATE * sigma + 0.5).astype(int)
     out = np.empty_like(values)
     for r in np.unique(radius):

@@ -43,12 +43,24 @@ CROSS_STEP = 0.02
 CROSS_STEPS = 16
 
 
-#: Rounds of midpoints inserted between moved neighbours, and the spacing (m) above
-#: which neighbours get one anyway (see :func:`clear_paths`).
-REFINEMENTS = 4
+#: Longest chord (m) between a path's checked points (see :func:`clear_paths`).
+REFINE_SPACING = 0.03
 
 
-REFINE_SPACING = 0.06
+#: Arc length (m) over which a point's displacement out of the body or into reach is
+#: shared with its neighbours, the rounds of that sharing, the most neighbours on either
+#: side that one point's displacement reaches, and the Gaussian weight below which it
+#: reaches no farther (see :func:`_spread`).
+SPREAD = 0.08
+
+
+SPREAD_ROUNDS = 8
+
+
+SPREAD_WINDOW = 48
+
+
+SPREAD_CUT = 1e-4
 
 
 #: Rows per IK call when checking many positions: the cost per row of the vectorized IK
@@ -80,7 +92,9 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
         if not points:
             continue
         turns = rotations_along_paths(keys, points)
-        cleared, _ = clear_paths(avatar, arm, points, turns)
+        # a hand's first posture and moves in one sign are one chain: they still meet once cleared
+        chains = np.repeat(np.arange(len(owners)), [count for _, count in owners])
+        cleared, _ = clear_paths(avatar, arm, points, turns, chains=chains)
         pieces = iter(cleared)
         originals = iter(points)
         for plan, count in owners:
@@ -108,7 +122,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
 
 
 def within_reach(
-    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None, unique: bool = True
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None = None, unique: bool = True, across: bool = True
 ) -> tuple[np.ndarray, int, float]:
     """Wrist positions ``(n, 3)`` the arm reaches, with its upper arm out of the torso.
 
@@ -127,18 +141,18 @@ def within_reach(
     collection of signs repeats many postures); ``unique=False`` solves every row."""
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     if not unique or len(points) < 2:
-        fixed, moved, worst = _within_reach(avatar, arm, points, rotations)
+        fixed, moved, worst = _within_reach(avatar, arm, points, rotations, across)
         return fixed, int(moved.sum()), worst
     rows = points if rotations is None else np.concatenate([points, np.asarray(rotations, dtype=float)], axis=1)
     keys = np.ascontiguousarray(rows).view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))[:, 0]
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
     turns = None if rotations is None else np.asarray(rotations, dtype=float)[first]
-    fixed, moved, worst = _within_reach(avatar, arm, points[first], turns)
+    fixed, moved, worst = _within_reach(avatar, arm, points[first], turns, across)
     return fixed[inverse], int(moved[inverse].sum()), worst
 
 
 def _within_reach(
-    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None
+    avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None, across: bool = True
 ) -> tuple[np.ndarray, np.ndarray, float]:
     """:func:`within_reach` of every row: positions, which moved, the largest shortfall."""
     side = AVATAR_SIDE[arm]
@@ -167,7 +181,7 @@ def _within_reach(
         short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
         too_far = short & outer
         too_near = short & ~outer
-        crossing = np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE
+        crossing = (np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE) & across
         bad = too_far | too_near | crossing
         worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
         here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
@@ -203,54 +217,134 @@ def _solve_in_chunks(avatar: Avatar, side: str, targets: np.ndarray, turns: np.n
 
 
 def clear_paths(
-    avatar: Avatar, arm: str, paths: list[np.ndarray], rotations: list[np.ndarray], keep_ends: bool = False
+    avatar: Avatar,
+    arm: str,
+    paths: list[np.ndarray],
+    rotations: list[np.ndarray],
+    keep_ends: bool = False,
+    chains: np.ndarray | None = None,
+    across: bool = True,
 ) -> tuple[list[np.ndarray], int]:
     """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
-    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`), in
-    one IK call per arm and round; with ``keep_ends`` the first and last points stay.
+    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`); with
+    ``keep_ends`` the first and last points stay. Also returns how many points moved.
 
-    Moving a point can open a chord to its neighbour that cuts the unreachable core around
-    the shoulder or the torso, so for :data:`REFINEMENTS` rounds each pair of neighbours of
-    which one moved (or that lie more than :data:`REFINE_SPACING` apart) gets its checked
-    midpoint inserted. Also returns how many points moved. All paths are handled as one
-    array of points (each round is a few vectorized passes over the collection)."""
+    Each path first gets evenly spaced points inserted wherever neighbours lie more than
+    :data:`REFINE_SPACING` apart (a chord between checked points could cut the torso or
+    the unreachable core around the shoulder). Points are not moved one by one — a path
+    whose points each stepped aside on their own would zigzag, and the hand would jerk
+    along it — but by a displacement that varies smoothly along the path: what each
+    point needs is spread over its neighbours within :data:`SPREAD` metres of arc
+    (:func:`_spread`), for :data:`SPREAD_ROUNDS` rounds, each checking only the points
+    that moved; a last check moves whatever still needs it. A short path whose points all
+    need about the same thus moves whole, keeping its shape. Paths of one ``chains``
+    number ``(len(paths),)``, in order, are one hand's consecutive moves (each starting
+    where the one before ends): they share one displacement along their joined arc, so
+    they still meet. All paths are handled as one array of points (each round is a few
+    vectorized passes over the collection)."""
     if not paths:
         return [], 0
     lengths = np.array([len(path) for path in paths])
     points = np.concatenate([np.asarray(path, dtype=float).reshape(-1, 3) for path in paths])
     turns = np.concatenate([np.asarray(turn, dtype=float).reshape(-1, 4) for turn in rotations])
+    points, turns, lengths = _refined(points, turns, lengths)
+    owner = np.repeat(np.arange(len(lengths)), lengths)
+    chain = (np.arange(len(lengths)) if chains is None else np.asarray(chains))[owner]
     mask = np.ones(len(points), dtype=bool)
     if keep_ends:
         ends = np.cumsum(lengths)[lengths > 0]
         mask[ends - lengths[lengths > 0]] = False
         mask[ends - 1] = False
-    points, moved, total = _clear_points(avatar, arm, points, turns, mask)
-    for _ in range(REFINEMENTS):
-        owner = np.repeat(np.arange(len(lengths)), lengths)
-        gap = np.linalg.norm(np.diff(points, axis=0), axis=1)
-        split = (owner[1:] == owner[:-1]) & (moved[1:] | moved[:-1] | (gap > REFINE_SPACING)) & (gap > 1e-6)
-        if not split.any():
+    original = points
+    arc = _chain_arc(points, owner, chain)
+    checked = mask.copy()
+    for _ in range(SPREAD_ROUNDS):
+        cleared, moved, _ = _clear_points(avatar, arm, points, turns, checked, across)
+        if not moved.any():
             break
-        middles = 0.5 * (points[1:] + points[:-1])[split]
-        middle_turns = quat.slerp(turns[:-1][split], turns[1:][split], 0.5)
-        order = np.argsort(np.concatenate([np.arange(len(points)), np.flatnonzero(split) + 0.5]), kind="stable")
-        points = np.concatenate([points, middles])[order]
-        turns = np.concatenate([turns, middle_turns])[order]
-        mask = np.concatenate([np.zeros(len(moved), dtype=bool), np.ones(len(middles), dtype=bool)])[order]
-        lengths = lengths + np.bincount(owner[:-1][split], minlength=len(lengths))
-        points, moved, more = _clear_points(avatar, arm, points, turns, mask)
-        total += more
+        shift = _spread(cleared - points, arc, chain, ~mask) * mask[:, None]
+        points = points + shift
+        checked = mask & np.any(np.abs(shift) > 1e-12, axis=1)
+    points = _clear_points(avatar, arm, points, turns, checked, across)[0]
+    total = int(np.any(np.abs(points - original) > 1e-9, axis=1).sum())
     return [path.copy() for path in np.split(points, np.cumsum(lengths)[:-1])], total  # each path its own array
 
 
+def _refined(points: np.ndarray, turns: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Paths ``lengths`` long (concatenated points ``(n, 3)``, rotations ``(n, 4)``) with
+    evenly spaced points inserted on every chord longer than :data:`REFINE_SPACING` (the
+    rotations slerped), so that no chord is longer."""
+    owner = np.repeat(np.arange(len(lengths)), lengths)
+    gap = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    pieces = np.where(owner[1:] == owner[:-1], np.ceil(gap / REFINE_SPACING - 1e-9), 1).astype(int)
+    pieces = np.maximum(pieces, 1)
+    if np.all(pieces == 1):
+        return points, turns, lengths
+    # each point i < n − 1 becomes pieces[i] points: itself and pieces[i] − 1 along its chord
+    chord = np.repeat(np.arange(len(points) - 1), pieces)
+    step = np.arange(chord.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    fraction = step / np.repeat(pieces, pieces)
+    refined = np.concatenate([points[chord] + fraction[:, None] * (points[chord + 1] - points[chord]), points[-1:]])
+    refined_turns = np.concatenate([quat.slerp(turns[chord], turns[chord + 1], fraction), turns[-1:]])
+    inserted = np.bincount(owner[:-1], weights=pieces - 1, minlength=len(lengths)).astype(int)
+    return refined, refined_turns, lengths + inserted
+
+
+def _chain_arc(points: np.ndarray, owner: np.ndarray, chain: np.ndarray) -> np.ndarray:
+    """Arc length (m) of every point from the start of its chain: a path continues its
+    chain's arc from where the path before it ends. Summed chain by chain (a row of a
+    table each), so that a chain's arc does not depend on the chains before it."""
+    step = np.concatenate([[0.0], np.linalg.norm(np.diff(points, axis=0), axis=1)])
+    step[np.concatenate([[True], owner[1:] != owner[:-1]])] = 0.0
+    first = np.flatnonzero(np.concatenate([[True], chain[1:] != chain[:-1]]))
+    sizes = np.diff(np.append(first, len(points)))
+    row = np.repeat(np.arange(len(first)), sizes)
+    column = np.arange(len(points)) - first[row]
+    table = np.zeros((len(first), int(sizes.max())))
+    table[row, column] = step
+    return np.cumsum(table, axis=1)[row, column]
+
+
+def _spread(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
+    """Displacements ``(n, 3)`` that vary smoothly along each chain: every point's
+    ``need`` spread over the points of its chain within :data:`SPREAD` metres of arc with
+    a Gaussian weight (σ = SPREAD / 3), summed and divided by the larger of 1 and the
+    weight of the needy points around — a lone needy point moves by what it needs and
+    its neighbours by less and less, a stretch of points needing the same moves by it.
+    ``anchored`` points ``(n,)`` stay: they count as needing no displacement, so the
+    displacement fades toward them (the rounds of :func:`clear_paths` make up the rest)."""
+    sigma = SPREAD / 3.0
+    needy = (np.any(np.abs(need) > 1e-12, axis=1) | anchored).astype(float)
+    total = need.copy()
+    weight = needy.copy()
+    count = len(arc)
+    for offset in range(1, SPREAD_WINDOW + 1):
+        if offset >= count:
+            break
+        same = chain[offset:] == chain[:-offset]
+        kernel = np.exp(-0.5 * ((arc[offset:] - arc[:-offset]) / sigma) ** 2)
+        kernel = np.where(same & (kernel > SPREAD_CUT), kernel, 0.0)  # each chain alone as in a collection
+        if not np.any(kernel):
+            break
+        total[offset:] += kernel[:, None] * need[:-offset]
+        total[:-offset] += kernel[:, None] * need[offset:]
+        weight[offset:] += kernel * needy[:-offset]
+        weight[:-offset] += kernel * needy[offset:]
+    spread = total / np.maximum(weight, 1.0)[:, None]
+    # a point repeated at the same arc (where one move ends and the next starts) moves as
+    # its first copy, bit for bit (the sums above add its neighbours in another order)
+    repeated = np.concatenate([[False], (chain[1:] == chain[:-1]) & (arc[1:] == arc[:-1])])
+    return spread[np.maximum.accumulate(np.where(repeated, 0, np.arange(count)))]
+
+
 def _clear_points(
-    avatar: Avatar, arm: str, points: np.ndarray, turns: np.ndarray, mask: np.ndarray
+    avatar: Avatar, arm: str, points: np.ndarray, turns: np.ndarray, mask: np.ndarray, across: bool = True
 ) -> tuple[np.ndarray, np.ndarray, int]:
     """The masked points ``(n, 3)`` checked at once; which points moved."""
     chosen = points[mask]
     if chosen.size == 0:
         return points, np.zeros(len(points), dtype=bool), 0
-    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns[mask])[0]
+    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns[mask], across=across)[0]
     changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
     points = points.copy()
     points[mask] = fixed

@@ -210,7 +210,7 @@ def _transition_ways(
         # the slerp between the leg's two hand rotations (rotations_along of two keys)
         turns = quat.slerp(np.array([before[arm].rotation for before, _ in legs])[leg], np.array([after[arm].rotation for _, after in legs])[leg], np.clip(fractions, 0.0, 1.0))
         split = np.cumsum(counts)[:-1]
-        cleared, _ = clear_paths(avatar, arm, np.split(points, split), np.split(turns, split), keep_ends=True)
+        cleared, _ = clear_paths(avatar, arm, np.split(points, split), np.split(turns, split), keep_ends=True, across=False)
         for way, path in zip(ways, cleared):
             way[arm] = path[1:-1]
     return ways

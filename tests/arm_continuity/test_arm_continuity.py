@@ -61,8 +61,6 @@ _INFEASIBLE_MAKEHUMAN: dict[tuple[str, str], str] = {
     ("murml_19_ruzanego_bruecke", "palms"): "both arms cross the body 20 cm in front of the chest: the hands meet crossed",
     ("murml_41_tanedila_welle", "torso"): "open on makehuman: the right upper arm 1.5 cm into the torso, reaching across with the shorter arm",
     ("example_sign_here", "palms"): "open on makehuman: the hands 1.5 cm into each other where they meet",
-    ("sign_Ind_1", "palms"): "open on makehuman: the hands 1.7 cm into each other where they meet",
-    ("sign_Ind_5", "palms"): "go-with-you: the hands cross the midline into each other",
 }
 INFEASIBLE: dict[str, dict[tuple[str, str], str]] = {"max": _INFEASIBLE_MAX, "makehuman": _INFEASIBLE_MAKEHUMAN}
 _TIMING = re.compile(r'<timing onset="([0-9.]+)" end="([0-9.]+)"')

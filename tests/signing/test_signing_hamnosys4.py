@@ -113,7 +113,9 @@ def test_repetition_without_displacement_repeats_in_place(avatar) -> None:
     plan = _plan(avatar, f"{HAND} hamchest hammover hamrepeatfromstartseveral")
     strokes = [move for move in plan.moves[("right", "wrist_position")] if move.manner != "lax"]
     starts = np.array([move.values[0] for move in strokes])
-    assert np.allclose(starts, starts[0], atol=1e-9)
+    # in place to within 0.1 mm: clearing the path out of the torso spreads each point's
+    # displacement along the path, so passes with different neighbours differ by microns
+    assert np.allclose(starts, starts[0], atol=1e-4)
 
 
 def test_bracketed_repetition_needs_a_displacement_or_the_bracket_end() -> None:
