@@ -84,8 +84,9 @@ from motor.program.lmp import (
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
-from motor.signing.lmp import SignChannelLMP, activate_in_turn, sample_tracks
+from motor.signing.lmp import SignChannelLMP
 from motor.signing.nonmanual import plan_nonmanuals
+from motor.signing.track_batch import activate_in_turn, sample_tracks
 from motor.trajectory.spline import fitts_duration
 from motor.verbs.behavior import VerbBehaviorPlanner
 from mura.model import BehaviorSpec
@@ -597,7 +598,7 @@ def _in_order(lmps: Sequence[LMP]) -> bool:
 def _extended(timeline: ChannelTimeline, lmps: Sequence[LMP]) -> ChannelTimeline:
     """``timeline`` extended by ``lmps`` (in start order) one after another
     (:meth:`ChannelTimeline.extended`); sign LMPs all at once
-    (:func:`motor.signing.lmp.activate_in_turn`, the same tracks)."""
+    (:func:`motor.signing.track_batch.activate_in_turn`, the same tracks)."""
     if len(lmps) < 2 or not all(isinstance(lmp, SignChannelLMP) for lmp in lmps):
         for lmp in lmps:
             timeline = timeline.extended(lmp)

@@ -1,5 +1,6 @@
 """The batched wrist-path tracing (motor.signing.path_batch) equals the one-path functions,
-and sign tracks sampled in one pass (motor.signing.lmp.sample_tracks) equal each track's own.
+and sign tracks sampled and activated many at once (motor.signing.track_batch) equal the
+one-by-one tracks.
 
 Cases are synthetic wrist paths (labelled by kind): smooth arcs, zigzags that reverse,
 paths with repeated points (holds), two and three points, and paths so short that their
@@ -16,11 +17,12 @@ from motor.body.avatar import ARMS, load_avatar
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
-from motor.signing.lmp import Move, SignChannelLMP, _Track, activate_in_turn, law_fractions, sample_tracks, smooth_pieces, stopping_length
+from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, smooth_pieces, stopping_length
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 from motor.signing.plan import HandPose
 from motor.signing.reach import clear_paths, rotations_along
 from motor.signing.sequence import MIN_TRANSITION_POINTS, TRANSITION_SPACING, _transition_ways
+from motor.signing.track_batch import activate_in_turn, sample_tracks
 
 
 def _path(kind: str, count: int, seed: int) -> np.ndarray:
