@@ -51,7 +51,10 @@ near the shoulder step around its front, and positions so far across the body th
 IK reports the upper arm in the torso step back toward the arm's side
 (:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
 (:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
-is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`).
+is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`). Moves whose
+final paths (cleared, and travelled in law time) need more time than they were given within
+their manner's speed budget are then slowed, the sign's clock warped with them
+(:mod:`motor.signing.retiming`; a warning says by how much).
 
 **Many signs at once.** :func:`plan_signs` plans a collection in passes: every sign is
 compiled into hand moves, and the costly geometry the signs ask for (arm poses for sites on
@@ -80,6 +83,7 @@ from motor.signing.hand_geometry import GeometryPending, HandGeometry
 from motor.signing.lmp import Move, stopping_length
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
+from motor.signing.retiming import retimed_all
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.guiding_strokes import (
     curve_breakpoints,
@@ -225,7 +229,7 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     compiled = _compile_all(geometry, signs)
     geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
     drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
-    return within_reach_all(avatar, drafts)
+    return retimed_all(within_reach_all(avatar, drafts))
 
 
 def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCompiler | SignPlanningError]:
