@@ -35,7 +35,9 @@ play bends alternate fingers, stirring is a small horizontal circle. Durations a
 independent of size. Time profiles: targetted for the sign's movements, linear for
 circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
 the fast/slow/tense tables for those manners. A static sign holds its posture for
-:data:`STATIC_HOLD` seconds.
+:data:`STATIC_HOLD` seconds; a sign with movement first holds its first posture for
+:data:`INITIAL_HOLD` seconds (its citation form; :func:`without_initial_hold` for a sign
+inside an utterance).
 
 **Repetition.** ``fromstart``: back to the start (lax) and again; ``continue``: on from
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
@@ -134,6 +136,10 @@ ZIGS = 4
 LOCAL_ANGLE = 0.45
 #: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
 STATIC_HOLD = 0.5
+#: How long a sign with movement holds its first posture before moving, seconds: the
+#: initial hold of the citation form (Liddell and Johnson's hold–movement model), which
+#: lets the viewer see where the sign's movement begins (a departure from rest).
+INITIAL_HOLD = 0.08
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
 #: Neutral signing space of the right hand (mirrored for the left).
@@ -232,6 +238,17 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     return retimed_all(within_reach_all(avatar, drafts))
 
 
+def without_initial_hold(plan: SignPlan) -> SignPlan:
+    """The plan with its moves begun at once instead of after :data:`INITIAL_HOLD` (a sign
+    inside an utterance, whose stroke the scheduler times like a gesture's); a static
+    plan, or one whose moves begin sooner, as it is."""
+    starts = [move.start for moves in plan.moves.values() for move in moves]
+    if plan.static or not starts or min(starts) < INITIAL_HOLD - 1e-9:
+        return plan
+    moves = {key: tuple(move.shifted(-INITIAL_HOLD) for move in channel) for key, channel in plan.moves.items()}
+    return replace(plan, duration=plan.duration - INITIAL_HOLD, moves=moves)
+
+
 def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCompiler | SignPlanningError]:
     """Every sign compiled into hand moves, in rounds: a sign that asks for an arm pose or
     a site offset not yet known is set aside, the round's requests of all signs are
@@ -304,8 +321,9 @@ class _SignCompiler:
         if self.static:
             self.hold(STATIC_HOLD, self.sign.manner if self.sign.manner in MANNERS else "targetted")
         else:
+            self.clock = INITIAL_HOLD
             self.compile(self.sign.movement)
-            if self.clock <= 0.0:
+            if self.clock <= INITIAL_HOLD:
                 self.hold(STATIC_HOLD, "targetted")
         return self
 
