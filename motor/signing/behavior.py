@@ -6,7 +6,8 @@ retraction), and this module turns it into a :class:`motor.program.gesture.Motor
 sign is planned on its own clock (:func:`motor.signing.planning.plan_sign`), its moves are
 stretched or compressed uniformly onto the stroke interval the scheduler chose, a
 transition leads into its first posture from wherever the hands are (lax, or targetted
-into a static sign, seed 000 section 4.5), and the hands retract to rest — or to the
+into a static sign, seed 000 section 4.5) — without the citation form's initial hold: the
+scheduler gives its stroke a visible onset as it does a gesture's —, and the hands retract to rest — or to the
 interim rest when another gesture follows — after ``relax``. A sign is not repeated to
 fill a long affiliate (its repetitions are its own); it is slowed, then holds its last
 posture.
@@ -30,7 +31,7 @@ from motor.program.gesture import (
 from motor.program.lmp import LMP, TimePegs
 from motor.signing.lmp import Move, SignChannelLMP
 from motor.signing.plan import SignPlan, SignPlanningError
-from motor.signing.planning import plan_sign
+from motor.signing.planning import plan_sign, without_initial_hold
 from mura.model import BehaviorSpec
 
 #: How many sign plans are kept (a chunk's signs are planned, then asked for again).
@@ -55,7 +56,7 @@ class SignBehaviorPlanner:
         sign = behavior.sign
         if sign is None:
             raise PlanningError(f"behaviour {behavior.id!r} carries no sign")
-        return self._remembered(sign, lambda: plan_sign(self.avatar, sign), behavior.id, (SignPlanningError,))
+        return self._remembered(sign, lambda: without_initial_hold(plan_sign(self.avatar, sign)), behavior.id, (SignPlanningError,))
 
     def _remembered(self, source: object, plan: Callable[[], SignPlan], behavior_id: str, errors: tuple[type[Exception], ...]) -> SignPlan:
         """The plan of ``source`` (a sign object, kept by identity among the last

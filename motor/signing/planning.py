@@ -35,7 +35,9 @@ play bends alternate fingers, stirring is a small horizontal circle. Durations a
 independent of size. Time profiles: targetted for the sign's movements, linear for
 circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
 the fast/slow/tense tables for those manners. A static sign holds its posture for
-:data:`STATIC_HOLD` seconds.
+:data:`STATIC_HOLD` seconds; a sign with movement first holds its first posture for
+:data:`INITIAL_HOLD` seconds (its citation form; :func:`without_initial_hold` for a sign
+inside an utterance).
 
 **Repetition.** ``fromstart``: back to the start (lax) and again; ``continue``: on from
 where the pass ended; ``reverse``: back along the same path (targetted), then forward.
@@ -51,7 +53,10 @@ near the shoulder step around its front, and positions so far across the body th
 IK reports the upper arm in the torso step back toward the arm's side
 (:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
 (:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
-is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`).
+is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`). Moves whose
+final paths (cleared, and travelled in law time) need more time than they were given within
+their manner's speed budget are then slowed, the sign's clock warped with them
+(:mod:`motor.signing.retiming`; a warning says by how much).
 
 **Many signs at once.** :func:`plan_signs` plans a collection in passes: every sign is
 compiled into hand moves, and the costly geometry the signs ask for (arm poses for sites on
@@ -80,6 +85,7 @@ from motor.signing.hand_geometry import GeometryPending, HandGeometry
 from motor.signing.lmp import Move, stopping_length
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
+from motor.signing.retiming import retimed_all
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.guiding_strokes import (
     curve_breakpoints,
@@ -130,6 +136,10 @@ ZIGS = 4
 LOCAL_ANGLE = 0.45
 #: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
 STATIC_HOLD = 0.5
+#: How long a sign with movement holds its first posture before moving, seconds: the
+#: initial hold of the citation form (Liddell and Johnson's hold–movement model), which
+#: lets the viewer see where the sign's movement begins (a departure from rest).
+INITIAL_HOLD = 0.08
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
 #: Neutral signing space of the right hand (mirrored for the left).
@@ -225,7 +235,18 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     compiled = _compile_all(geometry, signs)
     geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
     drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
-    return within_reach_all(avatar, drafts)
+    return retimed_all(within_reach_all(avatar, drafts))
+
+
+def without_initial_hold(plan: SignPlan) -> SignPlan:
+    """The plan with its moves begun at once instead of after :data:`INITIAL_HOLD` (a sign
+    inside an utterance, whose stroke the scheduler times like a gesture's); a static
+    plan, or one whose moves begin sooner, as it is."""
+    starts = [move.start for moves in plan.moves.values() for move in moves]
+    if plan.static or not starts or min(starts) < INITIAL_HOLD - 1e-9:
+        return plan
+    moves = {key: tuple(move.shifted(-INITIAL_HOLD) for move in channel) for key, channel in plan.moves.items()}
+    return replace(plan, duration=plan.duration - INITIAL_HOLD, moves=moves)
 
 
 def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCompiler | SignPlanningError]:
@@ -300,8 +321,9 @@ class _SignCompiler:
         if self.static:
             self.hold(STATIC_HOLD, self.sign.manner if self.sign.manner in MANNERS else "targetted")
         else:
+            self.clock = INITIAL_HOLD
             self.compile(self.sign.movement)
-            if self.clock <= 0.0:
+            if self.clock <= INITIAL_HOLD:
                 self.hold(STATIC_HOLD, "targetted")
         return self
 

@@ -1,0 +1,118 @@
+"""Sign moves given the time their *final* wrist paths need within the speed budget.
+
+A sign's moves are timed while it is compiled, from the paths HamNoSys asks for
+(:meth:`motor.signing.planning._SignCompiler.shortest`). Clearing those paths out of the
+body and into reach (:mod:`motor.signing.reach`) can lengthen them, and the wrist does
+not travel a path evenly: it advances in *law time* (:func:`motor.signing.lmp.law_fractions`),
+slower in tight bends and faster along the straighter stretches, so its peak speed and
+acceleration exceed those of an even traversal by the path's *law factor* — the largest
+ratio of the share of the path travelled to the share of law time spent, over the path's
+pieces (:func:`motor.signing.lmp.smooth_pieces`).
+
+:func:`retimed` stretches each wrist move that would then leave its manner's budget
+(:mod:`motor.trajectory.speed_budget`) to the least duration that keeps within it, for
+the path's stopping length (:func:`motor.signing.lmp.stopping_length`) times its law
+factor. The sign's clock is warped piecewise linearly so that every other channel's move
+over the same stretch of time (the hand's turn, its shape) is stretched with it and the
+moves after it follow; the plan says which moves were slowed and by how much.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from motor.body.avatar import ARMS
+from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.trajectory.biocontrol import shortest_duration
+
+#: Shortest path (m) whose law factor is measured; shorter pieces travel evenly enough.
+_MEASURED = 1e-3
+#: A move is stretched only when it needs more than this share longer (rounding).
+_SLACK = 1e-6
+
+
+def law_factor(values: np.ndarray) -> float:
+    """How much faster than an even traversal (≥ 1) the wrist goes at its fastest along
+    the path ``values`` ``(m, 3)``: over its pieces, the largest ratio of the share of
+    the piece travelled to the share of law time spent between two of its points."""
+    factor = 1.0
+    for piece in smooth_pieces(np.asarray(values, dtype=float), through=False):
+        if piece.shape[0] < 3:
+            continue
+        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(piece, axis=0), axis=1))])
+        if arc[-1] < _MEASURED:
+            continue
+        spent = np.diff(law_fractions(piece))
+        travelled = np.diff(arc) / arc[-1]
+        moving = spent > 1e-12
+        if np.any(moving):
+            factor = max(factor, float(np.max(travelled[moving] / spent[moving])))
+    return factor
+
+
+def needed_duration(move: Move) -> float:
+    """The least duration (s) of a wrist ``move`` within its manner's budget, for its
+    path's stopping length times its law factor."""
+    length = stopping_length(move.values)
+    if length <= 0.0:
+        return 0.0
+    return shortest_duration(length * law_factor(move.values), move.manner)
+
+
+def retimed_all(drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """:func:`retimed` of every plan; errors pass through."""
+    return [draft if isinstance(draft, SignPlanningError) else retimed(draft) for draft in drafts]
+
+
+def retimed(plan: SignPlan) -> SignPlan:
+    """The plan with its wrist moves stretched to what their paths need (module docstring),
+    every channel's moves on the warped clock; the plan itself when none needs more."""
+    stretches: dict[tuple[float, float], float] = {}
+    for arm in ARMS:
+        for move in plan.moves.get((arm, "wrist_position"), ()):
+            need = needed_duration(move)
+            given = move.end - move.start
+            if need > given * (1.0 + _SLACK):
+                key = (move.start, move.end)
+                stretches[key] = max(stretches.get(key, 1.0), need / given)
+    if not stretches:
+        return plan
+    warp = _Warp.of(plan, stretches)
+    moves = {key: tuple(replace(m, start=warp(m.start), end=warp(m.end)) for m in channel) for key, channel in plan.moves.items()}
+    slowest = max(stretches.items(), key=lambda item: item[1])
+    (start, end), factor = slowest
+    note = (
+        f"{plan.gloss}: {len(stretches)} move(s) slowed to keep the wrist within its speed budget, "
+        f"the most from {end - start:.2f} s to {factor * (end - start):.2f} s"
+    )
+    return replace(plan, duration=warp(plan.duration), moves=moves, warnings=(*plan.warnings, note))
+
+
+class _Warp:
+    """A piecewise-linear, increasing map of a sign's clock: the stretches between
+    consecutive move boundaries are scaled by the largest stretch asked of a wrist move
+    covering them (1 elsewhere)."""
+
+    def __init__(self, old: np.ndarray, new: np.ndarray) -> None:
+        self.old, self.new = old, new
+
+    @classmethod
+    def of(cls, plan: SignPlan, stretches: dict[tuple[float, float], float]) -> _Warp:
+        bounds = {0.0, float(plan.duration)}
+        for channel in plan.moves.values():
+            for move in channel:
+                bounds.update((move.start, move.end))
+        old = np.array(sorted(bounds))
+        scale = np.ones(old.size - 1)
+        middles = 0.5 * (old[1:] + old[:-1])
+        for (start, end), factor in stretches.items():
+            inside = (middles > start) & (middles < end)
+            scale[inside] = np.maximum(scale[inside], factor)
+        new = np.concatenate([[old[0]], old[0] + np.cumsum(np.diff(old) * scale)])
+        return cls(old, new)
+
+    def __call__(self, time: float) -> float:
+        return float(np.interp(time, self.old, self.new))
