@@ -38,7 +38,7 @@ from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
 from motor.signing.lmp import SignChannelLMP
 from motor.signing.nonmanual import plan_nonmanuals
-from motor.signing.path_batch import stopping_lengths, trace_chains
+from motor.signing.path_batch import stopping_lengths, timing_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths
@@ -164,8 +164,12 @@ def _spans(
     """Per sign, when its transition starts, when its first posture is reached and when it
     ends (seconds), one after another from :data:`REST_LEAD`; and last, the retraction to
     rest (start, arrival, arrival). The transitions' times come from their wrist ``paths``
-    (:func:`_transition_time`, the stopping lengths of all paths in one batch)."""
-    stopping = iter(stopping_lengths([leg[arm] for leg in paths for arm in ARMS]))
+    (:func:`_transition_time`, the stopping lengths of all paths in one batch); the
+    retraction takes at least what its way, travelled in law time, needs within the lax
+    budget (:func:`motor.signing.path_batch.timing_lengths`: a way around the body from
+    behind the head is long and bent)."""
+    stopping = iter(stopping_lengths([leg[arm] for leg in paths[:-1] for arm in ARMS]))
+    returning = timing_lengths([paths[-1][arm] for arm in ARMS])
     clock = REST_LEAD
     spans = []
     for plan, (before, targets) in zip(plans, legs):
@@ -175,6 +179,7 @@ def _spans(
         clock = ready + plan.duration
     before, rest = legs[-1]
     back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
+    back = max(back, max(shortest_duration(length, "lax") for length in returning))
     spans.append((clock, clock + back, clock + back))
     return spans
 
