@@ -14,12 +14,12 @@ from __future__ import annotations
 import argparse
 import cProfile
 import io
-import pstats
 import sys
 import time
 from pathlib import Path
 
 from bench.machine import machine_info
+from bench.profile_listing import listings
 from motor.body.avatar import load_avatar
 from motor.signing.planning import plan_signs
 from mura.sigml import parse_sigml
@@ -50,11 +50,7 @@ def profile(folder: Path = FOLDER, top: int = TOP) -> str:
         plan_signs(avatar, signs)
         profiler.disable()
         out.write(f"=== plan_signs over {label}: {len(signs)} signs; process time without profiler {spent:.3f} s = {1e3 * spent / len(signs):.3f} ms/sign\n")
-        for key in ("cumulative", "tottime"):
-            listing = io.StringIO()
-            pstats.Stats(profiler, stream=listing).strip_dirs().sort_stats(key).print_stats(top)
-            text = listing.getvalue()
-            out.write(f"--- top {top} by {key}\n{text[text.index('   ncalls'):].rstrip()}\n\n")
+        out.write(listings(profiler, top))
     return out.getvalue()
 
 

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import cProfile
 import io
-import pstats
 import time
 
 from bench.machine import machine_info
+from bench.profile_listing import listings
 from bench.signing_speed import CORPORA, FOLDER, FPS
 from motor.body.avatar import load_avatar
 from motor.signing.plan import SignPlanningError
@@ -49,11 +49,7 @@ def profile(top: int = TOP) -> str:
         f"=== realize_signs of {len(plans)} plans at {FPS:g} fps: {frames} frames; process time without profiler "
         f"{spent:.3f} s = {frames / spent:,.0f} frames/s\n"
     )
-    for key in ("cumulative", "tottime"):
-        listing = io.StringIO()
-        pstats.Stats(profiler, stream=listing).strip_dirs().sort_stats(key).print_stats(top)
-        text = listing.getvalue()
-        out.write(f"--- top {top} by {key}\n{text[text.index('   ncalls'):].rstrip()}\n\n")
+    out.write(listings(profiler, top))
     return out.getvalue()
 
 
