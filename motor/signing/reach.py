@@ -134,7 +134,8 @@ def within_reach(
     that no swivel keeps the upper arm out of the torso (the IK reports penetration) step
     back toward the arm's own side and forward by :data:`CROSS_STEP` until it does. Also returns how
     many positions moved and the largest shortfall (m). ``rotations`` ``(n, 4)`` are the
-    hand's global rotations there, which change the swivel the IK picks.
+    hand's global rotations there, which change the swivel the IK picks. With ``across``
+    False the step back from across the body is left out.
 
     Each position is moved on its own (the IK solves every row apart), so with ``unique``
     a position that occurs again with the same rotation, bit for bit, is solved once (a
@@ -240,8 +241,10 @@ def clear_paths(
     need about the same thus moves whole, keeping its shape. Paths of one ``chains``
     number ``(len(paths),)``, in order, are one hand's consecutive moves (each starting
     where the one before ends): they share one displacement along their joined arc, so
-    they still meet. All paths are handled as one array of points (each round is a few
-    vectorized passes over the collection)."""
+    they still meet. With ``across`` False no point is stepped back from across the body
+    (:func:`within_reach`): a transition between two postures already checked keeps to
+    the torso and the reach only. All paths are handled as one array of points (each
+    round is a few vectorized passes over the collection)."""
     if not paths:
         return [], 0
     lengths = np.array([len(path) for path in paths])
