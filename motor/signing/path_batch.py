@@ -56,40 +56,6 @@ def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
 
 
-def timing_lengths(paths: Sequence[np.ndarray]) -> list[float]:
-    """Per path, the length (m) its time within a speed budget is reckoned on:
-    :func:`stopping_lengths` times its law factor (:func:`motor.signing.retiming.law_factor`:
-    along its straighter stretches the wrist goes faster than an even traversal)."""
-    pieces = smooth_pieces_many(paths, through=False)
-    flat = [piece for split in pieces for piece in split]
-    lengths = _lengths(flat)
-    factors = iter(_law_factors(flat, lengths))
-    lengths_of = iter(lengths)
-    timed = []
-    for split in pieces:
-        roots = [float(np.sqrt(next(lengths_of))) for _ in split]
-        factor = max((next(factors) for _ in split), default=1.0)
-        timed.append(float(np.sum(roots)) ** 2 * factor)
-    return timed
-
-
-def _law_factors(pieces: Sequence[np.ndarray], lengths: np.ndarray) -> list[float]:
-    """The law factor of every piece (1 for pieces under three points or a millimetre)."""
-    measured = [index for index, piece in enumerate(pieces) if piece.shape[0] >= 3 and lengths[index] >= _MEASURED]
-    factors = [1.0] * len(pieces)
-    for index, fractions in zip(measured, law_fractions_many([pieces[index] for index in measured])):
-        travelled = np.linalg.norm(np.diff(pieces[index], axis=0), axis=1) / lengths[index]
-        spent = np.diff(fractions)
-        moving = spent > 1e-12
-        if np.any(moving):
-            factors[index] = max(1.0, float(np.max(travelled[moving] / spent[moving])))
-    return factors
-
-
-#: Shortest piece (m) whose law factor is measured (as :mod:`motor.signing.retiming`).
-_MEASURED = 1e-3
-
-
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
     """The wrist chains :meth:`motor.signing.lmp.SignChannelLMP.activate` would make, for
     many LMPs at once: each a transition ``(start, ready, manner, way)`` — the way from the

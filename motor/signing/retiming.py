@@ -53,13 +53,19 @@ def law_factor(values: np.ndarray) -> float:
     return factor
 
 
-def needed_duration(move: Move) -> float:
-    """The least duration (s) of a wrist ``move`` within its manner's budget, for its
-    path's stopping length times its law factor."""
-    length = stopping_length(move.values)
+def timing_length(values: np.ndarray) -> float:
+    """The length (m) a wrist path ``values`` ``(m, 3)`` is timed on within a speed budget:
+    its stopping length times its law factor (0 for a path that does not move)."""
+    length = stopping_length(values)
     if length <= 0.0:
         return 0.0
-    return shortest_duration(length * law_factor(move.values), move.manner)
+    return length * law_factor(values)
+
+
+def needed_duration(move: Move) -> float:
+    """The least duration (s) of a wrist ``move`` within its manner's budget, for its
+    path's :func:`timing_length`."""
+    return shortest_duration(timing_length(move.values), move.manner)
 
 
 def retimed_all(drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:

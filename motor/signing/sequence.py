@@ -38,10 +38,11 @@ from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
 from motor.signing.lmp import SignChannelLMP
 from motor.signing.nonmanual import plan_nonmanuals
-from motor.signing.path_batch import stopping_lengths, timing_lengths, trace_chains
+from motor.signing.path_batch import stopping_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths
+from motor.signing.retiming import timing_length
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
@@ -103,13 +104,13 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     legs = _legs(plans, rest)
     ways = _transition_ways(avatar, legs)
     paths = [{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(legs, ways)]
-    spans = _spans(plans, legs, paths)
+    manners = ["targetted" if plan.static else "lax" for plan in plans] + ["lax"]
+    spans = _spans(plans, legs, paths, manners)
     clock, back = spans[-1][0], spans[-1][1] - spans[-1][0]
     moves = [
         {(arm, channel): tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())) for arm in ARMS for channel in CHANNELS}
         for plan, (_, ready, _) in zip(plans, spans)
     ]
-    manners = ["targetted" if plan.static else "lax" for plan in plans] + ["lax"]
     # every wrist transition and move of the sequence traced in one batch (motor.signing.path_batch)
     chains = iter(trace_chains(
         [(start, ready, manner, leg[arm]) for (start, ready, _), manner, leg in zip(spans, manners, paths) for arm in ARMS],
@@ -159,27 +160,29 @@ def _legs(plans: Sequence[SignPlan], rest: dict[str, HandPose]) -> list[tuple[di
 
 
 def _spans(
-    plans: Sequence[SignPlan], legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]], paths: Sequence[dict[str, np.ndarray]]
+    plans: Sequence[SignPlan],
+    legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]],
+    paths: Sequence[dict[str, np.ndarray]],
+    manners: Sequence[str],
 ) -> list[tuple[float, float, float]]:
     """Per sign, when its transition starts, when its first posture is reached and when it
     ends (seconds), one after another from :data:`REST_LEAD`; and last, the retraction to
-    rest (start, arrival, arrival). The transitions' times come from their wrist ``paths``
+    rest (start, arrival, arrival). The transitions, in their ``manners``, take their
+    times from their wrist ``paths``
     (:func:`_transition_time`, the stopping lengths of all paths in one batch); the
     retraction takes at least what its way, travelled in law time, needs within the lax
-    budget (:func:`motor.signing.path_batch.timing_lengths`: a way around the body from
+    budget (:func:`motor.signing.retiming.timing_length`: a way around the body from
     behind the head is long and bent)."""
     stopping = iter(stopping_lengths([leg[arm] for leg in paths[:-1] for arm in ARMS]))
-    returning = timing_lengths([paths[-1][arm] for arm in ARMS])
     clock = REST_LEAD
     spans = []
-    for plan, (before, targets) in zip(plans, legs):
-        manner = "targetted" if plan.static else "lax"
+    for plan, (before, targets), manner in zip(plans, legs, manners):
         ready = clock + _transition_time(before, targets, [next(stopping) for _ in ARMS], manner)
         spans.append((clock, ready, ready + plan.duration))
         clock = ready + plan.duration
     before, rest = legs[-1]
     back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
-    back = max(back, max(shortest_duration(length, "lax") for length in returning))
+    back = max(back, max(shortest_duration(timing_length(paths[-1][arm]), "lax") for arm in ARMS))
     spans.append((clock, clock + back, clock + back))
     return spans
 

@@ -18,8 +18,7 @@ from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
 from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, smooth_pieces, stopping_length
-from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, timing_lengths, trace_chains
-from motor.signing.retiming import law_factor
+from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 from motor.signing.plan import HandPose
 from motor.signing.reach import clear_paths, rotations_along
 from motor.signing.sequence import MIN_TRANSITION_POINTS, TRANSITION_SPACING, _transition_ways
@@ -75,11 +74,6 @@ def test_batched_law_fractions_equal_one_path_fractions(case: int) -> None:
 @pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
 def test_batched_stopping_length_equals_one_path_length(case: int) -> None:
     assert stopping_lengths(PATHS)[case] == stopping_length(PATHS[case])
-
-
-@pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)
-def test_batched_timing_length_is_the_stopping_length_times_the_law_factor(case: int) -> None:
-    assert timing_lengths(PATHS)[case] == pytest.approx(stopping_length(PATHS[case]) * law_factor(PATHS[case]), rel=1e-9)
 
 
 @pytest.mark.parametrize("manner", ["lax", "targetted"])
