@@ -82,8 +82,7 @@ class Move:
         values = np.asarray(self.values, dtype=float)
         if values.ndim != 2 or values.shape[0] < 2 or not np.all(np.isfinite(values)):
             raise ValueError(f"move values must be finite (m ≥ 2, D), got shape {values.shape}")
-        if not self.end > self.start:
-            raise ValueError(f"move must end after it starts, got [{self.start}, {self.end}]")
+        _check_span(self.start, self.end)
         profile(self.manner)
         object.__setattr__(self, "values", values)
 
@@ -92,9 +91,13 @@ class Move:
         moved = object.__new__(Move)
         for name, value in (("start", self.start + offset), ("end", self.end + offset), ("manner", self.manner), ("values", self.values)):
             object.__setattr__(moved, name, value)
-        if not moved.end > moved.start:
-            raise ValueError(f"move must end after it starts, got [{moved.start}, {moved.end}]")
+        _check_span(moved.start, moved.end)
         return moved
+
+
+def _check_span(start: float, end: float) -> None:
+    if not end > start:
+        raise ValueError(f"move must end after it starts, got [{start}, {end}]")
 
 
 def _through(piece: np.ndarray) -> np.ndarray:
