@@ -17,6 +17,7 @@ from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_signs
 from motor.signing.retiming import law_factor, needed_duration, retimed
 from mura.sigml import parse_sigml
+from mura.signs import Sign
 
 STRIDE = 40
 HAND = "hamflathand hamextfingero hampalmd"
@@ -28,10 +29,14 @@ WRITTEN = {
 
 
 @pytest.fixture(scope="module")
-def plans(avatar, sigml_corpora) -> list[SignPlan]:
+def table(sigml_corpora) -> list[Sign]:
     signs = [sign for name in CORPORA for sign in parse_sigml(sigml_corpora[name], file=name).signs[::STRIDE]]
-    signs += [sign_of(symbols, gloss) for gloss, symbols in WRITTEN.items()]
-    return [plan for plan in plan_signs(avatar, signs) if isinstance(plan, SignPlan)]
+    return signs + [sign_of(symbols, gloss) for gloss, symbols in WRITTEN.items()]
+
+
+@pytest.fixture(scope="module")
+def plans(avatar, table) -> list[SignPlan]:
+    return [plan for plan in plan_signs(avatar, table) if isinstance(plan, SignPlan)]
 
 
 def wrist_moves(plan: SignPlan):
@@ -57,13 +62,11 @@ def test_moves_stay_in_order_within_the_sign(plans):
 
 
 @pytest.fixture(scope="module")
-def unretimed(avatar, sigml_corpora) -> list[SignPlan]:
+def unretimed(avatar, table) -> list[SignPlan]:
     """The same table planned with the retiming left out."""
-    signs = [sign for name in CORPORA for sign in parse_sigml(sigml_corpora[name], file=name).signs[::STRIDE]]
-    signs += [sign_of(symbols, gloss) for gloss, symbols in WRITTEN.items()]
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(planning, "retimed_all", lambda drafts: drafts)
-        return [plan for plan in plan_signs(avatar, signs) if isinstance(plan, SignPlan)]
+        return [plan for plan in plan_signs(avatar, table) if isinstance(plan, SignPlan)]
 
 
 def test_boundaries_that_met_still_meet(unretimed):
