@@ -115,6 +115,9 @@ NEUTRAL_LOCATION = GridLocation("LocChest", "LocCCenterRight", "LocNorm")
 
 #: Closest two key times may be and still count as distinct, seconds.
 SAME_TIME = 1e-9
+#: Clearance (m) between the forearms of mirrored arms that cross over each other
+#: (:meth:`Compiler.stacked`).
+CROSSING_CLEARANCE = 0.01
 
 
 _SAME_PLACE = 1e-4
@@ -296,11 +299,37 @@ class Compiler:
         for (arm, feature), keys in child.tracks.items():
             if arm != dominant or (other, feature) in child.tracks:
                 continue
+            mirrored = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
             if feature == "location":
+                asked = keys
                 keys = self.kept_apart(keys, node.symmetry, center, dominant)
+                mirrored = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
+                touching = [not np.array_equal(np.asarray(a.value), np.asarray(b.value)) for a, b in zip(asked, keys)]
+                mirrored = self.stacked(keys, mirrored, touching, node.symmetry, center, dominant)
                 tracks[(arm, feature)] = keys
-            tracks[(other, feature)] = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
+            tracks[(other, feature)] = mirrored
         return Fragment(child.duration, tracks, child.warnings)
+
+    def stacked(
+        self, keys: tuple[Key, ...], mirrored: tuple[Key, ...], touching: list[bool], symmetry: Symmetry, center: np.ndarray, dominant: str
+    ) -> tuple[Key, ...]:
+        """The mirror image's location keys, below the dominant hand's where the arms cross:
+        when the mirror is left–right (``S``) and a dominant key lies beyond the mirror plane
+        (the right hand left of it, or the left hand right of it), the arms cross over each
+        other in the gesture, and mirrored forearms would pass through each other; the
+        image's keys then keep the forearms' thickness and :data:`CROSSING_CLEARANCE` below
+        the dominant hand's mirror image — all but those where the hands touch
+        (``touching``: kept a palm thickness apart at the plane), so that the forearms pass
+        one over the other and the hands still meet where asked. The dominant hand stays
+        where it was asked (it may be at the edge of its reach, high above the head)."""
+        if reflection_signs(symmetry)[0] > 0.0:
+            return mirrored
+        beyond = -1.0 if dominant == "left" else 1.0
+        if not any(beyond * (float(np.asarray(key.value)[0]) - center[0]) > 0.0 for key in keys):
+            return mirrored
+        capsules = [self.avatar.collision.arm(side, "forearm") for side in "lr"]
+        drop = np.array([0.0, sum(c.radius for c in capsules) + CROSSING_CLEARANCE, 0.0])
+        return tuple(key if touch else replace(key, value=np.asarray(key.value, dtype=float) - drop) for key, touch in zip(mirrored, touching))
 
     def kept_apart(self, keys: tuple[Key, ...], symmetry: Symmetry, center: np.ndarray, dominant: str) -> tuple[Key, ...]:
         """Dominant-hand location keys at least a palm thickness from their mirror images
