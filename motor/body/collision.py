@@ -33,10 +33,13 @@ from motor.body.volumes import Capsule, Ellipsoid, EllipticCylinder, Volume
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
 #: Width (m) of the band in front of the torso's margin in which a wrist target is eased
-#: out (:func:`kept_out_of_torso`), and of the bands beyond its top, bottom and sides over
+#: out (:func:`kept_out_of_torso`), and of the bands beyond its top and bottom over
 #: which that push fades.
 SOFT_BAND = 0.02
-EDGE_BAND = 0.025
+EDGE_BAND = 0.08
+#: How far behind the torso's axis, in its half depths, lies the point from which
+#: :func:`kept_out_of_torso` pushes wrists out along rays.
+RAY_DEPTH = 3.0
 #: Depth (m) of the band below the palm thickness into which hands asked to come nearer
 #: are eased (:func:`separate_hands`): they overlap at most that much, while a contact
 #: placed at the palm thickness (:mod:`motor.program.fragment`) stays exactly as placed.
@@ -49,7 +52,13 @@ END_SHARE = (0.6, 0.8)
 CROSSING_SINE = 0.3
 #: Side the left hand takes where the hands cross: up, a little to the left and forward.
 _PREFERRED = np.array([0.1, 1.0, 0.01])
+#: Way the left hand takes from the right where the wrists are crossed over (the left one
+#: right of the right one): down, below the right hand, as the mirror image of a right-handed
+#: gesture whose arms cross is placed (:meth:`motor.program.fragment.Compiler.stacked`).
+_CROSSED_WAY = np.array([0.0, -1.0, 0.0])
 _TINY = 1e-12
+#: How far past a surface a pushed point lands at least (m): beyond rounding.
+_LANDED = 1e-9
 
 
 def joint_placement(avatar: Avatar, positions: np.ndarray, orientations: np.ndarray, joint: str) -> tuple[np.ndarray, np.ndarray]:
@@ -215,29 +224,36 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:
     smoothly (C¹): what the motor control does to every frame's wrist targets, whoever
     made them.
 
-    The torso's elliptic cylinder grown by :data:`TORSO_MARGIN`: a point inside it, or
-    behind it within its width, is moved forward out of it; a point in front of its
-    surface by less than :data:`SOFT_BAND` is eased out with a C² curve (:func:`_eased`:
-    a path meeting the surface bends instead of stopping dead), and beyond the torso's
-    top, bottom and sides the push fades out over :data:`EDGE_BAND`. Points farther away
-    are unchanged; no moved point is left inside."""
+    The torso's elliptic cylinder grown by :data:`TORSO_MARGIN`: a point inside it, or in
+    its shadow behind it, is moved out along the horizontal ray from a point
+    :data:`RAY_DEPTH` half depths behind the torso's axis (forward in front of the chest,
+    forward and outward at its sides, where moving straight forward would jump as the
+    front turns back); a point outside by less than :data:`SOFT_BAND` along that ray is
+    eased out with a C² curve (:func:`_eased`: a path meeting the surface bends instead
+    of stopping dead); beyond the torso's top and bottom the push fades out over
+    :data:`EDGE_BAND`. Points farther away are unchanged; no moved point is left inside."""
     torso = avatar.torso
     a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
-    dx = np.abs(points[:, 0] - torso.center[0]) / a
-    front = torso.center[2] + b * np.sqrt(_clip01(1.0 - dx * dx))
-    gap = points[:, 2] - front
-    eased = _eased(gap, SOFT_BAND)
-    fade = (
-        _fade(torso.bottom - points[:, 1])
-        * _fade(points[:, 1] - torso.top)
-        * _fade((dx - 1.0) * a)
-    )
-    push = (eased - gap) * fade
-    if not np.any(push > 0.0):
+    # in units of the grown ellipse, from the ray's origin behind the axis
+    u = (points[:, 0] - torso.center[0]) / a
+    w = (points[:, 2] - torso.center[2]) / b + RAY_DEPTH
+    # the ray through the point leaves the ellipse at s = exit (s = 1 at the point)
+    square = u * u + w * w
+    disc = (RAY_DEPTH * w) ** 2 - square * (RAY_DEPTH**2 - 1.0)
+    exit_ = (RAY_DEPTH * w + np.sqrt(np.maximum(disc, 0.0))) / np.maximum(square, _TINY)
+    length = np.sqrt((u * a) ** 2 + (w * b) ** 2)
+    gap = np.where((disc > 0.0) & (w > 0.0), (1.0 - exit_) * length, np.inf)
+    fade = _fade(torso.bottom - points[:, 1]) * _fade(points[:, 1] - torso.top)
+    near = np.minimum(gap, SOFT_BAND)
+    eased = np.maximum(_eased(near, SOFT_BAND), _LANDED)
+    moved = (eased > near) & (fade > 0.0)
+    if not np.any(moved):
         return points
+    # measured from the exit point, so that a point pushed whole lands past the surface
+    beyond = fade * eased + (1.0 - fade) * near
     out = np.array(points, dtype=float)
-    # measured from the surface, so that a point pushed whole lands on or past it exactly
-    out[:, 2] = np.where(push > 0.0, front + eased + (1.0 - fade) * (gap - eased), out[:, 2])
+    out[:, 0] = np.where(moved, torso.center[0] + (u * exit_ * a) + beyond * u * a / np.maximum(length, _TINY), out[:, 0])
+    out[:, 2] = np.where(moved, torso.center[2] + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / np.maximum(length, _TINY), out[:, 2])
     return out
 
 
@@ -305,12 +321,36 @@ def separate_hands(
     meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * palm), 0.0)[:, None]
     length = float(np.linalg.norm(avatar.collision.arm("r", "hand").b - avatar.collision.arm("r", "hand").a))
     direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, length)
+    crossed = _crossed(avatar, left[near, 0] - right[near, 0], left_hands[near], right_hands[near])
+    direction[:, 0] *= 1.0 - crossed
+    # the side the hands are on already, else (where they are level) the left one below
+    level = np.maximum(1.0 - np.abs(direction[:, 1]) / (0.25 * palm), 0.0)
+    direction += (0.25 * palm * crossed * level)[:, None] * _CROSSED_WAY
     direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
-    half = (0.5 * (eased - gap))[:, None] * direction
+    # how far along that way the hands part to be ``eased`` beyond the thickness
+    along = np.einsum("ij,ij->i", between, direction)
+    wanted = eased + thickness
+    push = np.sqrt(np.maximum(along * along - quat.norm(between) ** 2 + wanted * wanted, 0.0)) - along
+    half = (0.5 * push)[:, None] * direction
     left, right = np.array(left, dtype=float), np.array(right, dtype=float)
     left[near] += half
     right[near] -= half
     return left, right
+
+
+def _crossed(avatar: Avatar, spread: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray) -> np.ndarray:
+    """How far (0 … 1) hands whose wrists lie ``spread`` apart along x (left less right,
+    m), turned by global rotations ``(n, 4)``, are crossed over: they then pass one over the
+    other, never through each other sideways (which would flip the way they part as they
+    pass). Wholly so where the left wrist lies right of the right one; hands whose palms
+    face each other across x only once they are a palm thickness past each other (at one
+    point they meet side by side, palm to palm), other hands already half where their
+    wrists are level."""
+    palm = avatar.collision.palm_thickness
+    normals = (quat.rotate(hands, avatar.hand_frames[side].palm_normal) for side, hands in (("l", left_hands), ("r", right_hands)))
+    facing = 0.5 * sum(np.abs(normal[:, 0]) for normal in normals)
+    u = np.clip((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0, 1.0)
+    return 1.0 - u * u * (3.0 - 2.0 * u)
 
 
 def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.ndarray:

@@ -14,6 +14,7 @@ from motor.body.avatar import AVATAR_DIR, AvatarError, load_avatar
 from motor.body.collision import (
     HAND_BAND,
     SOFT_BAND,
+    TORSO_MARGIN,
     capsule_distance,
     inside_torso,
     kept_out_of_torso,
@@ -217,3 +218,44 @@ def test_hands_meet_without_a_speed_step(avatar):
     velocity = np.diff(kept[:, 0]) / np.diff(x)
     assert np.max(np.abs(np.diff(velocity))) < 2.0 * abs(x[1] - x[0]) / HAND_BAND
     assert np.min(kept[:, 0]) > 0.0
+
+
+@pytest.mark.parametrize("depth", [0.3, 0.6, 0.9])
+def test_wrists_meeting_the_torso_side_bend_around_it_smoothly(avatar, depth):
+    """A wrist path that runs in from beside the torso, in front of its axis (``depth``:
+    how far, in the grown torso's half depths), bends around the side: never inside, no
+    speed step, and never pushed farther than straight forward onto the front would."""
+    torso = avatar.torso
+    a, b = torso.half_width + TORSO_MARGIN, torso.half_depth + TORSO_MARGIN
+    x = np.linspace(torso.center[0] - 1.6 * a, torso.center[0] - 0.2 * a, 4001)
+    z = torso.center[2] + depth * b
+    path = np.stack([x, np.full_like(x, 0.5 * (torso.bottom + torso.top)), np.full_like(x, z)], axis=1)
+    pushed = kept_out_of_torso(avatar, path)
+    assert not np.any(inside_torso(avatar, pushed))
+    velocity = np.diff(pushed, axis=0) / np.diff(x)[:, None]
+    assert np.max(np.linalg.norm(np.diff(velocity, axis=0), axis=1)) < 2.0 * abs(x[1] - x[0]) / SOFT_BAND
+    forward = torso.center[2] + b * np.sqrt(np.clip(1.0 - ((x - torso.center[0]) / a) ** 2, 0.0, 1.0)) - z
+    assert np.all(np.linalg.norm(pushed - path, axis=1) <= np.maximum(forward, 0.0) + SOFT_BAND)
+
+
+@pytest.mark.parametrize(("height", "way"), [(0.0, -1.0), (-0.005, -1.0), (0.005, 1.0)], ids=["level", "below", "above"])
+def test_hands_passing_through_each_other_part_one_way(avatar, height, way):
+    """The left hand runs across the right one (palms down, its wrist ``height`` m above
+    the right's): it passes on the side it is on (``way``: +1 above, -1 below), below where
+    the hands are level, and moves continuously — the way they part never flips."""
+    x = np.linspace(0.15, -0.15, 3001)
+    left = np.stack([x, np.full_like(x, 0.3 + height), np.full_like(x, 0.3)], axis=1)
+    right = np.tile([0.0, 0.3, 0.3], (len(x), 1))
+    kept_left, kept_right = separate_hands(avatar, left, right, *(_palm_down(avatar, side, len(x)) for side in "lr"))
+    rise = kept_left[:, 1] - kept_right[:, 1]
+    assert np.all(way * rise >= -1e-12)
+    assert np.max(way * rise) >= 0.5 * avatar.collision.palm_thickness
+    assert np.max(np.linalg.norm(np.diff(kept_left, axis=0), axis=1)) < 20.0 * abs(x[1] - x[0])
+
+
+def _palm_down(avatar, side: str, count: int) -> np.ndarray:
+    """``count`` global hand rotations with the fingers forward and the palm down."""
+    frame = avatar.hand_frames[side]
+    axes = lambda finger, palm: np.stack((finger, palm, np.cross(finger, palm)), axis=-1)
+    rotation = quat.from_frames(axes(frame.finger_axis, frame.palm_normal), axes(np.array([0.0, 0.0, 1.0]), np.array([0.0, -1.0, 0.0])))
+    return np.broadcast_to(rotation, (count, 4))
