@@ -40,7 +40,8 @@ class SwivelLMP(VectorKeyframeLMP):
 #: steps, and how many grid points ahead each choice looks.
 SMOOTHNESS = 2.0
 MAX_STEP = 2
-HORIZON = 2
+HORIZON = 8
+DISCOUNT = 0.7
 
 
 @dataclass(frozen=True)
@@ -94,7 +95,7 @@ def smooth_swivels(
     value = costs
     for _ in range(horizon):
         rows = value.shape[0] - 1
-        value = costs[:rows] + _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
+        value = costs[:rows] + DISCOUNT * _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
     if now is not None:
         value = value + now
     rows = value.shape[0]
