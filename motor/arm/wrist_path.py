@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from motor.arm.chain import arm_chain, exact_reach
 from motor.arm.ik import solve_arm
@@ -40,26 +40,72 @@ STOP = 1e-3
 #: How far (m) the IK may fall short of a point before it is moved into reach (rounding
 #: only: a point left just out of reach would make the wrist stop short and jerk).
 REACH_TOLERANCE = 1e-6
+#: How deep (m) the arm may enter the body to reach a point before the point is moved
+#: forward (:func:`uncrowded`).
+CROWDING_TOLERANCE = 0.005
 #: Rounds of alternately clearing the torso and moving into reach (usually one).
 _ROUNDS = 4
+#: Rounds of moving points forward out of the arm's way (:func:`uncrowded`).
+_CROWDING_ROUNDS = 12
 
 
 @dataclass(frozen=True, eq=False)
 class Placement:
     """Points moved into reach and out of the torso, and by how much: ``depth`` the most
-    (m) a point was inside the torso, ``shortfall`` the most the arm fell short, with the
-    counts of points moved for each."""
+    (m) a point was inside the torso, ``shortfall`` the most the arm fell short,
+    ``crowding`` the deepest the arm itself would have entered the body to reach a point
+    (moved forward), with the counts of points moved for each."""
 
     points: np.ndarray
     inside: int
     depth: float
     short: int
     shortfall: float
+    crowded: int = 0
+    crowding: float = 0.0
 
 
 def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
     """``points`` ``(n, 3)`` of the arm on ``side`` (``"r"``/``"l"``) out of the torso and in
     reach (module docstring)."""
+    return _placed(avatar, side, points)
+
+
+def uncrowded_placement(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
+    """:func:`placed`, and then where the arm can reach the points without entering the
+    body (:func:`uncrowded`): what a gesture's key locations get (the curves between them
+    are placed only, so that their timing is kept)."""
+    placement = _placed(avatar, side, points)
+    clear, crowded, crowding = uncrowded(avatar, side, placement.points)
+    return replace(placement, points=clear, crowded=crowded, crowding=crowding)
+
+
+def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray, int, float]:
+    """Placed ``points`` where the arm's least costly posture would still enter the body
+    by more than :data:`CROWDING_TOLERANCE` (no swivel keeps the upper arm out, e.g. a hand
+    reaching across the belly close to it) moved forward by that depth and the tolerance,
+    placed again (in reach, which may pull it back), until clear or for
+    :data:`_CROWDING_ROUNDS` rounds; how many were moved and the deepest (m)."""
+    out = points
+    depth = solve_arm(avatar, side, out).penetration
+    crowded = depth > CROWDING_TOLERANCE
+    if not np.any(crowded):
+        return points, 0, 0.0
+    count, worst = int(np.sum(crowded)), float(np.max(depth))
+    for _ in range(_CROWDING_ROUNDS):
+        moved = out.copy()
+        step = depth[crowded, None] + CROWDING_TOLERANCE
+        moved[crowded] = _placed(avatar, side, out[crowded] + np.array([0.0, 0.0, 1.0]) * step).points
+        out = moved
+        depth = solve_arm(avatar, side, out).penetration
+        crowded = depth > CROWDING_TOLERANCE
+        if not np.any(crowded):
+            break
+    return out, count, worst
+
+
+def _placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
+    """``points`` out of the torso and in reach."""
     clear = outside_torso(avatar, points)
     inside = np.any(clear != points, axis=1)
     reached, shortfall = in_reach(avatar, side, clear)

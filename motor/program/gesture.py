@@ -25,7 +25,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
-from motor.arm.wrist_path import followable, placed
+from motor.arm.wrist_path import followable, uncrowded_placement
 from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
@@ -382,11 +382,16 @@ class Planner:
         """``points`` with those inside the torso pushed out in front of it and those the arm
         cannot reach moved to the nearest it can (:func:`motor.arm.wrist_path.placed`;
         warnings)."""
-        placement = placed(self.avatar, AVATAR_SIDE[arm], points)
+        placement = uncrowded_placement(self.avatar, AVATAR_SIDE[arm], points)
         if placement.inside:
             notes.append(
                 f"{behavior}: {placement.inside} location(s) of the {arm} hand inside the torso by up to "
                 f"{placement.depth:.3f} m; moved in front of it"
+            )
+        if placement.crowded:
+            notes.append(
+                f"{behavior}: {placement.crowded} location(s) of the {arm} hand the arm reaches only through the body "
+                f"(up to {placement.crowding:.3f} m deep); moved forward"
             )
         if placement.short and placement.shortfall >= NOTICEABLE_SHORTFALL:
             notes.append(
