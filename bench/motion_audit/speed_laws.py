@@ -9,11 +9,26 @@
   direction of motion turns by at least :data:`CURVED_TURN` in total (summed between
   consecutive frames above the speed floor, leaving out single-frame turns above
   :data:`REVERSAL_TURN`, which are reversals through a stop, not curvature) and the
-  median radius over those frames is below :data:`CURVED_RADIUS`. The fit uses the
-  frames faster than the floor ``max(`` :data:`SPEED_FLOOR` ``,`` :data:`SPEED_FLOOR_FRACTION`
-  ``× the stroke's peak)`` whose radius is below :data:`MAX_RADIUS`; it needs
-  :data:`MIN_FIT_POINTS` of them and a spread of log R of at least :data:`MIN_LOG_SPREAD`
-  (a circle traced at any speed has one radius and no exponent).
+  median radius over those frames is below :data:`CURVED_RADIUS`. The law relates speed
+  to curvature *within* a movement: it says nothing about how fast a movement starts
+  or stops, and each movement has its own gain (``v = K·R^β``, K set by its size and
+  duration). So the fit
+
+  - uses the frames faster than the floor ``max(`` :data:`SPEED_FLOOR` ``,``
+    :data:`SPEED_FLOOR_FRACTION` ``× the stroke's peak)`` whose radius is below
+    :data:`MAX_RADIUS` and that lie at least :data:`RAMP_TIME` from any frame of the
+    track slower than the floor (a start from or a stop at rest, where the speed is set
+    by the acceleration from or to rest whatever the curvature, and where the differences
+    that estimate R span the rest);
+  - gives each *piece* of the stroke — a stretch between two frames slower than the
+    floor, i.e. one movement between stops — its own gain: log speed and log R are
+    centred on their means within each piece (pieces with fewer than
+    :data:`MIN_PIECE_POINTS` frames left out) and β is the slope of the pooled centred
+    values, R² their fraction of the centred variance explained.
+
+  It needs :data:`MIN_FIT_POINTS` frames and a spread (standard deviation of the centred
+  log R) of at least :data:`MIN_LOG_SPREAD`: a circle traced at any speed has one
+  radius and no exponent.
 * **Jerk ratio** of a movement unit (:mod:`bench.motion_audit.movement`): the peak jerk
   *along the path* — the third difference ``·fps³`` of the distance travelled, i.e. of
   the speed profile, which is what a start with a step in acceleration spoils — against
@@ -43,6 +58,13 @@ SPEED_FLOOR = 0.05
 SPEED_FLOOR_FRACTION = 0.2
 MAX_RADIUS = 1.0
 MIN_FIT_POINTS = 8
+#: Seconds next to a frame slower than the floor that the fit leaves out: the start or the
+#: stop of a movement. A minimum-jerk movement spends its first and last 20 % below 41 %
+#: of its peak speed, rising or falling whatever the path's curvature: 0.1 s of a 0.5 s
+#: stroke.
+RAMP_TIME = 0.1
+#: Fewest frames of a piece (a movement between two stops) that enters the fit.
+MIN_PIECE_POINTS = 3
 MIN_LOG_SPREAD = 0.1
 #: Units shorter than this path (metres) or this many frames get no jerk ratio.
 MIN_UNIT_PATH = 0.02
@@ -103,6 +125,24 @@ def curvature(path: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray, np.
     return velocity, speed, radius
 
 
+def _frames_from_rest(slow: np.ndarray) -> np.ndarray:
+    """Per frame, the number of frames to the nearest ``slow`` one (a large number if none)."""
+    index = np.arange(slow.size)
+    rest = np.flatnonzero(slow)
+    if rest.size == 0:
+        return np.full(slow.size, slow.size)
+    after = np.clip(np.searchsorted(rest, index), 0, rest.size - 1)
+    before = np.clip(after - 1, 0, rest.size - 1)
+    return np.minimum(np.abs(rest[after] - index), np.abs(rest[before] - index))
+
+
+def _centred(values: np.ndarray, pieces: np.ndarray) -> np.ndarray:
+    """``values`` less the mean of their piece."""
+    counts = np.bincount(pieces)
+    means = np.bincount(pieces, weights=values) / np.maximum(counts, 1)
+    return values - means[pieces]
+
+
 def power_law(track: np.ndarray, fps: float, first: int, last: int, what: str, time: float) -> PowerLawFit | None:
     """β on the stroke from frame ``first`` to ``last`` of the wrist ``track`` ``(n, 3)``;
     None if the stroke is not curved by the rule above. Derivatives are central
@@ -112,24 +152,30 @@ def power_law(track: np.ndarray, fps: float, first: int, last: int, what: str, t
     path = track[first : last + 1]
     if frames.size < 5 or np.linalg.norm(np.diff(path, axis=0), axis=1).sum() < CURVED_PATH:
         return None
+    floor = max(SPEED_FLOOR, SPEED_FLOOR_FRACTION * float(speed[frames].max()))
+    slow = speed <= floor
+    away = _frames_from_rest(slow)[frames] >= RAMP_TIME * fps
+    pieces = np.cumsum(slow)[frames]
     velocity, speed, radius = velocity[frames], speed[frames], radius[frames]
-    floor = max(SPEED_FLOOR, SPEED_FLOOR_FRACTION * float(speed.max()))
-    fast = speed > floor
+    fast = ~slow[frames]
     pairs = fast[:-1] & fast[1:]
     unit = velocity / np.maximum(speed, 1e-12)[:, None]
     turns = np.arccos(np.clip(np.sum(unit[:-1] * unit[1:], axis=1), -1.0, 1.0))
     turn = float(np.sum(turns[pairs & (turns < REVERSAL_TURN)]))
     if turn < CURVED_TURN or not fast.any() or np.median(radius[fast]) >= CURVED_RADIUS:
         return None
-    keep = fast & np.isfinite(radius) & (radius < MAX_RADIUS)
-    log_radius, log_speed = np.log(radius[keep]), np.log(speed[keep])
-    if keep.sum() < MIN_FIT_POINTS or np.std(log_radius) < MIN_LOG_SPREAD:
+    keep = fast & away & np.isfinite(radius) & (radius < MAX_RADIUS)
+    _, piece, counts = np.unique(pieces[keep], return_inverse=True, return_counts=True)
+    keep[np.flatnonzero(keep)[counts[piece] < MIN_PIECE_POINTS]] = False
+    _, piece = np.unique(pieces[keep], return_inverse=True)
+    log_radius, log_speed = _centred(np.log(radius[keep]), piece), _centred(np.log(speed[keep]), piece)
+    if keep.sum() < MIN_FIT_POINTS or np.sqrt(np.mean(log_radius**2)) < MIN_LOG_SPREAD:
         return PowerLawFit(what, time, None, None, int(keep.sum()), float(np.degrees(turn)))
-    slope, intercept = np.polyfit(log_radius, log_speed, 1)
-    residual = log_speed - (slope * log_radius + intercept)
-    variance = float(np.sum((log_speed - log_speed.mean()) ** 2))
+    slope = float(log_radius @ log_speed) / float(log_radius @ log_radius)
+    residual = log_speed - slope * log_radius
+    variance = float(log_speed @ log_speed)
     r_squared = 1.0 - float(residual @ residual) / variance if variance > 0 else 1.0
-    return PowerLawFit(what, time, float(slope), r_squared, int(keep.sum()), float(np.degrees(turn)))
+    return PowerLawFit(what, time, slope, r_squared, int(keep.sum()), float(np.degrees(turn)))
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,43 @@ def test_power_law_exponent_is_recovered(beta, axes):
     assert fit.r_squared > 0.9
 
 
+def ellipse_from_rest(a: float, b: float, beta: float, laps: float, ramp: float, duration: float, still: int = 10) -> np.ndarray:
+    """A synthetic wrist, still, then tracing an ellipse at speed ``g(t)·R^beta`` from rest
+    to rest, then still: the gain ``g`` rises from 0 over ``ramp`` seconds (a smooth step),
+    stays flat and falls over the last ``ramp`` seconds."""
+    theta = np.linspace(0.0, 2.0 * np.pi * laps, 40001)
+    arc = np.hypot(a * np.sin(theta), b * np.cos(theta))
+    density = arc / (arc**3 / (a * b)) ** beta  # law time per radian: ds / R^beta
+    law = np.concatenate(([0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(theta))))
+    t = np.arange(0.0, duration + 1e-9, 1.0 / FPS)
+    x = np.clip(np.minimum(t, duration - t) / ramp, 0.0, 1.0)
+    gain = x**3 * (10.0 - 15.0 * x + 6.0 * x * x)
+    travelled = np.concatenate(([0.0], np.cumsum(0.5 * (gain[1:] + gain[:-1]))))
+    angle = np.interp(travelled / travelled[-1] * law[-1], law, theta)
+    path = np.stack((a * np.cos(angle), 1.3 + b * np.sin(angle), np.full_like(angle, 0.35)), axis=1)
+    return np.concatenate((np.repeat(path[:1], still, axis=0), path, np.repeat(path[-1:], still, axis=0)))
+
+
+@pytest.mark.parametrize("beta", [0.2, 1 / 3, 0.45])
+@pytest.mark.parametrize("ramp", [0.1, 0.2])
+def test_starting_and_stopping_at_rest_does_not_bias_the_exponent(beta, ramp):
+    """Near rest the speed rises and falls whatever the curvature; the fit leaves it out."""
+    path = ellipse_from_rest(0.15, 0.06, beta, 1.0, ramp, 1.2)
+    fit = speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic from rest", 0.0)
+    assert fit is not None and fit.beta == pytest.approx(beta, abs=0.02)
+
+
+@pytest.mark.parametrize("beta", [0.2, 1 / 3, 0.45])
+def test_each_movement_between_stops_has_its_own_gain(beta):
+    """Two strokes of the law, the second twice as slow, with a stop between them."""
+    fast = ellipse_from_rest(0.15, 0.06, beta, 0.75, 0.1, 0.8)
+    slow = ellipse_from_rest(0.15, 0.06, beta, 0.75, 0.1, 1.6)
+    path = np.concatenate((fast, slow[1:] + (fast[-1] - slow[0])))
+    fit = speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic two gains", 0.0)
+    assert fit is not None and fit.beta == pytest.approx(beta, abs=0.02)
+    assert fit.r_squared > 0.9
+
+
 def test_straight_stroke_is_not_curved():
     path = np.outer(minimum_jerk(40), [0.3, 0.1, 0.0]) + [0.0, 1.2, 0.3]
     assert speed_laws.power_law(path, FPS, 0, len(path) - 1, "synthetic straight", 0.0) is None
