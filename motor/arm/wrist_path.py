@@ -71,13 +71,19 @@ def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
     return _placed(avatar, side, points)
 
 
-def uncrowded_placement(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
+def uncrowded_placement(avatar: Avatar, side: str, points: np.ndarray, kept: np.ndarray | None = None) -> Placement:
     """:func:`placed`, and then where the arm can reach the points without entering the
-    body (:func:`uncrowded`): what a gesture's key locations get (the curves between them
-    are placed only, so that their timing is kept)."""
+    body (:func:`uncrowded`), except those ``kept`` ``(n,)`` (e.g. where the other hand
+    touches this one): what a gesture's key locations get (the curves between them are
+    placed only, so that their timing is kept)."""
     placement = _placed(avatar, side, points)
-    clear, crowded, crowding = uncrowded(avatar, side, placement.points)
-    return replace(placement, points=clear, crowded=crowded, crowding=crowding)
+    free = np.ones(len(points), dtype=bool) if kept is None else ~np.asarray(kept, dtype=bool)
+    if not np.any(free):
+        return placement
+    clear, crowded, crowding = uncrowded(avatar, side, placement.points[free])
+    out = placement.points.copy()
+    out[free] = clear
+    return replace(placement, points=out, crowded=crowded, crowding=crowding)
 
 
 def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray, int, float]:

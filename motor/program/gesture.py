@@ -19,7 +19,7 @@ names them.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
@@ -283,7 +283,8 @@ class Planner:
         if not locations:
             return None
         times, values = timed_values(locations)
-        points = self.within_reach(behavior, arm, np.array([np.asarray(v, dtype=float) for v in values]), notes)
+        points = np.array([np.asarray(v, dtype=float) for v in values])
+        points = self.within_reach(behavior, arm, points, notes, self.touching(stroke, arm, times, points))
         if len(times) < 2:
             return WristPath(points, np.array(times), None)
         points, times, replaced = followable(self.avatar, AVATAR_SIDE[arm], points, np.array(times))
@@ -378,11 +379,25 @@ class Planner:
             )  # fmt: skip
         return pegs
 
-    def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str]) -> np.ndarray:
-        """``points`` with those inside the torso pushed out in front of it and those the arm
-        cannot reach moved to the nearest it can (:func:`motor.arm.wrist_path.placed`;
+    def touching(self, stroke: Fragment, arm: str, times: Sequence[float], points: np.ndarray) -> np.ndarray:
+        """Which of ``arm``'s locations at ``times`` the other hand touches at the same
+        instant (its wrist within a palm thickness and a millimetre)."""
+        other = stroke.tracks.get((next(a for a in ARMS if a != arm), "location"), ())
+        if not other:
+            return np.zeros(len(points), dtype=bool)
+        other_times, other_values = timed_values(other)
+        near = np.zeros(len(points), dtype=bool)
+        for time, value in zip(other_times, other_values):
+            same = np.abs(np.asarray(times) - time) < SAME_TIME
+            near |= same & (np.linalg.norm(points - np.asarray(value, dtype=float), axis=1) <= self.avatar.collision.palm_thickness + 1e-3)
+        return near
+
+    def within_reach(self, behavior: str, arm: str, points: np.ndarray, notes: list[str], kept: np.ndarray | None = None) -> np.ndarray:
+        """``points`` with those inside the torso pushed out in front of it, those the arm
+        cannot reach moved to the nearest it can, and those the arm reaches only through the
+        body moved forward, but for ``kept`` (:func:`motor.arm.wrist_path.uncrowded_placement`;
         warnings)."""
-        placement = uncrowded_placement(self.avatar, AVATAR_SIDE[arm], points)
+        placement = uncrowded_placement(self.avatar, AVATAR_SIDE[arm], points, kept)
         if placement.inside:
             notes.append(
                 f"{behavior}: {placement.inside} location(s) of the {arm} hand inside the torso by up to "
