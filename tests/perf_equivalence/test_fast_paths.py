@@ -139,13 +139,14 @@ def test_frames_after_an_interrupt_are_those_of_a_fresh_control(avatar):
     programs = _programs(streaming)
     for program in programs:
         streaming.activate(program)
-    handed_out = 1.2 - (TRACK_REACH + 2) * SWIVEL_PERIOD
-    early = streaming.frames(0.0, handed_out)  # frames computed ahead for 2.0 s, uninterrupted
-    streaming.interrupt(1.2)
-    late = [streaming.frames(a, b) for a, b in ((handed_out, 1.5), (1.5, 2.5), (2.5, 5.0))]
+    handed_out = 0.5
+    interrupt = handed_out + (TRACK_REACH + 2) * SWIVEL_PERIOD
+    early = streaming.frames(0.0, handed_out)  # frames computed ahead, uninterrupted
+    streaming.interrupt(interrupt)
+    late = [streaming.frames(a, b) for a, b in ((handed_out, interrupt + 0.3), (interrupt + 0.3, 3.0), (3.0, 5.0))]
     fresh = MotorControl(avatar, fps=30.0)
     for program in programs:
         fresh.activate(program)
-    fresh.interrupt(1.2)
+    fresh.interrupt(interrupt)
     whole = fresh.frames(0.0, 5.0)
     np.testing.assert_allclose(np.concatenate([m.rotations for m in [early, *late]]), whole.rotations, rtol=0, atol=1e-12)
