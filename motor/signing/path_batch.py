@@ -52,7 +52,7 @@ _MAX_RADIUS = 64
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     """:func:`motor.signing.lmp.stopping_length` of every path."""
     pieces = smooth_pieces_many(paths, through=False)
-    lengths = iter(_lengths([piece for split in pieces for piece in split]))
+    lengths = iter(polyline_lengths([piece for split in pieces for piece in split]))
     return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
 
 
@@ -67,7 +67,7 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
     parts = []  # per chain: (start, end, manner, pieces) of its transition and moves
     for (start, ready, manner, _), pieces, chain in zip(transitions, smooth_pieces_many([way for _, _, _, way in transitions], through=True), moves):
         parts.append([(start, ready, manner, pieces), *((m.start, m.end, m.manner, next(traced)) for m in chain)])
-    lengths = iter(_lengths([piece for chain in parts for _, _, _, pieces in chain for piece in pieces]))
+    lengths = iter(polyline_lengths([piece for chain in parts for _, _, _, pieces in chain for piece in pieces]))
     timed = []
     for chain in parts:
         split = []
@@ -94,7 +94,7 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
     ]
 
 
-def _lengths(pieces: Sequence[np.ndarray]) -> np.ndarray:
+def polyline_lengths(pieces: Sequence[np.ndarray]) -> np.ndarray:
     """Length (m) of every polyline ``(k, 3)``: its chords summed as numpy sums one."""
     out = np.empty(len(pieces))
     for k, members in _groups(pieces).items():

@@ -235,7 +235,7 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     compiled = _compile_all(geometry, signs)
     geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
     drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
-    return retimed_all(within_reach_all(avatar, drafts))
+    return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
 
 
 def without_initial_hold(plan: SignPlan) -> SignPlan:

@@ -1,0 +1,99 @@
+"""Sign planning's batched passes equal the one-at-a-time computations, bit for bit.
+
+Cases: the wrist paths of real signs (every 25th parsed sign of both SiGML corpora,
+planned up to, not including, the retiming) and synthetic paths (labelled by kind): a
+straight line, a zigzag that reverses, a path with a hold, two and three points, a path
+that does not move, one shorter than the millimetre whose law factor is measured, and
+one of micrometres (a law-time kernel wider than the batch smooths).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from motor.body.avatar import ARMS, load_avatar
+from motor.signing import planning
+from motor.signing.plan import SignPlan
+from motor.signing.retiming import retimed_all, timing_length, timing_lengths
+from mura.sigml import parse_sigml
+
+CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
+#: Every how many signs of each corpus the real cases take.
+STRIDE = 25
+
+
+def _synthetic(kind: str) -> np.ndarray:
+    """A synthetic wrist path (metres) of one kind."""
+    start = np.array([0.1, 1.2, 0.3])
+    rng = np.random.default_rng(len(kind))
+    if kind == "line":
+        return np.linspace(start, start + [0.2, 0.05, 0.1], 8)
+    if kind == "zigzag":  # reverses: cut into pieces
+        return start + np.cumsum(np.where(np.arange(9)[:, None] % 3 == 2, -1.0, 1.0) * [0.04, 0.01, 0.005], axis=0)
+    if kind == "hold":
+        points = start + np.cumsum(0.03 * rng.standard_normal((7, 3)), axis=0)
+        points[4] = points[3]
+        return points
+    if kind == "two points":
+        return np.stack([start, start + [0.1, 0.0, 0.0]])
+    if kind == "three points":
+        return np.stack([start, start + [0.1, 0.0, 0.0], start + [0.1, 0.1, 0.0]])
+    if kind == "still":
+        return np.repeat(start[None], 5, axis=0)
+    if kind == "submillimetre":
+        return np.linspace(start, start + [4e-4, 3e-4, 0.0], 6) + 1e-5 * rng.standard_normal((6, 3))
+    return start + np.cumsum(2e-6 * rng.standard_normal((9, 3)), axis=0)  # "micrometres"
+
+
+SYNTHETIC = ("line", "zigzag", "hold", "two points", "three points", "still", "submillimetre", "micrometres")
+
+
+@pytest.fixture(scope="module")
+def drafts(shared: Path) -> list:
+    """Plans of real signs before their retiming (the retiming left out)."""
+    signs = [sign for name in CORPORA for sign in parse_sigml((shared / "corpora" / "sigml" / name).read_bytes(), file=name).signs[::STRIDE]]
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(planning, "retimed_all", lambda drafts, batched=True: drafts)
+        return planning.plan_signs(load_avatar("max"), signs)
+
+
+@pytest.fixture(scope="module")
+def real_paths(drafts) -> list[np.ndarray]:
+    return [move.values for plan in drafts if isinstance(plan, SignPlan) for arm in ARMS for move in plan.moves.get((arm, "wrist_position"), ())]
+
+
+def test_real_paths_cover_many_sizes(real_paths):
+    assert len(real_paths) > 200
+    assert max(len(path) for path in real_paths) > 30  # cleared paths with inserted points
+    assert len({path.shape[0] for path in real_paths}) >= 5  # many sizes: many groups of the batch
+
+
+def test_timing_lengths_of_real_paths_equal_one_by_one(real_paths):
+    batched = timing_lengths(real_paths)
+    plain = [timing_length(path) for path in real_paths]
+    assert batched == plain
+    assert any(length > 0.0 for length in plain) and any(length == 0.0 for length in plain)
+
+
+@pytest.mark.parametrize("kind", SYNTHETIC)
+def test_timing_length_of_a_synthetic_path_equals_one_by_one(kind, real_paths):
+    path = _synthetic(kind)
+    table = [*real_paths[:40], path, path.copy(), *real_paths[40:80]]  # among others, repeated
+    batched = timing_lengths(table)
+    assert batched[40] == batched[41] == timing_length(path)
+
+
+def test_retimed_plans_equal_plans_retimed_one_by_one(drafts):
+    fast = retimed_all(drafts)
+    plain = retimed_all(drafts, batched=False)
+    assert any(a is not b for a, b in zip(fast, drafts))  # some moves were slowed
+    for a, b in zip(fast, plain):
+        if not isinstance(b, SignPlan):
+            assert str(a) == str(b)
+            continue
+        assert (a.duration, a.warnings) == (b.duration, b.warnings)
+        for key, moves in b.moves.items():
+            assert [(m.start, m.end) for m in a.moves[key]] == [(m.start, m.end) for m in moves], (b.gloss, key)
