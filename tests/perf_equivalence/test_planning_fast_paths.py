@@ -4,7 +4,8 @@ Cases: the wrist paths of real signs (every 25th parsed sign of both SiGML corpo
 planned up to, not including, the retiming) and synthetic paths (labelled by kind): a
 straight line, a zigzag that reverses, a path with a hold, two and three points, a path
 that does not move, one shorter than the millimetre whose law factor is measured, and
-one of micrometres (a law-time kernel wider than the batch smooths).
+one of micrometres (a law-time kernel wider than the batch smooths). The clearing's
+spread of displacements along chains is checked on synthetic chains.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import pytest
 from motor.body.avatar import ARMS, load_avatar
 from motor.signing import planning
 from motor.signing.plan import SignPlan
+from motor.signing.reach import _spread, _spread_chains
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
 from mura.sigml import parse_sigml
 
@@ -97,3 +99,22 @@ def test_retimed_plans_equal_plans_retimed_one_by_one(drafts):
         assert (a.duration, a.warnings) == (b.duration, b.warnings)
         for key, moves in b.moves.items():
             assert [(m.start, m.end) for m in a.moves[key]] == [(m.start, m.end) for m in moves], (b.gloss, key)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_spreading_only_the_chains_that_need_it_changes_no_displacement(seed):
+    """Synthetic chains (labelled synthetic: random arcs and needs, seeded), some needing
+    nothing, some needing less than the threshold of a needy point, some anchored."""
+    rng = np.random.default_rng(seed)
+    sizes = rng.integers(1, 40, 30)
+    chain = np.repeat(np.arange(sizes.size), sizes)
+    arc = np.concatenate([np.cumsum(rng.uniform(0.0, 0.03, size)) for size in sizes])
+    arc[5] = arc[4]  # a point repeated where one move ends and the next starts
+    need = rng.normal(0.0, 0.02, (chain.size, 3)) * (rng.random(chain.size) < 0.2)[:, None]
+    need[chain % 3 == 0] = 0.0
+    need[chain == 4] = 1e-13  # below the needy threshold, still spread
+    anchored = (chain == 6) & (rng.random(chain.size) < 0.5)
+    plain = _spread_chains(need, arc, chain, anchored)
+    fast = _spread(need, arc, chain, anchored)
+    assert fast.tobytes() == plain.tobytes()
+    assert np.any(fast[chain == 4] != 0.0) and np.all(fast[chain == 3] == 0.0)
