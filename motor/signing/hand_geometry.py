@@ -5,7 +5,8 @@ depends only on the avatar and on a hand's values: the global hand rotation of a
 extended-finger direction and a palm direction, the joint parameters of a hand shape,
 the point a location names on the body at rest, the offset from the wrist to a site of
 the hand in a rotation and shape, and the whole-body pose with one arm holding a hand
-posture (IK and forward kinematics). :class:`HandGeometry` computes each once per
+posture (IK and forward kinematics); and, though it is no hand's, the stopping length of
+a path that a sign's moves take (a corpus repeats many). :class:`HandGeometry` computes each once per
 planning run and hands the same (read-only) arrays back afterwards; with
 ``memoize=False`` it computes every answer afresh, which is how the tests check that the
 memo changes nothing.
@@ -28,6 +29,8 @@ from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
 from motor.body.locations import resolve_location, site_points
 from motor.hand.shape import hand_rotations, handshape_params
+from motor.signing.lmp import stopping_length
+from motor.signing.path_batch import stopping_length_of
 from mura.errors import SpecError
 from mura.values import BodySite, HandShape, Location
 
@@ -83,6 +86,13 @@ class HandGeometry:
     def location(self, location: Location, side: str) -> np.ndarray:
         """The point ``(3,)`` m a location names for the hand on ``side``, body at rest."""
         return self._recall(("location", location, side), lambda: resolve_location(self.avatar, location, side))
+
+    def stopping_length(self, path: np.ndarray) -> float:
+        """:func:`motor.signing.lmp.stopping_length` of a wrist or palm path ``(m, 3)``, m
+        (:func:`motor.signing.path_batch.stopping_length_of` when memoizing: the same number)."""
+        if not self.memoize:
+            return stopping_length(path)
+        return self._recall(("stopping length", path.shape, _bytes(path)), lambda: stopping_length_of(path))
 
     def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's

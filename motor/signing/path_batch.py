@@ -34,6 +34,7 @@ from motor.signing.lmp import (
     TracedChain,
     law_fractions,
     smooth_pieces,
+    stopping_length,
     stopping_times,
 )
 from motor.trajectory.power_law import EXPONENT, clamped_curvature
@@ -54,6 +55,23 @@ def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     pieces = smooth_pieces_many(paths, through=False)
     lengths = iter(polyline_lengths([piece for split in pieces for piece in split]))
     return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
+
+
+def stopping_length_of(points: np.ndarray) -> float:
+    """:func:`motor.signing.lmp.stopping_length` of one path ``(m, 3)`` with the batch's
+    arithmetic (the B-spline's basis kept per size) and without its grouping: what a
+    sign's compiler asks for move by move. A path with a hold goes through the one-path
+    function, as in the batch."""
+    points = np.asarray(points, dtype=float)
+    if points.shape[0] < 3:
+        pieces = [points]
+    elif not np.all(np.linalg.norm(np.diff(points, axis=0), axis=1) > HOLD_LENGTH):
+        return stopping_length(points)
+    else:
+        cuts = np.concatenate([[0], np.flatnonzero(_turning(points[None])[0] >= REVERSAL_ANGLE) + 1, [points.shape[0] - 1]])
+        pieces = [_trace([points[first : last + 1]], through=False)[0] for first, last in zip(cuts[:-1], cuts[1:])]
+    lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
+    return float(np.sum(np.sqrt(lengths)) ** 2)
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:

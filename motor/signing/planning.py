@@ -82,7 +82,7 @@ from motor.body.collision import outside_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
 from motor.signing.hand_geometry import GeometryPending, HandGeometry
-from motor.signing.lmp import Move, stopping_length
+from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
 from motor.signing.retiming import retimed_all
@@ -650,7 +650,7 @@ class _SignCompiler:
         """The least time (s) the hands' paths need within the speed budget of ``manner``
         (stopping at each reversal: :func:`motor.signing.lmp.stopping_length`)."""
         paths = [change.path for change in changes.values() if change.path is not None and len(change.path) > 1]
-        return max((shortest_duration(stopping_length(path), manner) for path in paths), default=0.0)
+        return max((shortest_duration(self.geometry.stopping_length(path), manner) for path in paths), default=0.0)
 
     def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
         """The palm-centre path of one HandLocation segment, its kind and time profile."""

@@ -17,6 +17,8 @@ import pytest
 
 from motor.body.avatar import ARMS, load_avatar
 from motor.signing import planning
+from motor.signing.lmp import stopping_length
+from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
 from motor.signing.reach import _spread, _spread_chains
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
@@ -118,3 +120,13 @@ def test_spreading_only_the_chains_that_need_it_changes_no_displacement(seed):
     fast = _spread(need, arc, chain, anchored)
     assert fast.tobytes() == plain.tobytes()
     assert np.any(fast[chain == 4] != 0.0) and np.all(fast[chain == 3] == 0.0)
+
+
+def test_one_path_stopping_length_of_real_paths_equals_the_plain_one(real_paths):
+    assert [stopping_length_of(path) for path in real_paths] == [stopping_length(path) for path in real_paths]
+
+
+@pytest.mark.parametrize("kind", SYNTHETIC)
+def test_one_path_stopping_length_of_a_synthetic_path_equals_the_plain_one(kind):
+    path = _synthetic(kind)
+    assert stopping_length_of(path) == stopping_length(path)
