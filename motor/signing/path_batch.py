@@ -69,9 +69,19 @@ def stopping_length_of(points: np.ndarray) -> float:
         return stopping_length(points)
     else:
         cuts = np.concatenate([[0], np.flatnonzero(_turning(points[None])[0] >= REVERSAL_ANGLE) + 1, [points.shape[0] - 1]])
-        pieces = [_trace([points[first : last + 1]], through=False)[0] for first, last in zip(cuts[:-1], cuts[1:])]
+        pieces = [_traced_within(points[first : last + 1]) for first, last in zip(cuts[:-1], cuts[1:])]
     lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
     return float(np.sum(np.sqrt(lengths)) ** 2)
+
+
+def _traced_within(piece: np.ndarray) -> np.ndarray:
+    """One piece ``(k, 3)`` traced within its hull, starting with its first point (``_trace``)."""
+    if piece.shape[0] < 3:
+        return piece
+    dense = np.empty((PATH_DENSITY * (piece.shape[0] - 1) + 1, 3))
+    dense[0] = piece[0]
+    dense[1:] = _within(piece[None])[0]
+    return dense
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:

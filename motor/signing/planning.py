@@ -81,7 +81,7 @@ from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
-from motor.signing.hand_geometry import GeometryPending, HandGeometry
+from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, within_reach_all
@@ -293,7 +293,7 @@ class _SignCompiler:
         self.sign = sign
         self.dominant = sign.dominant.side
         self.other = sign.dominant.other.side
-        self.arm_length = self.avatar.arm_length("r")
+        self.arm_length = geometry.arm_length()
         self.warnings: list[str] = []
         self.hands: dict[str, _Hand] = {}
         self.moves: dict[str, list[_HandMove]] = {}
@@ -305,6 +305,7 @@ class _SignCompiler:
         self.path_mirror = Symmetry(planes, "path")
         self.sagittal = Symmetry(frozenset({"S"}), "SymMS")
         self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
+        self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
         self.start: dict[str, _Hand] = {}
         self.static = False
 
@@ -807,9 +808,14 @@ class _SignCompiler:
     def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
         """The offset this sign takes for a hand posture: that of the first posture it
         asked for within 1e-9 of it (rounded to 9 decimals)."""
+        exact = (arm, site, key_bytes(rotation), key_bytes(params))
+        known = self._asked.get(exact)
+        if known is not None:  # asked for these very values before: the same answer
+            return known
         key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
         if key not in self._offsets:
             self._offsets[key] = (AVATAR_SIDE[arm], site, rotation, params)
+        self._asked[exact] = self._offsets[key]
         return self._offsets[key]
 
 
