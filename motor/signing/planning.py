@@ -84,7 +84,7 @@ from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import arc_fractions, within_reach_all
+from motor.signing.reach import arc_fractions_of_paths, within_reach_all
 from motor.signing.retiming import retimed_all
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.guiding_strokes import (
@@ -234,7 +234,7 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     geometry = HandGeometry(avatar, memoize)
     compiled = _compile_all(geometry, signs)
     geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
-    drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
+    drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
     return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
 
 
@@ -343,10 +343,18 @@ class _SignCompiler:
 
     def plan(self) -> SignPlan:
         """The sign's plan from its compiled hand moves (the second half of planning)."""
+        return self.plan_from(_placed(self.avatar, [self.layout()])[0])
+
+    def layout(self) -> _Layout:
+        """Each hand's first posture and, per move, its palm path with the offsets from the
+        wrist to the palm in the move's first and last postures."""
         first = {arm: self.pose(arm, hand) for arm, hand in self.start.items()}
-        first = {arm: replace(pose, wrist=outside_torso(self.avatar, pose.wrist[None])[0]) for arm, pose in first.items()}
-        moves = self.channel_moves(first)
-        return SignPlan(self.sign.gloss, self.clock, first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
+        return _Layout(first, {arm: self.palm_paths(arm) for arm in first})
+
+    def plan_from(self, layout: _Layout) -> SignPlan:
+        """The plan of a layout whose wrists are kept out of the torso."""
+        moves = self.channel_moves(layout)
+        return SignPlan(self.sign.gloss, self.clock, layout.first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
 
     def hold(self, duration: float, manner: str) -> None:
         scale = movement_duration("straight", MANNERS.get(manner, "targetted")) / movement_duration("straight")
@@ -784,20 +792,23 @@ class _SignCompiler:
 
     # -- from hand moves to channel moves ------------------------------------------------
 
-    def channel_moves(self, first: Mapping[str, HandPose]) -> dict[tuple[str, str], tuple[Move, ...]]:
+    def palm_paths(self, arm: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Per move of the hand: its palm path ``(m, 3)`` and the wrist-to-palm offsets
+        ``(3,)`` of its first and last postures."""
+        return [
+            (
+                move.locations,
+                self.offset_of(arm, move.rotations[0], move.shapes[0], _PALM),
+                self.offset_of(arm, move.rotations[-1], move.shapes[-1], _PALM),
+            )
+            for move in self.moves.get(arm, [])
+        ]
+
+    def channel_moves(self, layout: _Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
         result: dict[tuple[str, str], tuple[Move, ...]] = {}
-        for arm in first:
+        for arm in layout.first:
             moves = self.moves.get(arm, [])
-            palm = _PALM
-            wrists = []
-            for move in moves:
-                start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
-                end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
-                fractions = arc_fractions(move.locations)[:, None]
-                wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
-            if wrists:  # one pass over all the moves' points: outside_torso moves each on its own
-                wrists = np.split(outside_torso(self.avatar, np.concatenate(wrists)), np.cumsum([len(w) for w in wrists])[:-1])
-            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
+            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, layout.wrists[arm]))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
             result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
         return result
@@ -824,6 +835,66 @@ class _SignCompiler:
 
 
 
+
+
+@dataclass(frozen=True, eq=False)
+class _Layout:
+    """A sign's hands before their plan: first postures, and per hand and move the palm
+    path ``(m, 3)`` with the wrist-to-palm offsets ``(3,)`` of its first and last postures
+    (metres); once placed (:func:`_placed`), ``wrists`` holds each move's wrist path."""
+
+    first: dict[str, HandPose]
+    palms: dict[str, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]
+    wrists: dict[str, list[np.ndarray]] | None = None
+
+
+def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
+    """The layouts with their wrist paths — each palm path less the offset to the palm,
+    blended from the first posture's to the last's by the fraction of the way
+    (:func:`motor.signing.reach.arc_fractions`) — and every wrist position, first postures
+    too, placed out of the torso (:func:`outside_torso`); all the moves of all the layouts
+    in one pass, each row's arithmetic that of a move alone."""
+    moves = [move for layout in layouts for palms in layout.palms.values() for move in palms]
+    points = [pose.wrist[None] for layout in layouts for pose in layout.first.values()]
+    if moves:
+        counts = [len(palm) for palm, _, _ in moves]
+        fractions = arc_fractions_of_paths([palm for palm, _, _ in moves])[:, None]
+        start = np.repeat(np.array([offset for _, offset, _ in moves]), counts, axis=0)
+        end = np.repeat(np.array([offset for _, _, offset in moves]), counts, axis=0)
+        wrists = np.concatenate([palm for palm, _, _ in moves]) - ((1.0 - fractions) * start + fractions * end)
+        points.append(wrists)
+    if not points:
+        return list(layouts)
+    placed = outside_torso(avatar, np.concatenate(points))
+    hands = iter(placed[: len(points) - bool(moves)])
+    paths = iter(np.split(placed[len(points) - bool(moves) :], np.cumsum(counts)[:-1]) if moves else ())
+    return [
+        _Layout(
+            {arm: replace(pose, wrist=next(hands)) for arm, pose in layout.first.items()},
+            layout.palms,
+            {arm: [next(paths) for _ in palms] for arm, palms in layout.palms.items()},
+        )
+        for layout in layouts
+    ]
+
+
+def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """The plan of every compiled sign (:meth:`_SignCompiler.plan`), the wrists of all of
+    them kept out of the torso in one pass; a sign whose layout fails is planned alone,
+    where it fails with its own error."""
+    layouts: dict[int, _Layout] = {}
+    for index, sign in enumerate(compiled):
+        if isinstance(sign, _SignCompiler):
+            layout = _attempt(sign.sign, sign.layout)
+            if isinstance(layout, _Layout):
+                layouts[index] = layout
+    placed = dict(zip(layouts, _placed(avatar, list(layouts.values()))))
+    return [
+        c if isinstance(c, SignPlanningError)
+        else _attempt(c.sign, lambda: c.plan_from(placed[index])) if index in placed
+        else _attempt(c.sign, c.plan)
+        for index, c in enumerate(compiled)
+    ]  # fmt: skip
 
 
 def _flattened(node: Parallel) -> list[Constraint]:
