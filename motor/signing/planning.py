@@ -70,7 +70,9 @@ alone, bit for bit (``tests/signing_speed``).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+import gc
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from typing import TypeVar
 
@@ -231,11 +233,28 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     (:class:`motor.signing.hand_geometry.HandGeometry`; ``memoize=False`` computes it
     afresh every time, the plain path the tests compare with), and the reach of every
     wrist position of all the signs is checked in one vectorized IK call per arm."""
-    geometry = HandGeometry(avatar, memoize)
-    compiled = _compile_all(geometry, signs)
-    geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
-    drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
-    return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
+    with _collector_paused():
+        geometry = HandGeometry(avatar, memoize)
+        compiled = _compile_all(geometry, signs)
+        geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
+        drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
+        return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
+
+
+@contextmanager
+def _collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector paused for the duration (and resumed only if it
+    was running): planning a collection allocates hundreds of thousands of small objects
+    and keeps most of them, so the collector's passes over the whole heap took about a
+    tenth of the planning time (bench/planning_profile.py), while planning leaves few
+    reference cycles behind for it to find (they are collected once it resumes)."""
+    running = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if running:
+            gc.enable()
 
 
 def without_initial_hold(plan: SignPlan) -> SignPlan:

@@ -10,6 +10,7 @@ spread of displacements along chains is checked on synthetic chains.
 
 from __future__ import annotations
 
+import gc
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +23,7 @@ from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
 from motor.signing.reach import _spread, _spread_chains
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
+from mura.hamnosys import hamnosys_string, parse_hamnosys
 from mura.sigml import parse_sigml
 
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
@@ -130,3 +132,16 @@ def test_one_path_stopping_length_of_real_paths_equals_the_plain_one(real_paths)
 def test_one_path_stopping_length_of_a_synthetic_path_equals_the_plain_one(kind):
     path = _synthetic(kind)
     assert stopping_length_of(path) == stopping_length(path)
+
+
+@pytest.mark.parametrize("running", [True, False])
+def test_planning_leaves_the_garbage_collector_as_it_found_it(running):
+    """The collector is paused while planning (a fast path) and resumed only if it ran."""
+    sign = parse_hamnosys(hamnosys_string("hamflathand hamextfingero hampalmd hamchest hammoveu".split()), gloss="move up")
+    was = gc.isenabled()
+    try:
+        gc.enable() if running else gc.disable()
+        (plan,) = planning.plan_signs(load_avatar("max"), [sign])
+        assert isinstance(plan, SignPlan) and gc.isenabled() == running
+    finally:
+        gc.enable() if was else gc.disable()
