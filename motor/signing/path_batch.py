@@ -11,9 +11,10 @@ basis at the fixed parameters of a path of that size, the law time by the same g
 interpolation and Gaussian smoothing :func:`~motor.signing.lmp.law_fractions` uses, row by row.
 
 The results equal the one-path functions within rounding (a few ulps: the spline's linear
-solve orders its operations differently from LAPACK's); the paths the batch would treat
-differently — repeated points, a law-time grid too coarse for its kernel — go through the
-one-path functions. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
+solve orders its operations differently from LAPACK's); repeated points are dropped as
+the one-path function drops them (paths traced through their points go through it when
+they have any), and the paths whose law-time grid is too coarse for the batch's kernel go
+through the one-path function. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
 """
 
 from __future__ import annotations
@@ -170,18 +171,20 @@ def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[
 def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
     out: list[list[np.ndarray] | None] = [None] * len(paths)
     pieces: list[tuple[int, int, np.ndarray]] = []  # (path, order, piece)
-    for m, members in _groups(paths).items():
-        if m < 3:
-            for index in members:
-                out[index] = [paths[index]]
-            continue
-        stacked = np.stack([paths[index] for index in members])
-        moving = np.all(np.linalg.norm(np.diff(stacked, axis=1), axis=2) > HOLD_LENGTH, axis=1)
+    kept = _without_holds(paths)
+    batched = []
+    for index, (path, points) in enumerate(zip(paths, kept)):
+        if through and points is not path:  # a hold: scipy's spline, as the transitions always had
+            out[index] = smooth_pieces(path, through)
+        elif points.shape[0] < 3:  # fewer than three distinct points: the path as it is
+            out[index] = [path]
+        else:
+            batched.append(index)
+    for m, positions in _groups([kept[index] for index in batched]).items():
+        members = [batched[position] for position in positions]
+        stacked = np.stack([kept[index] for index in members])
         angles = _turning(stacked)
         for row, index in enumerate(members):
-            if not moving[row]:
-                out[index] = smooth_pieces(paths[index], through)
-                continue
             cuts = np.concatenate([[0], np.flatnonzero(angles[row] >= REVERSAL_ANGLE) + 1, [m - 1]])
             out[index] = [None] * (cuts.size - 1)
             for order, (first, last) in enumerate(zip(cuts[:-1], cuts[1:])):
@@ -189,6 +192,22 @@ def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list
     traced = _trace([piece for _, _, piece in pieces], through)
     for (index, order, _), dense in zip(pieces, traced):
         out[index][order] = dense
+    return out
+
+
+def _without_holds(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Each path without the points :func:`motor.signing.lmp.smooth_pieces` drops (those
+    within :data:`motor.trajectory.spline.HOLD_LENGTH` of the point before), per size."""
+    out: list[np.ndarray | None] = [None] * len(paths)
+    for m, members in _groups(paths).items():
+        if m < 2:
+            for index in members:
+                out[index] = paths[index]
+            continue
+        stacked = np.stack([paths[index] for index in members])
+        moving = np.linalg.norm(np.diff(stacked, axis=1), axis=2) > HOLD_LENGTH
+        for row, index in enumerate(members):
+            out[index] = paths[index] if moving[row].all() else paths[index][np.concatenate([[True], moving[row]])]
     return out
 
 

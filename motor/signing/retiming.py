@@ -101,21 +101,23 @@ def _law_factors(pieces: Sequence[np.ndarray]) -> list[float]:
     for number, piece in enumerate(pieces):
         if piece.shape[0] >= 3:
             groups[piece.shape[0]].append(number)
-    measured, arcs = [], []
+    measured: list[tuple[list[int], np.ndarray]] = []  # per size: the pieces and their arcs
     for members in groups.values():
-        stacked = np.stack([pieces[number] for number in members])
-        chords = np.linalg.norm(np.diff(stacked, axis=1), axis=2)
+        chords = np.linalg.norm(np.diff(np.stack([pieces[number] for number in members]), axis=1), axis=2)
         arc = np.concatenate([np.zeros((len(members), 1)), np.cumsum(chords, axis=1)], axis=1)
-        for row, number in enumerate(members):
-            if arc[row, -1] >= _MEASURED:
-                measured.append(number)
-                arcs.append(arc[row])
-    for number, arc, fractions in zip(measured, arcs, law_fractions_many([pieces[number] for number in measured])):
-        spent = np.diff(fractions)
-        travelled = np.diff(arc) / arc[-1]
+        long = arc[:, -1] >= _MEASURED
+        measured.append(([number for number, keep in zip(members, long) if keep], arc[long]))
+    fractions = iter(law_fractions_many([pieces[number] for members, _ in measured for number in members]))
+    for members, arc in measured:
+        if not members:
+            continue
+        spent = np.diff(np.stack([next(fractions) for _ in members]), axis=1)
+        travelled = np.diff(arc, axis=1) / arc[:, -1:]
         moving = spent > 1e-12
-        if np.any(moving):
-            factors[number] = max(1.0, float(np.max(travelled[moving] / spent[moving])))
+        ratios = np.where(moving, travelled / np.where(moving, spent, 1.0), -np.inf).max(axis=1)
+        for number, ratio, any_moving in zip(members, ratios, moving.any(axis=1)):
+            if any_moving:
+                factors[number] = max(1.0, float(ratio))
     return factors
 
 
