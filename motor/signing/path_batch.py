@@ -22,6 +22,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Sequence
 from functools import cache
+from itertools import pairwise
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -70,7 +71,7 @@ def stopping_length_of(points: np.ndarray) -> float:
         return stopping_length(points)
     else:
         cuts = np.concatenate([[0], np.flatnonzero(_turning(points[None])[0] >= REVERSAL_ANGLE) + 1, [points.shape[0] - 1]])
-        pieces = [_traced_within(points[first : last + 1]) for first, last in zip(cuts[:-1], cuts[1:])]
+        pieces = [_traced_within(points[first : last + 1]) for first, last in pairwise(cuts)]
     lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
     return float(np.sum(np.sqrt(lengths)) ** 2)
 

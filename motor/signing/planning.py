@@ -74,6 +74,7 @@ import gc
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import TypeVar
 
 import numpy as np
@@ -910,7 +911,7 @@ def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningErr
     placed = dict(zip(layouts, _placed(avatar, list(layouts.values()))))
     return [
         c if isinstance(c, SignPlanningError)
-        else _attempt(c.sign, lambda: c.plan_from(placed[index])) if index in placed
+        else _attempt(c.sign, partial(c.plan_from, placed[index])) if index in placed
         else _attempt(c.sign, c.plan)
         for index, c in enumerate(compiled)
     ]  # fmt: skip

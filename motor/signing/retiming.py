@@ -27,7 +27,11 @@ import numpy as np
 
 from motor.body.avatar import ARMS
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
-from motor.signing.path_batch import law_fractions_many, polyline_lengths, smooth_pieces_many
+from motor.signing.path_batch import (
+    law_fractions_many,
+    polyline_lengths,
+    smooth_pieces_many,
+)
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.trajectory.biocontrol import shortest_duration
 

@@ -137,7 +137,7 @@ def test_one_path_stopping_length_of_a_synthetic_path_equals_the_plain_one(kind)
 @pytest.mark.parametrize("running", [True, False])
 def test_planning_leaves_the_garbage_collector_as_it_found_it(running):
     """The collector is paused while planning (a fast path) and resumed only if it ran."""
-    sign = parse_hamnosys(hamnosys_string("hamflathand hamextfingero hampalmd hamchest hammoveu".split()), gloss="move up")
+    sign = parse_hamnosys(hamnosys_string(["hamflathand", "hamextfingero", "hampalmd", "hamchest", "hammoveu"]), gloss="move up")
     was = gc.isenabled()
     try:
         gc.enable() if running else gc.disable()
