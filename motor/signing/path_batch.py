@@ -62,27 +62,39 @@ def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
 def stopping_length_of(points: np.ndarray) -> float:
     """:func:`motor.signing.lmp.stopping_length` of one path ``(m, 3)`` with the batch's
     arithmetic (the B-spline's basis kept per size) and without its grouping: what a
-    sign's compiler asks for move by move. A path with a hold goes through the one-path
-    function, as in the batch."""
+    sign's compiler asks for move by move, in as few numpy calls as the one path needs.
+    A path with a hold goes through the one-path function, as in the batch."""
     points = np.asarray(points, dtype=float)
     if points.shape[0] < 3:
-        pieces = [points]
-    elif not np.all(np.linalg.norm(np.diff(points, axis=0), axis=1) > HOLD_LENGTH):
+        return float(np.sum(np.sqrt([_length(points)])) ** 2)
+    steps = points[1:] - points[:-1]
+    chords = np.sqrt(np.add.reduce(steps * steps, axis=1))  # np.linalg.norm's arithmetic
+    if not np.all(chords > HOLD_LENGTH):
         return stopping_length(points)
-    else:
-        cuts = np.concatenate([[0], np.flatnonzero(_turning(points[None])[0] >= REVERSAL_ANGLE) + 1, [points.shape[0] - 1]])
-        pieces = [_traced_within(points[first : last + 1]) for first, last in pairwise(cuts)]
-    lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in pieces]
-    return float(np.sum(np.sqrt(lengths)) ** 2)
+    denom = chords[:-1] * chords[1:]
+    cos = np.divide(np.einsum("ij,ij->i", steps[:-1], steps[1:]), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    reversals = np.flatnonzero(np.arccos(np.clip(cos, -1.0, 1.0)) >= REVERSAL_ANGLE) + 1
+    cuts = [0, *reversals.tolist(), points.shape[0] - 1]
+    return float(np.sum(np.sqrt([_length(_traced_within(points[first : last + 1])) for first, last in pairwise(cuts)])) ** 2)
+
+
+def _length(polyline: np.ndarray) -> float:
+    """Length (m) of a polyline ``(k, 3)``, summed as :func:`motor.signing.lmp.stopping_length` sums it."""
+    return float(np.linalg.norm(np.diff(polyline, axis=0), axis=1).sum())
 
 
 def _traced_within(piece: np.ndarray) -> np.ndarray:
     """One piece ``(k, 3)`` traced within its hull, starting with its first point (``_trace``)."""
     if piece.shape[0] < 3:
         return piece
-    dense = np.empty((PATH_DENSITY * (piece.shape[0] - 1) + 1, 3))
+    first, weights = _basis(piece.shape[0])
+    dense = np.empty((first.size + 1, 3))
     dense[0] = piece[0]
-    dense[1:] = _within(piece[None])[0]
+    traced = np.zeros((first.size, 3))
+    for a in range(weights.shape[1]):  # the batch's order of sums (_within)
+        traced = traced + piece[first + a] * weights[:, a, None]
+    dense[1:] = traced
+    dense[-1] = piece[-1]
     return dense
 
 
