@@ -74,7 +74,7 @@ import gc
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
-from functools import partial
+from functools import lru_cache, partial
 from typing import TypeVar
 
 import numpy as np
@@ -186,6 +186,11 @@ class _Hand:
     palm: np.ndarray
     shape: HandShape
     params: np.ndarray
+
+    def at(self, location: np.ndarray) -> _Hand:
+        """The same hand with its palm centre at ``location`` (``dataclasses.replace``
+        without its overhead: planning moves hands tens of thousands of times)."""
+        return _Hand(location, self.fingers, self.palm, self.shape, self.params)
 
 
 @dataclass(frozen=True, eq=False)
@@ -407,7 +412,7 @@ class _SignCompiler:
         fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
         palm = self.palm_vector(self.dominant, fingers, dominant.palm)
         mirrored = replace(hand, fingers=mirror_directions(fingers, self.sagittal), palm=mirror_directions(palm, self.sagittal))
-        return replace(mirrored, location=self.locate(self.other, posture.location, mirrored, None))
+        return mirrored.at(self.locate(self.other, posture.location, mirrored, None))
 
     def other_posture(self) -> HandPosture:
         """The non-dominant hand's posture: its own fields, else the mirrored dominant's
@@ -434,7 +439,7 @@ class _SignCompiler:
         palm = self.palm_vector(arm, fingers, posture.palm)
         params = self.geometry.params(shape)
         hand = _Hand(np.zeros(3), fingers, palm, shape, params)
-        return replace(hand, location=self.locate(arm, posture.location, hand, other))
+        return hand.at(self.locate(arm, posture.location, hand, other))
 
     def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
         if palm is None:
@@ -481,8 +486,8 @@ class _SignCompiler:
             return
         shift = np.array([SIDE_BY_SIDE, 0.0, 0.0])
         sign = 1.0 if self.dominant == "left" else -1.0
-        self.hands[self.dominant] = replace(mine, location=mine.location + sign * shift)
-        self.hands[self.other] = replace(theirs, location=theirs.location - sign * shift)
+        self.hands[self.dominant] = mine.at(mine.location + sign * shift)
+        self.hands[self.other] = theirs.at(theirs.location - sign * shift)
 
     def place_constellation(self) -> None:
         """Put the hands relative to each other (module docstring)."""
@@ -490,7 +495,7 @@ class _SignCompiler:
         assert constellation is not None
         other = self.hands[self.other]
         if constellation.location is not None:
-            other = replace(other, location=self.locate(self.other, constellation.location, other, None))
+            other = other.at(self.locate(self.other, constellation.location, other, None))
         other_site = _hand_site(constellation.nondominant, constellation.contact)
         own_site = _hand_site(constellation.dominant, "touch")
         if _is_hand_site(other_site):
@@ -502,7 +507,7 @@ class _SignCompiler:
         palm = self.offset(self.dominant, dominant, _PALM)
         own = self.offset(self.dominant, dominant, own_site) if _is_hand_site(own_site) else palm
         self.hands[self.other] = other
-        self.hands[self.dominant] = replace(dominant, location=meeting - own + palm)
+        self.hands[self.dominant] = dominant.at(meeting - own + palm)
 
     # -- the hand's geometry -------------------------------------------------------------
 
@@ -606,7 +611,7 @@ class _SignCompiler:
 
     def shifted(self, hands: Mapping[str, _Hand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
         """Changes that put ``hands`` where they are, moved by ``offset`` (hands without one stay)."""
-        return {arm: _Change(replace(hand, location=hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
+        return {arm: _Change(hand.at(hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
 
     def replay(self, moves: Mapping[str, list[_HandMove]], length: float, offset: Mapping[str, np.ndarray] | None = None) -> None:
         """The recorded moves of one pass again, from the current clock (moved by ``offset``)."""
@@ -625,9 +630,9 @@ class _SignCompiler:
         for arm, change in step.changes.items():
             before = self.hands[arm]
             after = change.hand
-            path = change.path if change.path is not None else np.linspace(before.location, after.location, _PATH_POINTS)
-            rotations = change.rotations if change.rotations is not None else np.stack([self.rotation(arm, before), self.rotation(arm, after)])
-            shapes = change.shapes if change.shapes is not None else np.stack([before.params, after.params])
+            path = change.path if change.path is not None else _line(before.location, after.location)
+            rotations = change.rotations if change.rotations is not None else np.array([self.rotation(arm, before), self.rotation(arm, after)])
+            shapes = change.shapes if change.shapes is not None else np.array([before.params, after.params])
             self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
             self.hands[arm] = after
         self.clock = end
@@ -701,7 +706,7 @@ class _SignCompiler:
         else:
             if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
-            points = np.linspace(start, end, _PATH_POINTS)
+            points = _line(start, end)
         if manner == "sudden_stop":
             profile = "sudden_stop"
         elif segment.kind is SegmentKind.CIRCLE:
@@ -710,7 +715,7 @@ class _SignCompiler:
             profile = "hard_contact"
         else:
             profile = manner
-        return _Change(replace(hand, location=points[-1]), path=points), kind, profile
+        return _Change(hand.at(points[-1]), path=points), kind, profile
 
     def curve(self, start: np.ndarray, end: np.ndarray, segment: Segment) -> np.ndarray:
         chord = end - start
@@ -761,7 +766,7 @@ class _SignCompiler:
         if self.alternating:
             displacement = -displacement
         path = hand.location + displacement
-        return _Change(replace(hand, location=path[-1]), path=path)
+        return _Change(hand.at(path[-1]), path=path)
 
     def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
         """A change of shape or orientation (``replace``) or a local movement in place."""
@@ -939,7 +944,7 @@ def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
             current = merged.get(arm, _Change(before))
             hand = current.hand
             if not _close(change.hand.location, before.location):
-                hand = replace(hand, location=change.hand.location)
+                hand = hand.at(change.hand.location)
             if not (_close(change.hand.fingers, before.fingers) and _close(change.hand.palm, before.palm)):
                 hand = replace(hand, fingers=change.hand.fingers, palm=change.hand.palm)
             if not _close(change.hand.params, before.params):
@@ -968,6 +973,22 @@ def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
     )
 
 
+
+
+#: The sample numbers of a straight path as :func:`numpy.linspace` counts them, a column.
+_SAMPLES = np.arange(_PATH_POINTS, dtype=float).reshape(-1, 1)
+
+
+def _line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """``np.linspace(start, end, _PATH_POINTS)`` for points ``(3,)``, with numpy's
+    arithmetic (its step, its care for zero steps, the end placed exactly) and without its
+    overhead: a collection of signs draws thousands of straight paths."""
+    delta = end - start
+    step = delta / (_PATH_POINTS - 1)
+    points = (_SAMPLES / (_PATH_POINTS - 1)) * delta if np.any(step == 0) else _SAMPLES * step
+    points += start
+    points[-1] = end
+    return points
 
 
 def _unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:
@@ -999,6 +1020,7 @@ def _clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.n
     return float(np.arctan2(direction @ e2, direction @ e1))
 
 
+@lru_cache(maxsize=4096)
 def _normalized(site: BodySite) -> BodySite:
     name = site.site.split(":")[0]
     name = SITE_ALIASES.get(name, name)

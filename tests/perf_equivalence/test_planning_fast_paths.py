@@ -145,3 +145,18 @@ def test_planning_leaves_the_garbage_collector_as_it_found_it(running):
         assert isinstance(plan, SignPlan) and gc.isenabled() == running
     finally:
         gc.enable() if was else gc.disable()
+
+
+LINE_CASES = {
+    "ordinary": ([0.1, 1.2, 0.3], [0.3, 1.05, 0.45]),
+    "one coordinate still": ([0.1, 1.2, 0.3], [0.1, 1.0, 0.5]),
+    "a hold": ([0.1, 1.2, 0.3], [0.1, 1.2, 0.3]),
+    "denormal step": ([0.0, 1.0, 0.0], [1e-320, 1.0, 0.0]),
+    "negative and large": ([-3.0, 1e3, -1e-9], [2.5, -1e3, 1e-9]),
+}
+
+
+@pytest.mark.parametrize("case", LINE_CASES)
+def test_a_straight_path_is_numpys_linspace(case):
+    start, end = (np.array(point) for point in LINE_CASES[case])
+    assert planning._line(start, end).tobytes() == np.linspace(start, end, planning._PATH_POINTS).tobytes()
