@@ -62,10 +62,13 @@ their manner's speed budget are then slowed, the sign's clock warped with them
 compiled into hand moves, and the costly geometry the signs ask for (arm poses for sites on
 the other hand, wrist-to-site offsets) is computed for all of them together in vectorized
 rounds (:class:`motor.signing.hand_geometry.HandGeometry`, which also remembers hand
-rotations, shapes and rest locations for the collection); then the wrist offsets of all
-moves, then the reach of every distinct wrist position of the collection
-(:func:`motor.signing.reach.within_reach_all`). The plans are those of planning each sign
-alone, bit for bit (``tests/signing_speed``).
+rotations, shapes, rest locations and the stopping lengths of paths for the collection);
+then the wrist offsets of all moves, then every move's wrist path and every wrist kept out
+of the torso in one pass (:func:`_placed`), then the reach of every distinct wrist position
+of the collection (:func:`motor.signing.reach.within_reach_all`), then the timing lengths
+of all wrist moves for the retiming (:func:`motor.signing.retiming.timing_lengths`); the
+garbage collector waits meanwhile. The plans are those of planning each sign alone, bit
+for bit (``tests/signing_speed``, ``tests/perf_equivalence/test_planning_fast_paths.py``).
 """
 
 from __future__ import annotations
