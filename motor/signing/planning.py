@@ -255,8 +255,10 @@ def _collector_paused() -> Iterator[None]:
     """Python's cyclic garbage collector paused for the duration (and resumed only if it
     was running): planning a collection allocates hundreds of thousands of small objects
     and keeps most of them, so the collector's passes over the whole heap took about a
-    tenth of the planning time (bench/planning_profile.py), while planning leaves few
-    reference cycles behind for it to find (they are collected once it resumes)."""
+    tenth of the planning time, while planning itself leaves almost no reference cycles
+    (150 objects for both corpora). The price: cyclic garbage made *before* planning (a
+    parsed corpus leaves ~42,000 objects) waits until the collector resumes — 24 MB more
+    at the peak when both corpora are planned right after parsing them."""
     running = gc.isenabled()
     gc.disable()
     try:
