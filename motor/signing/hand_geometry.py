@@ -5,7 +5,8 @@ depends only on the avatar and on a hand's values: the global hand rotation of a
 extended-finger direction and a palm direction, the joint parameters of a hand shape,
 the point a location names on the body at rest, the offset from the wrist to a site of
 the hand in a rotation and shape, and the whole-body pose with one arm holding a hand
-posture (IK and forward kinematics). :class:`HandGeometry` computes each once per
+posture (IK and forward kinematics); and, though it is no hand's, the stopping length of
+a path that a sign's moves take (a corpus repeats many). :class:`HandGeometry` computes each once per
 planning run and hands the same (read-only) arrays back afterwards; with
 ``memoize=False`` it computes every answer afresh, which is how the tests check that the
 memo changes nothing.
@@ -28,6 +29,8 @@ from motor.body.avatar import Avatar
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
 from motor.body.locations import resolve_location, site_points
 from motor.hand.shape import hand_rotations, handshape_params
+from motor.signing.lmp import stopping_length
+from motor.signing.path_batch import stopping_length_of
 from mura.errors import SpecError
 from mura.values import BodySite, HandShape, Location
 
@@ -72,7 +75,7 @@ class HandGeometry:
         """Global hand rotation ``(4,)`` of the hand on ``side`` (``"l"``/``"r"``) whose
         extended fingers point along ``fingers`` ``(3,)`` with the palm toward ``palm``."""
         return self._recall(
-            ("rotation", side, _bytes(fingers), _bytes(palm)),
+            ("rotation", side, key_bytes(fingers), key_bytes(palm)),
             lambda: hand_rotations_from_vectors(self.avatar, side, fingers[None], palm[None])[0],
         )
 
@@ -84,10 +87,21 @@ class HandGeometry:
         """The point ``(3,)`` m a location names for the hand on ``side``, body at rest."""
         return self._recall(("location", location, side), lambda: resolve_location(self.avatar, location, side))
 
+    def arm_length(self) -> float:
+        """The straight right arm's length (m), the unit of a sign's movement sizes."""
+        return self._recall(("arm length",), lambda: self.avatar.arm_length("r"))
+
+    def stopping_length(self, path: np.ndarray) -> float:
+        """:func:`motor.signing.lmp.stopping_length` of a wrist or palm path ``(m, 3)``, m
+        (:func:`motor.signing.path_batch.stopping_length_of` when memoizing: the same number)."""
+        if not self.memoize:
+            return stopping_length(path)
+        return self._recall(("stopping length", path.shape, key_bytes(path)), lambda: stopping_length_of(path))
+
     def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
         global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
-        key = ("offset", side, site, _bytes(rotation), _bytes(params))
+        key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
         if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
             self._pending_offsets.append((side, site, rotation, params))
             raise GeometryPending(key)
@@ -111,7 +125,7 @@ class HandGeometry:
             return
         missing: dict[tuple[str, BodySite], dict[Hashable, tuple[np.ndarray, np.ndarray]]] = {}
         for side, site, rotation, params in requests:
-            key = ("offset", side, site, _bytes(rotation), _bytes(params))
+            key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
             if key not in self._memo:
                 missing.setdefault((side, site), {})[key] = (rotation, params)
         for (side, site), wanted in missing.items():
@@ -137,14 +151,14 @@ class HandGeometry:
         """Local rotations ``(17, 4)`` of the hand's joints for the shape ``params``
         (:func:`motor.hand.shape.hand_rotations` of one row)."""
         return self._recall(
-            ("fingers", side, _bytes(params)),
+            ("fingers", side, key_bytes(params)),
             lambda: hand_rotations(self.avatar, side, np.asarray(params, dtype=float)[None])[0],
         )
 
     def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
         with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
-        key = ("arm_pose", side, _bytes(wrist), _bytes(rotation), _bytes(params))
+        key = ("arm_pose", side, key_bytes(wrist), key_bytes(rotation), key_bytes(params))
         if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
             self._pending_poses[key] = (side, wrist, rotation, params)
             raise GeometryPending(key)
@@ -190,5 +204,8 @@ class HandGeometry:
         return forward_kinematics(avatar, rotations)
 
 
-def _bytes(values: np.ndarray) -> bytes:
+def key_bytes(values: np.ndarray) -> bytes:
+    """The bytes of ``values`` as float64: a memo key that matches the very same values."""
+    if type(values) is np.ndarray and values.dtype == np.float64:  # most keys: skip the conversion
+        return values.tobytes()
     return np.asarray(values, dtype=float).tobytes()

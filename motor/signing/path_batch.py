@@ -11,9 +11,10 @@ basis at the fixed parameters of a path of that size, the law time by the same g
 interpolation and Gaussian smoothing :func:`~motor.signing.lmp.law_fractions` uses, row by row.
 
 The results equal the one-path functions within rounding (a few ulps: the spline's linear
-solve orders its operations differently from LAPACK's); the paths the batch would treat
-differently — repeated points, a law-time grid too coarse for its kernel — go through the
-one-path functions. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
+solve orders its operations differently from LAPACK's); repeated points are dropped as
+the one-path function drops them (paths traced through their points go through it when
+they have any), and the paths whose law-time grid is too coarse for the batch's kernel go
+through the one-path function. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Sequence
 from functools import cache
+from itertools import pairwise
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -34,6 +36,7 @@ from motor.signing.lmp import (
     TracedChain,
     law_fractions,
     smooth_pieces,
+    stopping_length,
     stopping_times,
 )
 from motor.trajectory.power_law import EXPONENT, clamped_curvature
@@ -52,8 +55,47 @@ _MAX_RADIUS = 64
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     """:func:`motor.signing.lmp.stopping_length` of every path."""
     pieces = smooth_pieces_many(paths, through=False)
-    lengths = iter(_lengths([piece for split in pieces for piece in split]))
+    lengths = iter(polyline_lengths([piece for split in pieces for piece in split]))
     return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
+
+
+def stopping_length_of(points: np.ndarray) -> float:
+    """:func:`motor.signing.lmp.stopping_length` of one path ``(m, 3)`` with the batch's
+    arithmetic (the B-spline's basis kept per size) and without its grouping: what a
+    sign's compiler asks for move by move, in as few numpy calls as the one path needs.
+    A path with a hold goes through the one-path function, as in the batch."""
+    points = np.asarray(points, dtype=float)
+    if points.shape[0] < 3:
+        return float(np.sum(np.sqrt([_length(points)])) ** 2)
+    steps = points[1:] - points[:-1]
+    chords = np.sqrt(np.add.reduce(steps * steps, axis=1))  # np.linalg.norm's arithmetic
+    if not np.all(chords > HOLD_LENGTH):
+        return stopping_length(points)
+    denom = chords[:-1] * chords[1:]
+    cos = np.divide(np.einsum("ij,ij->i", steps[:-1], steps[1:]), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    reversals = np.flatnonzero(np.arccos(np.clip(cos, -1.0, 1.0)) >= REVERSAL_ANGLE) + 1
+    cuts = [0, *reversals.tolist(), points.shape[0] - 1]
+    return float(np.sum(np.sqrt([_length(_traced_within(points[first : last + 1])) for first, last in pairwise(cuts)])) ** 2)
+
+
+def _length(polyline: np.ndarray) -> float:
+    """Length (m) of a polyline ``(k, 3)``, summed as :func:`motor.signing.lmp.stopping_length` sums it."""
+    return float(np.linalg.norm(np.diff(polyline, axis=0), axis=1).sum())
+
+
+def _traced_within(piece: np.ndarray) -> np.ndarray:
+    """One piece ``(k, 3)`` traced within its hull, starting with its first point (``_trace``)."""
+    if piece.shape[0] < 3:
+        return piece
+    first, weights = _basis(piece.shape[0])
+    dense = np.empty((first.size + 1, 3))
+    dense[0] = piece[0]
+    traced = np.zeros((first.size, 3))
+    for a in range(weights.shape[1]):  # the batch's order of sums (_within)
+        traced = traced + piece[first + a] * weights[:, a, None]
+    dense[1:] = traced
+    dense[-1] = piece[-1]
+    return dense
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
@@ -67,7 +109,7 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
     parts = []  # per chain: (start, end, manner, pieces) of its transition and moves
     for (start, ready, manner, _), pieces, chain in zip(transitions, smooth_pieces_many([way for _, _, _, way in transitions], through=True), moves):
         parts.append([(start, ready, manner, pieces), *((m.start, m.end, m.manner, next(traced)) for m in chain)])
-    lengths = iter(_lengths([piece for chain in parts for _, _, _, pieces in chain for piece in pieces]))
+    lengths = iter(polyline_lengths([piece for chain in parts for _, _, _, pieces in chain for piece in pieces]))
     timed = []
     for chain in parts:
         split = []
@@ -94,7 +136,7 @@ def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], mo
     ]
 
 
-def _lengths(pieces: Sequence[np.ndarray]) -> np.ndarray:
+def polyline_lengths(pieces: Sequence[np.ndarray]) -> np.ndarray:
     """Length (m) of every polyline ``(k, 3)``: its chords summed as numpy sums one."""
     out = np.empty(len(pieces))
     for k, members in _groups(pieces).items():
@@ -142,18 +184,20 @@ def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[
 def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
     out: list[list[np.ndarray] | None] = [None] * len(paths)
     pieces: list[tuple[int, int, np.ndarray]] = []  # (path, order, piece)
-    for m, members in _groups(paths).items():
-        if m < 3:
-            for index in members:
-                out[index] = [paths[index]]
-            continue
-        stacked = np.stack([paths[index] for index in members])
-        moving = np.all(np.linalg.norm(np.diff(stacked, axis=1), axis=2) > HOLD_LENGTH, axis=1)
+    kept = _without_holds(paths)
+    batched = []
+    for index, (path, points) in enumerate(zip(paths, kept)):
+        if through and points is not path:  # a hold: scipy's spline, as the transitions always had
+            out[index] = smooth_pieces(path, through)
+        elif points.shape[0] < 3:  # fewer than three distinct points: the path as it is
+            out[index] = [path]
+        else:
+            batched.append(index)
+    for m, positions in _groups([kept[index] for index in batched]).items():
+        members = [batched[position] for position in positions]
+        stacked = np.stack([kept[index] for index in members])
         angles = _turning(stacked)
         for row, index in enumerate(members):
-            if not moving[row]:
-                out[index] = smooth_pieces(paths[index], through)
-                continue
             cuts = np.concatenate([[0], np.flatnonzero(angles[row] >= REVERSAL_ANGLE) + 1, [m - 1]])
             out[index] = [None] * (cuts.size - 1)
             for order, (first, last) in enumerate(zip(cuts[:-1], cuts[1:])):
@@ -161,6 +205,22 @@ def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list
     traced = _trace([piece for _, _, piece in pieces], through)
     for (index, order, _), dense in zip(pieces, traced):
         out[index][order] = dense
+    return out
+
+
+def _without_holds(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Each path without the points :func:`motor.signing.lmp.smooth_pieces` drops (those
+    within :data:`motor.trajectory.spline.HOLD_LENGTH` of the point before), per size."""
+    out: list[np.ndarray | None] = [None] * len(paths)
+    for m, members in _groups(paths).items():
+        if m < 2:
+            for index in members:
+                out[index] = paths[index]
+            continue
+        stacked = np.stack([paths[index] for index in members])
+        moving = np.linalg.norm(np.diff(stacked, axis=1), axis=2) > HOLD_LENGTH
+        for row, index in enumerate(members):
+            out[index] = paths[index] if moving[row].all() else paths[index][np.concatenate([[True], moving[row]])]
     return out
 
 

@@ -62,16 +62,22 @@ their manner's speed budget are then slowed, the sign's clock warped with them
 compiled into hand moves, and the costly geometry the signs ask for (arm poses for sites on
 the other hand, wrist-to-site offsets) is computed for all of them together in vectorized
 rounds (:class:`motor.signing.hand_geometry.HandGeometry`, which also remembers hand
-rotations, shapes and rest locations for the collection); then the wrist offsets of all
-moves, then the reach of every distinct wrist position of the collection
-(:func:`motor.signing.reach.within_reach_all`). The plans are those of planning each sign
-alone, bit for bit (``tests/signing_speed``).
+rotations, shapes, rest locations and the stopping lengths of paths for the collection);
+then the wrist offsets of all moves, then every move's wrist path and every wrist kept out
+of the torso in one pass (:func:`_placed`), then the reach of every distinct wrist position
+of the collection (:func:`motor.signing.reach.within_reach_all`), then the timing lengths
+of all wrist moves for the retiming (:func:`motor.signing.retiming.timing_lengths`); the
+garbage collector waits meanwhile. The plans are those of planning each sign alone, bit
+for bit (``tests/signing_speed``, ``tests/perf_equivalence/test_planning_fast_paths.py``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+import gc
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
+from functools import lru_cache, partial
 from typing import TypeVar
 
 import numpy as np
@@ -81,10 +87,10 @@ from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
-from motor.signing.hand_geometry import GeometryPending, HandGeometry
-from motor.signing.lmp import Move, stopping_length
+from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
+from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import arc_fractions, within_reach_all
+from motor.signing.reach import arc_fractions_of_paths, within_reach_all
 from motor.signing.retiming import retimed_all
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.guiding_strokes import (
@@ -184,6 +190,11 @@ class _Hand:
     shape: HandShape
     params: np.ndarray
 
+    def at(self, location: np.ndarray) -> _Hand:
+        """The same hand with its palm centre at ``location`` (``dataclasses.replace``
+        without its overhead: planning moves hands tens of thousands of times)."""
+        return _Hand(location, self.fingers, self.palm, self.shape, self.params)
+
 
 @dataclass(frozen=True, eq=False)
 class _HandMove:
@@ -231,11 +242,30 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     (:class:`motor.signing.hand_geometry.HandGeometry`; ``memoize=False`` computes it
     afresh every time, the plain path the tests compare with), and the reach of every
     wrist position of all the signs is checked in one vectorized IK call per arm."""
-    geometry = HandGeometry(avatar, memoize)
-    compiled = _compile_all(geometry, signs)
-    geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
-    drafts = [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
-    return retimed_all(within_reach_all(avatar, drafts))
+    with _collector_paused():
+        geometry = HandGeometry(avatar, memoize)
+        compiled = _compile_all(geometry, signs)
+        geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
+        drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
+        return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
+
+
+@contextmanager
+def _collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector paused for the duration (and resumed only if it
+    was running): planning a collection allocates hundreds of thousands of small objects
+    and keeps most of them, so the collector's passes over the whole heap took about a
+    tenth of the planning time, while planning itself leaves almost no reference cycles
+    (150 objects for both corpora). The price: cyclic garbage made *before* planning (a
+    parsed corpus leaves ~42,000 objects) waits until the collector resumes — 24 MB more
+    at the peak when both corpora are planned right after parsing them."""
+    running = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if running:
+            gc.enable()
 
 
 def without_initial_hold(plan: SignPlan) -> SignPlan:
@@ -293,7 +323,7 @@ class _SignCompiler:
         self.sign = sign
         self.dominant = sign.dominant.side
         self.other = sign.dominant.other.side
-        self.arm_length = self.avatar.arm_length("r")
+        self.arm_length = geometry.arm_length()
         self.warnings: list[str] = []
         self.hands: dict[str, _Hand] = {}
         self.moves: dict[str, list[_HandMove]] = {}
@@ -305,6 +335,7 @@ class _SignCompiler:
         self.path_mirror = Symmetry(planes, "path")
         self.sagittal = Symmetry(frozenset({"S"}), "SymMS")
         self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
+        self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
         self.start: dict[str, _Hand] = {}
         self.static = False
 
@@ -342,10 +373,18 @@ class _SignCompiler:
 
     def plan(self) -> SignPlan:
         """The sign's plan from its compiled hand moves (the second half of planning)."""
+        return self.plan_from(_placed(self.avatar, [self.layout()])[0])
+
+    def layout(self) -> _Layout:
+        """Each hand's first posture and, per move, its palm path with the offsets from the
+        wrist to the palm in the move's first and last postures."""
         first = {arm: self.pose(arm, hand) for arm, hand in self.start.items()}
-        first = {arm: replace(pose, wrist=outside_torso(self.avatar, pose.wrist[None])[0]) for arm, pose in first.items()}
-        moves = self.channel_moves(first)
-        return SignPlan(self.sign.gloss, self.clock, first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
+        return _Layout(first, {arm: self.palm_paths(arm) for arm in first})
+
+    def plan_from(self, layout: _Layout) -> SignPlan:
+        """The plan of a layout whose wrists are kept out of the torso."""
+        moves = self.channel_moves(layout)
+        return SignPlan(self.sign.gloss, self.clock, layout.first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
 
     def hold(self, duration: float, manner: str) -> None:
         scale = movement_duration("straight", MANNERS.get(manner, "targetted")) / movement_duration("straight")
@@ -378,7 +417,7 @@ class _SignCompiler:
         fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
         palm = self.palm_vector(self.dominant, fingers, dominant.palm)
         mirrored = replace(hand, fingers=mirror_directions(fingers, self.sagittal), palm=mirror_directions(palm, self.sagittal))
-        return replace(mirrored, location=self.locate(self.other, posture.location, mirrored, None))
+        return mirrored.at(self.locate(self.other, posture.location, mirrored, None))
 
     def other_posture(self) -> HandPosture:
         """The non-dominant hand's posture: its own fields, else the mirrored dominant's
@@ -405,7 +444,7 @@ class _SignCompiler:
         palm = self.palm_vector(arm, fingers, posture.palm)
         params = self.geometry.params(shape)
         hand = _Hand(np.zeros(3), fingers, palm, shape, params)
-        return replace(hand, location=self.locate(arm, posture.location, hand, other))
+        return hand.at(self.locate(arm, posture.location, hand, other))
 
     def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
         if palm is None:
@@ -452,8 +491,8 @@ class _SignCompiler:
             return
         shift = np.array([SIDE_BY_SIDE, 0.0, 0.0])
         sign = 1.0 if self.dominant == "left" else -1.0
-        self.hands[self.dominant] = replace(mine, location=mine.location + sign * shift)
-        self.hands[self.other] = replace(theirs, location=theirs.location - sign * shift)
+        self.hands[self.dominant] = mine.at(mine.location + sign * shift)
+        self.hands[self.other] = theirs.at(theirs.location - sign * shift)
 
     def place_constellation(self) -> None:
         """Put the hands relative to each other (module docstring)."""
@@ -461,7 +500,7 @@ class _SignCompiler:
         assert constellation is not None
         other = self.hands[self.other]
         if constellation.location is not None:
-            other = replace(other, location=self.locate(self.other, constellation.location, other, None))
+            other = other.at(self.locate(self.other, constellation.location, other, None))
         other_site = _hand_site(constellation.nondominant, constellation.contact)
         own_site = _hand_site(constellation.dominant, "touch")
         if _is_hand_site(other_site):
@@ -473,7 +512,7 @@ class _SignCompiler:
         palm = self.offset(self.dominant, dominant, _PALM)
         own = self.offset(self.dominant, dominant, own_site) if _is_hand_site(own_site) else palm
         self.hands[self.other] = other
-        self.hands[self.dominant] = replace(dominant, location=meeting - own + palm)
+        self.hands[self.dominant] = dominant.at(meeting - own + palm)
 
     # -- the hand's geometry -------------------------------------------------------------
 
@@ -577,7 +616,7 @@ class _SignCompiler:
 
     def shifted(self, hands: Mapping[str, _Hand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
         """Changes that put ``hands`` where they are, moved by ``offset`` (hands without one stay)."""
-        return {arm: _Change(replace(hand, location=hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
+        return {arm: _Change(hand.at(hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
 
     def replay(self, moves: Mapping[str, list[_HandMove]], length: float, offset: Mapping[str, np.ndarray] | None = None) -> None:
         """The recorded moves of one pass again, from the current clock (moved by ``offset``)."""
@@ -596,9 +635,9 @@ class _SignCompiler:
         for arm, change in step.changes.items():
             before = self.hands[arm]
             after = change.hand
-            path = change.path if change.path is not None else np.linspace(before.location, after.location, _PATH_POINTS)
-            rotations = change.rotations if change.rotations is not None else np.stack([self.rotation(arm, before), self.rotation(arm, after)])
-            shapes = change.shapes if change.shapes is not None else np.stack([before.params, after.params])
+            path = change.path if change.path is not None else _line(before.location, after.location)
+            rotations = change.rotations if change.rotations is not None else np.array([self.rotation(arm, before), self.rotation(arm, after)])
+            shapes = change.shapes if change.shapes is not None else np.array([before.params, after.params])
             self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
             self.hands[arm] = after
         self.clock = end
@@ -650,7 +689,7 @@ class _SignCompiler:
         """The least time (s) the hands' paths need within the speed budget of ``manner``
         (stopping at each reversal: :func:`motor.signing.lmp.stopping_length`)."""
         paths = [change.path for change in changes.values() if change.path is not None and len(change.path) > 1]
-        return max((shortest_duration(stopping_length(path), manner) for path in paths), default=0.0)
+        return max((shortest_duration(self.geometry.stopping_length(path), manner) for path in paths), default=0.0)
 
     def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
         """The palm-centre path of one HandLocation segment, its kind and time profile."""
@@ -672,7 +711,7 @@ class _SignCompiler:
         else:
             if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
-            points = np.linspace(start, end, _PATH_POINTS)
+            points = _line(start, end)
         if manner == "sudden_stop":
             profile = "sudden_stop"
         elif segment.kind is SegmentKind.CIRCLE:
@@ -681,7 +720,7 @@ class _SignCompiler:
             profile = "hard_contact"
         else:
             profile = manner
-        return _Change(replace(hand, location=points[-1]), path=points), kind, profile
+        return _Change(hand.at(points[-1]), path=points), kind, profile
 
     def curve(self, start: np.ndarray, end: np.ndarray, segment: Segment) -> np.ndarray:
         chord = end - start
@@ -732,7 +771,7 @@ class _SignCompiler:
         if self.alternating:
             displacement = -displacement
         path = hand.location + displacement
-        return _Change(replace(hand, location=path[-1]), path=path)
+        return _Change(hand.at(path[-1]), path=path)
 
     def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
         """A change of shape or orientation (``replace``) or a local movement in place."""
@@ -783,20 +822,23 @@ class _SignCompiler:
 
     # -- from hand moves to channel moves ------------------------------------------------
 
-    def channel_moves(self, first: Mapping[str, HandPose]) -> dict[tuple[str, str], tuple[Move, ...]]:
+    def palm_paths(self, arm: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Per move of the hand: its palm path ``(m, 3)`` and the wrist-to-palm offsets
+        ``(3,)`` of its first and last postures."""
+        return [
+            (
+                move.locations,
+                self.offset_of(arm, move.rotations[0], move.shapes[0], _PALM),
+                self.offset_of(arm, move.rotations[-1], move.shapes[-1], _PALM),
+            )
+            for move in self.moves.get(arm, [])
+        ]
+
+    def channel_moves(self, layout: _Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
         result: dict[tuple[str, str], tuple[Move, ...]] = {}
-        for arm in first:
+        for arm in layout.first:
             moves = self.moves.get(arm, [])
-            palm = _PALM
-            wrists = []
-            for move in moves:
-                start_offset = self.offset_of(arm, move.rotations[0], move.shapes[0], palm)
-                end_offset = self.offset_of(arm, move.rotations[-1], move.shapes[-1], palm)
-                fractions = arc_fractions(move.locations)[:, None]
-                wrists.append(move.locations - ((1.0 - fractions) * start_offset + fractions * end_offset))
-            if wrists:  # one pass over all the moves' points: outside_torso moves each on its own
-                wrists = np.split(outside_torso(self.avatar, np.concatenate(wrists)), np.cumsum([len(w) for w in wrists])[:-1])
-            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, wrists))
+            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, layout.wrists[arm]))
             result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
             result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
         return result
@@ -807,9 +849,14 @@ class _SignCompiler:
     def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
         """The offset this sign takes for a hand posture: that of the first posture it
         asked for within 1e-9 of it (rounded to 9 decimals)."""
+        exact = (arm, site, key_bytes(rotation), key_bytes(params))
+        known = self._asked.get(exact)
+        if known is not None:  # asked for these very values before: the same answer
+            return known
         key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
         if key not in self._offsets:
             self._offsets[key] = (AVATAR_SIDE[arm], site, rotation, params)
+        self._asked[exact] = self._offsets[key]
         return self._offsets[key]
 
 
@@ -818,6 +865,66 @@ class _SignCompiler:
 
 
 
+
+
+@dataclass(frozen=True, eq=False)
+class _Layout:
+    """A sign's hands before their plan: first postures, and per hand and move the palm
+    path ``(m, 3)`` with the wrist-to-palm offsets ``(3,)`` of its first and last postures
+    (metres); once placed (:func:`_placed`), ``wrists`` holds each move's wrist path."""
+
+    first: dict[str, HandPose]
+    palms: dict[str, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]
+    wrists: dict[str, list[np.ndarray]] | None = None
+
+
+def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
+    """The layouts with their wrist paths — each palm path less the offset to the palm,
+    blended from the first posture's to the last's by the fraction of the way
+    (:func:`motor.signing.reach.arc_fractions`) — and every wrist position, first postures
+    too, placed out of the torso (:func:`outside_torso`); all the moves of all the layouts
+    in one pass, each row's arithmetic that of a move alone."""
+    moves = [move for layout in layouts for palms in layout.palms.values() for move in palms]
+    points = [pose.wrist[None] for layout in layouts for pose in layout.first.values()]
+    if moves:
+        counts = [len(palm) for palm, _, _ in moves]
+        fractions = arc_fractions_of_paths([palm for palm, _, _ in moves])[:, None]
+        start = np.repeat(np.array([offset for _, offset, _ in moves]), counts, axis=0)
+        end = np.repeat(np.array([offset for _, _, offset in moves]), counts, axis=0)
+        wrists = np.concatenate([palm for palm, _, _ in moves]) - ((1.0 - fractions) * start + fractions * end)
+        points.append(wrists)
+    if not points:
+        return list(layouts)
+    placed = outside_torso(avatar, np.concatenate(points))
+    hands = iter(placed[: len(points) - bool(moves)])
+    paths = iter(np.split(placed[len(points) - bool(moves) :], np.cumsum(counts)[:-1]) if moves else ())
+    return [
+        _Layout(
+            {arm: replace(pose, wrist=next(hands)) for arm, pose in layout.first.items()},
+            layout.palms,
+            {arm: [next(paths) for _ in palms] for arm, palms in layout.palms.items()},
+        )
+        for layout in layouts
+    ]
+
+
+def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """The plan of every compiled sign (:meth:`_SignCompiler.plan`), the wrists of all of
+    them kept out of the torso in one pass; a sign whose layout fails is planned alone,
+    where it fails with its own error."""
+    layouts: dict[int, _Layout] = {}
+    for index, sign in enumerate(compiled):
+        if isinstance(sign, _SignCompiler):
+            layout = _attempt(sign.sign, sign.layout)
+            if isinstance(layout, _Layout):
+                layouts[index] = layout
+    placed = dict(zip(layouts, _placed(avatar, list(layouts.values()))))
+    return [
+        c if isinstance(c, SignPlanningError)
+        else _attempt(c.sign, partial(c.plan_from, placed[index])) if index in placed
+        else _attempt(c.sign, c.plan)
+        for index, c in enumerate(compiled)
+    ]  # fmt: skip
 
 
 def _flattened(node: Parallel) -> list[Constraint]:
@@ -842,7 +949,7 @@ def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
             current = merged.get(arm, _Change(before))
             hand = current.hand
             if not _close(change.hand.location, before.location):
-                hand = replace(hand, location=change.hand.location)
+                hand = hand.at(change.hand.location)
             if not (_close(change.hand.fingers, before.fingers) and _close(change.hand.palm, before.palm)):
                 hand = replace(hand, fingers=change.hand.fingers, palm=change.hand.palm)
             if not _close(change.hand.params, before.params):
@@ -871,6 +978,22 @@ def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
     )
 
 
+
+
+#: The sample numbers of a straight path as :func:`numpy.linspace` counts them, a column.
+_SAMPLES = np.arange(_PATH_POINTS, dtype=float).reshape(-1, 1)
+
+
+def _line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """``np.linspace(start, end, _PATH_POINTS)`` for points ``(3,)``, with numpy's
+    arithmetic (its step, its care for zero steps, the end placed exactly) and without its
+    overhead: a collection of signs draws thousands of straight paths."""
+    delta = end - start
+    step = delta / (_PATH_POINTS - 1)
+    points = (_SAMPLES / (_PATH_POINTS - 1)) * delta if np.any(step == 0) else _SAMPLES * step
+    points += start
+    points[-1] = end
+    return points
 
 
 def _unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:
@@ -902,6 +1025,7 @@ def _clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.n
     return float(np.arctan2(direction @ e2, direction @ e1))
 
 
+@lru_cache(maxsize=4096)
 def _normalized(site: BodySite) -> BodySite:
     name = site.site.split(":")[0]
     name = SITE_ALIASES.get(name, name)

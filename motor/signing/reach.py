@@ -315,7 +315,21 @@ def _spread(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.n
     weight of the needy points around — a lone needy point moves by what it needs and
     its neighbours by less and less, a stretch of points needing the same moves by it.
     ``anchored`` points ``(n,)`` stay: they count as needing no displacement, so the
-    displacement fades toward them (the rounds of :func:`clear_paths` make up the rest)."""
+    displacement fades toward them (the rounds of :func:`clear_paths` make up the rest).
+
+    Only the chains with a point that needs something (or an anchored one) are computed:
+    every other point's displacement is 0, and a chain's sums read only its own points."""
+    involved = np.isin(chain, chain[np.any(need != 0.0, axis=1) | anchored])
+    if involved.all():
+        return _spread_chains(need, arc, chain, anchored)
+    spread = np.zeros_like(need)
+    if involved.any():
+        spread[involved] = _spread_chains(need[involved], arc[involved], chain[involved], anchored[involved])
+    return spread
+
+
+def _spread_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
+    """:func:`_spread` of points whose chains are all whole (each chain's points in a row)."""
     sigma = SPREAD / 3.0
     needy = (np.any(np.abs(need) > 1e-12, axis=1) | anchored).astype(float)
     total = need.copy()

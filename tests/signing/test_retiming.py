@@ -65,7 +65,7 @@ def test_moves_stay_in_order_within_the_sign(plans):
 def unretimed(avatar, table) -> list[SignPlan]:
     """The same table planned with the retiming left out."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(planning, "retimed_all", lambda drafts: drafts)
+        patch.setattr(planning, "retimed_all", lambda drafts, batched=True: drafts)
         return [plan for plan in plan_signs(avatar, table) if isinstance(plan, SignPlan)]
 
 
