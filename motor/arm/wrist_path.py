@@ -65,18 +65,12 @@ class Placement:
     crowding: float = 0.0
 
 
-def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
-    """``points`` ``(n, 3)`` of the arm on ``side`` (``"r"``/``"l"``) out of the torso and in
-    reach (module docstring)."""
-    return _placed(avatar, side, points)
-
-
 def uncrowded_placement(avatar: Avatar, side: str, points: np.ndarray, kept: np.ndarray | None = None) -> Placement:
     """:func:`placed`, and then where the arm can reach the points without entering the
     body (:func:`uncrowded`), except those ``kept`` ``(n,)`` (e.g. where the other hand
     touches this one): what a gesture's key locations get (the curves between them are
     placed only, so that their timing is kept)."""
-    placement = _placed(avatar, side, points)
+    placement = placed(avatar, side, points)
     free = np.ones(len(points), dtype=bool) if kept is None else ~np.asarray(kept, dtype=bool)
     if not np.any(free):
         return placement
@@ -101,7 +95,7 @@ def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray
     for _ in range(_CROWDING_ROUNDS):
         moved = out.copy()
         step = depth[crowded, None] + CROWDING_TOLERANCE
-        moved[crowded] = _placed(avatar, side, out[crowded] + np.array([0.0, 0.0, 1.0]) * step).points
+        moved[crowded] = placed(avatar, side, out[crowded] + np.array([0.0, 0.0, 1.0]) * step).points
         out = moved
         depth = solve_arm(avatar, side, out).penetration
         crowded = depth > CROWDING_TOLERANCE
@@ -110,8 +104,9 @@ def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray
     return out, count, worst
 
 
-def _placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
-    """``points`` out of the torso and in reach."""
+def placed(avatar: Avatar, side: str, points: np.ndarray) -> Placement:
+    """``points`` ``(n, 3)`` of the arm on ``side`` (``"r"``/``"l"``) out of the torso and in
+    reach (module docstring)."""
     clear = outside_torso(avatar, points)
     inside = np.any(clear != points, axis=1)
     reached, shortfall = in_reach(avatar, side, clear)

@@ -299,14 +299,14 @@ class Compiler:
         for (arm, feature), keys in child.tracks.items():
             if arm != dominant or (other, feature) in child.tracks:
                 continue
+            asked = keys
+            if feature == "location":
+                keys = self.kept_apart(keys, node.symmetry, center, dominant)
+                tracks[(arm, feature)] = keys
             mirrored = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
             if feature == "location":
-                asked = keys
-                keys = self.kept_apart(keys, node.symmetry, center, dominant)
-                mirrored = tuple(replace(key, value=_mirror(feature, key.value, node.symmetry, center)) for key in keys)
                 touching = [not np.array_equal(np.asarray(a.value), np.asarray(b.value)) for a, b in zip(asked, keys)]
                 mirrored = self.stacked(keys, mirrored, touching, node.symmetry, center, dominant)
-                tracks[(arm, feature)] = keys
             tracks[(other, feature)] = mirrored
         return Fragment(child.duration, tracks, child.warnings)
 
