@@ -136,7 +136,7 @@ def _locate(knots: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return segment, np.clip((t - knots[segment]) / length, 0.0, 1.0), length
 
 
-def _blend(times: np.ndarray, start: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+def incoming_blend(times: np.ndarray, start: float, window: float) -> tuple[np.ndarray, np.ndarray]:
     """Blend weight ``τ (1 − τ/T)²`` and its time derivative, zero outside [0, T]."""
     tau = np.clip(np.asarray(times, dtype=float) - start, 0.0, window)
     s = tau / window
@@ -159,7 +159,7 @@ class VectorKeyframes:
     def sample(self, times: np.ndarray) -> np.ndarray:
         segment, u, _ = _locate(self.knots, times)
         s = self.time_profile.fraction(u)[:, None]
-        weight, _ = _blend(times, self.knots[0], self.knots[1] - self.knots[0])
+        weight, _ = incoming_blend(times, self.knots[0], self.knots[1] - self.knots[0])
         return self.values[segment] + s * (self.values[segment + 1] - self.values[segment]) + weight[:, None] * self.incoming
 
     def state(self, time: float) -> ChannelState:
@@ -167,7 +167,7 @@ class VectorKeyframes:
         segment, u, length = _locate(self.knots, t)
         inside = self.knots[0] <= time < self.knots[-1]
         rate = self.time_profile.rate(u) / length if inside else np.zeros(1)
-        _, blend_rate = _blend(t, self.knots[0], self.knots[1] - self.knots[0])
+        _, blend_rate = incoming_blend(t, self.knots[0], self.knots[1] - self.knots[0])
         velocity = rate[0] * (self.values[segment[0] + 1] - self.values[segment[0]]) + blend_rate[0] * self.incoming
         return ChannelState(self.sample(t)[0], velocity, float(time))
 
@@ -197,7 +197,7 @@ class RotationKeyframes:
         segment, u, _ = _locate(self.knots, times)
         s = self.time_profile.fraction(u)[:, None]
         planned = quat.multiply(self._keys[segment], quat.from_rotation_vector(s * self._steps[segment]))
-        weight, _ = _blend(times, self.knots[0], self.knots[1] - self.knots[0])
+        weight, _ = incoming_blend(times, self.knots[0], self.knots[1] - self.knots[0])
         return quat.multiply(quat.from_rotation_vector(weight[:, None] * self.incoming), planned)
 
     def state(self, time: float) -> ChannelState:

@@ -12,7 +12,9 @@ fraction of the way travelled. Between moves the channel holds.
 :class:`motor.program.lmp.ChannelTimeline` like any LMP: at activation (its ``start`` peg, the end
 of the previous sign) it adds the *transition* from wherever the channel is to the
 sign's first value, in the transition manner (lax between signs, targetted into a static
-sign, seed 000).
+sign, seed 000). A channel still moving at activation (a gesture's retraction the sign
+takes over) keeps its velocity, faded out by the sign's first posture as the keyframe
+LMPs fade theirs (:mod:`motor.program.lmp`).
 
 A wrist path of three or more points is traced along a C² curve rather than the
 polyline, so that the hand does not turn a corner at speed (:func:`smooth_path`): a
@@ -39,7 +41,7 @@ from scipy.interpolate import BSpline
 from scipy.ndimage import gaussian_filter1d
 
 from motor import quaternion as quat
-from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
+from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs, incoming_blend
 from motor.trajectory.biocontrol import MANNERS, profile
 from motor.trajectory.power_law import EXPONENT, clamped_curvature, path_spline
 from motor.trajectory.spline import HOLD_LENGTH, turning_angles
@@ -56,6 +58,9 @@ REVERSAL_ANGLE = np.radians(150.0)
 LAW_SMOOTHING = 0.02
 #: Points per chord with which a wrist path is traced along its spline.
 PATH_DENSITY = 12
+#: Speed (units of the channel per second) below which an activation state counts as at
+#: rest: the differences that estimate a held channel's velocity leave ~1e-12.
+STILL = 1e-6
 #: Step of the differences that estimate a channel's velocity, seconds.
 _STEP = 1e-4
 _SAME = 1e-12
@@ -292,13 +297,46 @@ class _Track:
 
     def state(self, time: float) -> ChannelState:
         """Value and velocity (angular velocity for rotations) looking back from ``time``."""
-        v = self.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
-        if self.rotation:
-            one, two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1::-1])))
-            velocity = (4.0 * one - two) / (2.0 * _STEP)
-        else:
-            velocity = (3.0 * v[2] - 4.0 * v[1] + v[0]) / (2.0 * _STEP)
-        return ChannelState(v[2], velocity, float(time))
+        return _state_of(self, self.rotation, time)
+
+
+@dataclass(frozen=True, eq=False)
+class _Carried:
+    """A track plus the velocity it was activated with, faded out over the transition:
+    ``v · τ (1 − τ/T)²`` (:func:`motor.program.lmp.incoming_blend`; τ seconds since
+    activation, T the transition's length), added to a vector channel and left-multiplied
+    as a rotation vector onto a rotation channel. Position and velocity are continuous at
+    the activation; the blend and its rate are zero from the sign's first posture on."""
+
+    track: _Track
+    velocity: np.ndarray
+    time: float
+    window: float
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        return self.track.warnings
+
+    def sample(self, times: np.ndarray) -> np.ndarray:
+        planned = self.track.sample(times)
+        weight, _ = incoming_blend(times, self.time, self.window)
+        if self.track.rotation:
+            return quat.multiply(quat.from_rotation_vector(weight[:, None] * self.velocity), planned)
+        return planned + weight[:, None] * self.velocity
+
+    def state(self, time: float) -> ChannelState:
+        return _state_of(self, self.track.rotation, time)
+
+
+def _state_of(track: _Track | _Carried, rotation: bool, time: float) -> ChannelState:
+    """Value and velocity (angular velocity for rotations) of ``track`` looking back from ``time``."""
+    v = track.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
+    if rotation:
+        one, two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1::-1])))
+        velocity = (4.0 * one - two) / (2.0 * _STEP)
+    else:
+        velocity = (3.0 * v[2] - 4.0 * v[1] + v[0]) / (2.0 * _STEP)
+    return ChannelState(v[2], velocity, float(time))
 
 
 #: Row of each manner in :func:`manner_tables`.
@@ -375,8 +413,15 @@ class SignChannelLMP:
                 raise ValueError(f"{self.channel}: moves overlap or start before ready at {move.start:.4f} s")
             previous = move.end
 
-    def activate(self, state: ChannelState) -> _Track:
-        return self.realize(np.asarray(state.value, dtype=float), state.time)
+    def activate(self, state: ChannelState) -> _Track | _Carried:
+        """The track from ``state``; a channel still moving (a retraction the sign takes
+        over) carries its velocity into the transition (:class:`_Carried`), so the hand
+        does not stop dead in one frame."""
+        track = self.realize(np.asarray(state.value, dtype=float), state.time)
+        velocity = np.asarray(state.velocity, dtype=float)
+        if np.max(np.abs(velocity), initial=0.0) <= STILL or not self.pegs.ready > state.time:
+            return track
+        return _Carried(track, velocity, state.time, self.pegs.ready - state.time)
 
     def realize(self, here: np.ndarray, time: float) -> _Track:
         """The track of an activation at ``time`` seconds with the channel at ``here``

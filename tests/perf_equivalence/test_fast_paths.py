@@ -19,8 +19,8 @@ from motor.program.lmp import (
     ChannelTimeline,
     RetractionLMP,
     TimePegs,
-    _blend,
     _locate,
+    incoming_blend,
 )
 
 RNG = np.random.default_rng(7)
@@ -46,7 +46,7 @@ def _scipy_sample(realization, times):
     steps = (rotations[:-1].inv() * rotations[1:]).as_rotvec()
     s = realization.time_profile.fraction(u)[:, None]
     planned = rotations[segment] * Rotation.from_rotvec(s * steps[segment])
-    weight, _ = _blend(times, realization.knots[0], realization.knots[1] - realization.knots[0])
+    weight, _ = incoming_blend(times, realization.knots[0], realization.knots[1] - realization.knots[0])
     return (Rotation.from_rotvec(weight[:, None] * realization.incoming) * planned).as_quat()
 
 

@@ -103,3 +103,35 @@ def test_a_straight_move_in_law_time_is_timed_by_distance() -> None:
 @pytest.mark.parametrize("manner", sorted(MANNERS))
 def test_profiles_used_by_signs_reach_the_whole_way(manner: str) -> None:
     assert profile(manner).fractions[-1] == 1.0
+
+
+@pytest.mark.parametrize(
+    ("channel", "here", "velocity", "first"),
+    [
+        ("wrist_position", [0.05, 1.0, 0.3], [-0.3, -0.6, -0.3], [0.1, 1.2, 0.35]),
+        ("wrist_position", [0.2, 1.1, 0.3], [0.8, 0.0, 0.0], [-0.1, 1.1, 0.3]),
+        ("wrist_position", [0.0, 0.9, 0.25], [0.0, 1.2, 0.4], [0.0, 1.3, 0.3]),
+        ("handshape", [0.1, 0.5, 0.9], [2.0, -1.0, 0.5], [0.8, 0.1, 0.2]),
+        ("hand_rotation", [0.0, 0.0, 0.0, 1.0], [0.0, 3.0, 0.0], [0.0, 0.0, 0.38268343, 0.92387953]),
+        ("hand_rotation", [0.0, 0.70710678, 0.0, 0.70710678], [1.5, 0.0, -2.0], [0.0, 0.0, 0.0, 1.0]),
+    ],
+)
+def test_a_sign_taking_over_a_moving_channel_carries_its_velocity(channel: str, here: list[float], velocity: list[float], first: list[float]) -> None:
+    """A sign activated mid-retraction continues the channel's velocity and fades it out
+    by its first posture: no step at the hand-over, the first posture reached on time."""
+    pegs = TimePegs(0.5, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0)
+    lmp = SignChannelLMP(("right", channel), pegs, np.array(first))
+    state = ChannelState(np.array(here), np.array(velocity), 0.5)
+    realized = lmp.activate(state)
+    carried = realized.state(0.5 + 1e-3)
+    np.testing.assert_allclose(carried.velocity, velocity, atol=0.02 * np.linalg.norm(velocity))
+    end = realized.sample(np.array([1.0, 1.2]))
+    if channel == "hand_rotation":
+        assert abs(abs(end[0] @ np.array(first)) / np.linalg.norm(first) - 1.0) < 1e-7
+    else:
+        np.testing.assert_allclose(end, [first, first], atol=1e-9)
+    if channel == "wrist_position":
+        times = np.arange(0.5 - 5 / FPS, 1.2, 1.0 / FPS)
+        before = times < 0.5
+        track = np.where(before[:, None], np.array(here) + np.outer(times - 0.5, velocity), realized.sample(times))
+        assert np.linalg.norm(np.diff(track, 2, axis=0), axis=1).max() * FPS < STEP
