@@ -7,7 +7,10 @@ behaviour moves (:mod:`bench.motion_audit.movement`):
   the planned stroke phase, else **static** (a held pointing or placing);
 * a static stroke begins where the hand *arrives*: the first frame of a hold;
 * a dynamic stroke begins where the hand *departs* from a post-preparation hold (its
-  last frame) or at a speed **valley** between the preparation and the stroke;
+  last frame) or at a speed **valley** between the preparation and the stroke — or,
+  when the wrist is still over the stroke's first :data:`STILL_SPAN` (moving less than
+  :data:`STILL_PATH`: the stroke opens with the hand's shape or orientation, and the
+  wrist's travel comes later), where the hand *arrives*, as for a static stroke;
 * of the landmarks of the right kind between the behaviour's start and its stroke end,
   the one nearest the planned ``stroke_start`` is the stroke onset, if it lies within
   :data:`MATCH_WINDOW` of it (a landmark further off than the whole nominal lead belongs
@@ -30,6 +33,8 @@ from bench.motion_audit.movement import Segmentation
 from bench.motion_audit.timeline import Behaviour
 
 DYNAMIC_PATH = 0.03
+STILL_SPAN = 0.1
+STILL_PATH = 0.005
 MATCH_WINDOW = 0.2
 TARGET_LEAD = 0.2
 
@@ -75,13 +80,15 @@ def path_length(path: np.ndarray) -> float:
     return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum()) if path.shape[0] > 1 else 0.0
 
 
-def landmarks(segmentation: Segmentation, dynamic: bool, fps: float, start: float) -> list[tuple[str, float]]:
+def landmarks(segmentation: Segmentation, dynamic: bool, fps: float, start: float, opens_still: bool = False) -> list[tuple[str, float]]:
     """Landmarks of the kind a stroke of this sort shows: ``(kind, time)``; ``start`` is
-    the time of frame 0."""
+    the time of frame 0; ``opens_still``: a dynamic stroke whose wrist is still at first
+    shows arrivals too."""
+    arrivals = [("arrival", start + hold.first / fps) for hold in segmentation.holds if hold.first > 0]
     if not dynamic:
-        return [("arrival", start + hold.first / fps) for hold in segmentation.holds if hold.first > 0]
+        return arrivals
     found = [("departure", start + hold.last / fps) for hold in segmentation.holds]
-    return found + [("valley", start + valley.at / fps) for valley in segmentation.valleys]
+    return found + [("valley", start + valley.at / fps) for valley in segmentation.valleys] + (arrivals if opens_still else [])
 
 
 def _frame(time: float, fps: float, start: float, frames: int) -> int:
@@ -101,10 +108,11 @@ def stroke_onset(
     phases = behaviour.phases
     first, last = (_frame(phases[name], fps, start, path.shape[0]) for name in ("stroke_start", "stroke_end"))
     dynamic = path_length(path[first : last + 1]) > DYNAMIC_PATH
+    opens_still = path_length(path[first : min(last, first + int(round(STILL_SPAN * fps))) + 1]) < STILL_PATH
     planned = phases["stroke_start"]
     candidates = [
         (kind, time)
-        for kind, time in landmarks(segmentation, dynamic, fps, start)
+        for kind, time in landmarks(segmentation, dynamic, fps, start, opens_still)
         if phases["start"] <= time <= phases["stroke_end"] and abs(time - planned) <= MATCH_WINDOW
     ]
     if not candidates:

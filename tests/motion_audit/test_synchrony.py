@@ -39,6 +39,7 @@ CASES = [
     ("static: arrival", piecewise(("hold", 10), ("move", 50, 0.3), ("hold", 60)), 1.0, 1.9, "arrival", 1.0),
     ("pre-stroke hold: departure", piecewise(("hold", 10), ("move", 30, 0.3), ("hold", 20), ("move", 40, 0.2), ("hold", 20)), 1.0, 1.6, "departure", 1.0),
     ("valley between preparation and stroke", piecewise(("hold", 10), ("move", 50, 0.3), ("move", 40, 0.2), ("hold", 20)), 1.0, 1.6, "valley", 1.0),
+    ("stroke opening with the hand, wrist still: arrival", piecewise(("hold", 10), ("move", 50, 0.3), ("hold", 20), ("move", 40, 0.2), ("hold", 20)), 1.0, 2.0, "arrival", 1.0),
     ("flowing through: no landmark", piecewise(("hold", 10), ("glide", 100, 0.6), ("hold", 10)), 1.0, 1.6, None, None),
     ("landmark too far from the plan", piecewise(("hold", 10), ("move", 50, 0.3), ("hold", 60)), 1.35, 1.9, None, None),
 ]
