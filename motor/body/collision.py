@@ -176,7 +176,9 @@ def _ellipsoid_distance(ellipsoid: Ellipsoid, a: Components, b: Components) -> n
 def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components) -> np.ndarray:
     """Signed distance of a segment from a vertical elliptic cylinder: within the height
     range, radial (as :func:`_ellipsoid_distance`, in the horizontal plane); a segment
-    wholly above or below it is as far as its nearest end's vertical and radial gaps."""
+    wholly above or below it is as far as the nearest of its points at :data:`_ALONG` and
+    where its horizontal gap is least, by their vertical and radial gaps (an upper arm
+    lying across the top of the chest passes nearest between its ends, not at one)."""
     width, depth = cylinder.half_width, cylinder.half_depth
     x0, z0 = (a[0] - cylinder.center[0]) / width, (a[2] - cylinder.center[2]) / depth
     dx, dz = (b[0] - a[0]) / width, (b[2] - a[2]) / depth
@@ -188,16 +190,38 @@ def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components)
     enter = np.maximum(np.where(flat, np.where(level, 0.0, 2.0), np.minimum(low, high)), 0.0)
     leave = np.minimum(np.where(flat, 1.0, np.maximum(low, high)), 1.0)
     inside = enter <= leave
-    t = np.minimum(np.maximum(-(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY), enter), np.maximum(leave, enter))
-    # outside the height range: the end nearer to it
-    middle = 0.5 * (cylinder.bottom + cylinder.top)
-    t = np.where(inside, t, np.where(np.abs(y0 + dy - middle) < np.abs(y0 - middle), 1.0, 0.0))
-    sx, sz = x0 + t * dx, z0 + t * dz
+    nearest = -(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY)
+    t = np.minimum(np.maximum(nearest, enter), np.maximum(leave, enter))
+    radial = _radial(x0 + t * dx, z0 + t * dz, width, depth)
+    if np.all(inside):
+        return radial
+    shape = np.broadcast(radial, inside, x0, z0, dx, dz, y0, dy).shape
+    rows = np.flatnonzero(np.broadcast_to(~inside, shape))
+    pick = lambda v: np.broadcast_to(v, shape).reshape(-1)[rows][:, None]
+    across = np.minimum(np.maximum(pick(nearest), 0.0), 1.0)
+    t = np.concatenate([np.broadcast_to(_ALONG, (rows.size, _ALONG.size)), across], axis=1)
+    outside = _beyond(cylinder, pick(x0), pick(z0), pick(dx), pick(dz), pick(y0), pick(dy), t).min(axis=1)
+    distance = np.array(np.broadcast_to(radial, shape), dtype=float)
+    distance.reshape(-1)[rows] = outside
+    return distance
+
+
+#: Fractions along a segment wholly above or below a cylinder at which its distance is measured.
+_ALONG = np.linspace(0.0, 1.0, 9)
+
+
+def _radial(sx: np.ndarray, sz: np.ndarray, width: float, depth: float) -> np.ndarray:
+    """Signed radial distance (m) of points given in the cylinder's unit-circle coordinates."""
     rho = np.sqrt(sx * sx + sz * sz)
-    radial = np.sqrt((sx * width) ** 2 + (sz * depth) ** 2) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
+    return np.sqrt((sx * width) ** 2 + (sz * depth) ** 2) * (1.0 - 1.0 / np.maximum(rho, 1e-9))
+
+
+def _beyond(cylinder: EllipticCylinder, x0: np.ndarray, z0: np.ndarray, dx: np.ndarray, dz: np.ndarray, y0: np.ndarray, dy: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Distance (m) from the cylinder of the segment's point at ``t``, a point above or below it."""
+    radial = _radial(x0 + t * dx, z0 + t * dz, cylinder.half_width, cylinder.half_depth)
     y = y0 + t * dy
-    vertical = np.maximum(cylinder.bottom - y, y - cylinder.top)
-    return np.where(inside, radial, np.where(radial > 0.0, np.sqrt(vertical * vertical + radial * radial), vertical))
+    vertical = np.maximum(np.maximum(cylinder.bottom - y, y - cylinder.top), 0.0)
+    return np.where(radial > 0.0, np.sqrt(vertical * vertical + radial * radial), vertical)
 
 
 def outside_torso(avatar: Avatar, points: np.ndarray) -> np.ndarray:

@@ -259,3 +259,45 @@ def _palm_down(avatar, side: str, count: int) -> np.ndarray:
     axes = lambda finger, palm: np.stack((finger, palm, np.cross(finger, palm)), axis=-1)
     rotation = quat.from_frames(axes(frame.finger_axis, frame.palm_normal), axes(np.array([0.0, 0.0, 1.0]), np.array([0.0, -1.0, 0.0])))
     return np.broadcast_to(rotation, (count, 4))
+
+
+def _sampled_outside_distance(cylinder: EllipticCylinder, a: np.ndarray, b: np.ndarray) -> float:
+    """Least distance of a segment's sampled points (all above or below the cylinder) from
+    it: the vertical gap and the radial gap along the ray from the axis, combined."""
+    points = a + np.linspace(0.0, 1.0, 4001)[:, None] * (b - a)
+    sx, sz = points[:, 0] / cylinder.half_width, points[:, 2] / cylinder.half_depth
+    rho = np.hypot(sx, sz)
+    radial = np.maximum(np.hypot(points[:, 0], points[:, 2]) * (1.0 - 1.0 / np.maximum(rho, 1e-9)), 0.0)
+    vertical = np.maximum(cylinder.bottom - points[:, 1], points[:, 1] - cylinder.top)
+    return float(np.min(np.hypot(radial, vertical)))
+
+
+ACROSS_THE_TOP = [
+    # (segment start, end): an upper arm lying across the top of the chest, its ends beyond the rim
+    ((0.137, 0.512, 0.059), (0.040, 0.508, 0.200)),
+    ((0.20, 0.53, 0.0), (-0.20, 0.53, 0.05)),
+    ((0.18, -0.08, -0.05), (-0.02, -0.07, 0.16)),
+    ((0.0, 0.56, 0.2), (0.0, 0.56, -0.2)),
+]
+
+
+@pytest.mark.parametrize("ends", ACROSS_THE_TOP)
+def test_a_segment_across_the_top_is_as_near_as_its_nearest_point(ends):
+    """A segment wholly above (or below) the cylinder whose ends lie beyond its rim passes
+    nearest somewhere between them: its distance is that point's, not an end's."""
+    cylinder = EllipticCylinder("t", "vl5", np.zeros(3), 0.14, 0.11, -0.05, 0.5)
+    a, b = (np.array(end, dtype=float) for end in ends)
+    assert float(capsule_distance(cylinder, a, b, 0.0)) == pytest.approx(_sampled_outside_distance(cylinder, a, b), abs=1e-3)
+
+
+@pytest.mark.parametrize("trial", range(20))
+def test_a_segment_above_or_below_is_never_measured_nearer_than_it_is(trial):
+    rng = np.random.default_rng(300 + trial)
+    cylinder = EllipticCylinder("t", "vl5", np.zeros(3), 0.14, 0.11, -0.05, 0.5)
+    low, high = (-0.3, 0.52, -0.3), (0.3, 0.8, 0.3)
+    a, b = rng.uniform(low, high, (2, 3))
+    if trial % 2:
+        a[1], b[1] = -a[1] + 0.45, -b[1] + 0.45
+    sampled = _sampled_outside_distance(cylinder, a, b)
+    distance = float(capsule_distance(cylinder, a, b, 0.0))
+    assert sampled - 1e-6 <= distance <= sampled + 0.01
