@@ -59,6 +59,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from motor.arm.wrist_path import uncrowded_placement
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.locations import resolve_location
 from motor.face.planning import FACE_SLOTS
@@ -118,6 +119,9 @@ SAME_TIME = 1e-9
 #: Clearance (m) between the forearms of mirrored arms that cross over each other
 #: (:meth:`Compiler.stacked`).
 CROSSING_CLEARANCE = 0.01
+#: Most rounds of lowering the image's keys again where placing them (into reach, out of
+#: the body) raised them back toward the dominant hand (:meth:`Compiler.stacked`).
+STACKING_ROUNDS = 4
 
 
 _SAME_PLACE = 1e-4
@@ -321,7 +325,10 @@ class Compiler:
         the dominant hand's mirror image — all but those where the hands touch
         (``touching``: kept a palm thickness apart at the plane), so that the forearms pass
         one over the other and the hands still meet where asked. The dominant hand stays
-        where it was asked (it may be at the edge of its reach, high above the head)."""
+        where it was asked (it may be at the edge of its reach, high above the head). Both
+        are measured where the planner places them (:func:`motor.arm.wrist_path.uncrowded_placement`:
+        into reach, out of the body): a hand asked beyond its reach is pulled in toward its
+        shoulder, and pulling both in closed most of a gap made where they were asked."""
         if reflection_signs(symmetry)[0] > 0.0:
             return mirrored
         beyond = -1.0 if dominant == "left" else 1.0
@@ -329,7 +336,18 @@ class Compiler:
             return mirrored
         capsules = [self.avatar.collision.arm(side, "forearm") for side in "lr"]
         drop = np.array([0.0, sum(c.radius for c in capsules) + CROSSING_CLEARANCE, 0.0])
-        return tuple(key if touch else replace(key, value=np.asarray(key.value, dtype=float) - drop) for key, touch in zip(mirrored, touching))
+        kept = np.array(touching)
+        reached = uncrowded_placement(self.avatar, AVATAR_SIDE[dominant], np.array([np.asarray(key.value, dtype=float) for key in keys]), kept).points
+        image = mirror_points(reached, symmetry, center)
+        lower = np.full(len(image), drop[1])
+        for _ in range(STACKING_ROUNDS):
+            below = image - lower[:, None] * np.array([0.0, 1.0, 0.0])
+            placed = uncrowded_placement(self.avatar, AVATAR_SIDE["left" if dominant == "right" else "right"], below, kept).points
+            short = drop[1] - (image[:, 1] - placed[:, 1])
+            if not np.any(short > _SAME_PLACE):
+                break
+            lower += np.maximum(short, 0.0)
+        return tuple(key if touch else replace(key, value=point) for key, touch, point in zip(mirrored, touching, below))
 
     def kept_apart(self, keys: tuple[Key, ...], symmetry: Symmetry, center: np.ndarray, dominant: str) -> tuple[Key, ...]:
         """Dominant-hand location keys at least a palm thickness from their mirror images

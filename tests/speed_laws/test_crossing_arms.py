@@ -76,3 +76,15 @@ def test_crossed_forearms_stay_apart(avatar, height: str, start: str, end: str) 
     radii = sum(avatar.collision.arm(side, "forearm").radius for side in "lr")
     apart = segment_distance(joints["r_elbow"], joints["r_wrist"], joints["l_elbow"], joints["l_wrist"])
     assert apart.min() >= radii - FOREARM_SLACK, f"the forearms {100 * (radii - apart.min()):.1f} cm into each other"
+
+
+@pytest.mark.parametrize(("height", "across"), [("LocStomach", "LocLeft"), ("LocStomach", "LocPeripheryLeft"), ("LocChest", "LocPeripheryLeft"), ("LocUpperChest", "LocLeft")])
+def test_a_crossed_start_out_of_reach_keeps_the_hands_a_forearm_apart(avatar, height: str, across: str) -> None:
+    """The right hand asked far beyond the mirror plane, out of reach, is pulled in; the
+    left hand keeps the forearms' thickness below where the right one is, not below where
+    it was asked (pulling both in toward their shoulders closed most of that gap)."""
+    joints = _render(avatar, GridLocation(height, across, "LocFar"), GridLocation(height, "LocRight", "LocFar"))
+    right, left = joints["r_wrist"][int(FPS)], joints["l_wrist"][int(FPS)]
+    assert right[0] > left[0], "the hands start crossed"
+    radii = sum(avatar.collision.arm(side, "forearm").radius for side in "lr")
+    assert left[1] < right[1] - radii + FOREARM_SLACK, f"the left hand only {100 * (right[1] - left[1]):.1f} cm below"
