@@ -8,7 +8,13 @@ ahead (:func:`motor.arm.swivel.smooth_swivels`). The track's steps follow the tu
 the swivel's zero from grid point to grid point, so that a track that stays put keeps
 the elbow where it was whatever the arm's elevation. The right arm's track is found
 first; the left arm's keeps clear of the right arm where that track puts it at the same
-grid point (a cost of the point itself, not of the look ahead). The forearm twist is
+grid point (a cost of the point itself, not of the look ahead). Then both are found again,
+the right keeping clear of where the left's first track puts it, the left of the right's
+second: where the arms crowd each other (hands crossing over), the right elbow no longer
+takes the only room the left one had. Each of the four tracks goes on from its own state
+at the grid point before (the first tracks' are kept beside the second's), so the tracks
+still depend on nothing but those states and the channel values ahead; where the arms
+keep apart and the second tracks stand where the first do, the second are the first. The forearm twist is
 carried along the grid too (:func:`twist_track`): it never wraps from one limit to the
 other.
 
@@ -45,8 +51,9 @@ WRIST_STEP = math.radians(40.0)
 #: The columns kept per arm and grid point: the track's candidate (unwrapped step count)
 #: and swivel (radians, unwrapped), how far the swivel's zero turned since the grid point
 #: before, the direction of swivel 0 (3 columns), the forearm twist, the twist the hand
-#: wanted there (radians, in (-π, π]) and the wrist's flexion and deviation.
-_COLUMNS = ("cell", "swivel", "turn", "zero_x", "zero_y", "zero_z", "twist", "wanted", "flexion", "deviation")
+#: wanted there (radians, in (-π, π]), the wrist's flexion and deviation, and the first
+#: track's candidate and swivel (module docstring).
+_COLUMNS = ("cell", "swivel", "turn", "zero_x", "zero_y", "zero_z", "twist", "wanted", "flexion", "deviation", "first_cell", "first_swivel")
 
 
 @dataclass
@@ -55,10 +62,14 @@ class _Arm:
 
     rows: np.ndarray
 
-    def state(self, row: int) -> tuple[SwivelState, tuple[float, float, float]]:
-        """The track's state, and the twist, flexion and deviation at a row."""
+    def state(self, row: int) -> tuple[SwivelState, tuple[float, float, float], SwivelState]:
+        """The track's state, the twist, flexion and deviation, and the first track's state at a row."""
         values = self.rows[row]
-        return SwivelState(int(values[0]), float(values[1])), (float(values[6]), float(values[8]), float(values[9]))
+        return (
+            SwivelState(int(values[0]), float(values[1])),
+            (float(values[6]), float(values[8]), float(values[9])),
+            SwivelState(int(values[10]), float(values[11])),
+        )
 
 
 class SwivelGrid:
@@ -105,12 +116,12 @@ class SwivelGrid:
         count = end - start + 1
         before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
         costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm]) for arm in ARMS}
-        tracks, poses = {}, {}
-        other = None
-        for arm in ARMS:
-            now = None if other is None else costs[arm].near_other(self.avatar, other)
-            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now if now is not None and np.any(now) else None)
-            other = costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0])
+        first, first_poses, crowded = self._tracks(costs, {arm: None if state is None else state[2] for arm, state in before.items()}, None)
+        again = {arm: None if state is None else state[0] for arm, state in before.items()}
+        if crowded or any(state is not None and state[0] != state[2] for state in before.values()):
+            tracks, poses, _ = self._tracks(costs, again, first_poses[ARMS[-1]][0])
+        else:
+            tracks, poses = first, first_poses
         for arm in ARMS:
             side = AVATAR_SIDE[arm]
             cells, swivels = tracks[arm]
@@ -118,13 +129,29 @@ class SwivelGrid:
             limits = self.avatar.limit(f"{side}_elbow", "twist")
             twists = twist_track(wanted, certainty, None if before[arm] is None else before[arm][1][0], limits)
             wrist = wrist_track(np.stack([flexion, deviation], axis=1), certainty, None if before[arm] is None else before[arm][1][1:])
-            rows = np.column_stack([cells, swivels, costs[arm].turns[:count], costs[arm].zeros[:count], twists, wanted, wrist])
+            rows = np.column_stack([cells, swivels, costs[arm].turns[:count], costs[arm].zeros[:count], twists, wanted, wrist, *first[arm]])
             self._arms[arm].rows = np.concatenate([self._arms[arm].rows, rows])
+
+    def _tracks(self, costs: dict, before: dict[str, SwivelState | None], left: np.ndarray | None) -> tuple[dict, dict, bool]:
+        """Both arms' tracks and poses, in turn: the right arm's keeping clear of the left
+        arm's elbows at ``left (n, 3)`` (None: of nothing), the left arm's of the right's
+        track; and whether the left arm came near the right one."""
+        tracks, poses = {}, {}
+        last = ARMS[-1]
+        other = None if left is None else costs[last].segments(self.avatar, AVATAR_SIDE[last], left)
+        crowded = False
+        for arm in ARMS:
+            now = None if other is None else costs[arm].near_other(self.avatar, other)
+            near = now is not None and bool(np.any(now))
+            crowded = crowded or (near and arm == last)
+            tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now if near else None)
+            other = costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0])
+        return tracks, poses, crowded
 
     @staticmethod
     def _track(costs, before, now: np.ndarray | None) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, ...]]:
         """One arm's track (candidates, swivels) and its pose there (:meth:`TrackCosts.pose`)."""
-        track = smooth_swivels(costs.costs, CANDIDATES, None if before is None else before[0], HORIZON, now, costs.turns)
+        track = smooth_swivels(costs.costs, CANDIDATES, before, HORIZON, now, costs.turns)
         return track, costs.pose(track[1])
 
     def forget_from(self, index: int) -> None:

@@ -94,3 +94,34 @@ def test_the_trunk_turns_only_where_a_hand_reaches_across(avatar):
     assert mirrored.yaw[0] == pytest.approx(-turn.yaw[0])
     points = RNG.normal(0.0, 0.3, (1, 3))
     np.testing.assert_allclose(turn.from_trunk(turn.to_trunk(points)), points, atol=1e-12)
+
+
+def _crossing_inputs(times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Synthetic wrist paths whose hands cross over in front of the chest and part again,
+    the left a forearm's thickness lower (avatar frame, metres), hands unturned."""
+    phase = np.sin(np.pi * np.clip(times / 4.0, 0.0, 1.0))
+    right = np.stack([-0.25 + 0.45 * phase, 0.30 + 0.05 * phase, 0.30 + 0.05 * phase], axis=1)
+    left = right * np.array([-1.0, 1.0, 1.0]) - np.array([0.0, 0.07, 0.0])
+    hands = np.tile([0.0, 0.0, 0.0, 1.0], (times.size, 1))
+    return {"right": (right, hands), "left": (left, hands)}
+
+
+@pytest.mark.parametrize("pieces", [[40], [10, 20, 10], [1, 39], [7, 3, 12, 18]])
+def test_both_arms_tracks_piece_by_piece_are_the_tracks_at_once_where_the_arms_crowd(avatar, pieces):
+    """The tracks found twice where the arms cross (each going on from its own state) are
+    the same whatever grid points a batch solves."""
+    from motor.arm.swivel_track import SWIVEL_PERIOD, SwivelGrid
+
+    def solved(batches: list[int]) -> SwivelGrid:
+        grid, start = SwivelGrid(avatar), 0
+        for size in batches:
+            end = start + size - 1
+            grid.solve(start, end, start == 0, _crossing_inputs(grid.times(start, end)))
+            start = end + 1
+        return grid
+
+    times = np.arange(1, 38) * SWIVEL_PERIOD
+    whole, split = solved([40]), solved(pieces)
+    for arm in ("right", "left"):
+        for a, b in zip(whole.sample(arm, times, 0, 39), split.sample(arm, times, 0, 39)):
+            np.testing.assert_allclose(b, a, rtol=0.0, atol=1e-12)
