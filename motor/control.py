@@ -175,6 +175,8 @@ class MotorControl:
         self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
         self._lookahead = FRAME_LOOKAHEAD  # seconds the next computation looks ahead
+        self._next_frame = 0  # the frame after the last one handed out
+        self._separations: tuple[int, np.ndarray] | None = None  # first frame, hands' separation of the frames computed last
         self._parents = tuple(int(p) for p in avatar.parents)
         self._forget_from = -math.inf  # no arm LMP loses control before this horizon (s)
         self._last_arm = {arm: _LastRun() for arm in ARMS}
@@ -390,6 +392,7 @@ class MotorControl:
         rotations, face = self._rotations_ahead(first, count)
         if count:
             self._committed = max(self._committed, self._grid_span(times)[1])
+            self._next_frame = first + count
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
@@ -429,18 +432,23 @@ class MotorControl:
         return rotations[:count].copy(), faces[:count].copy()
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
-        """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order),
-        solved :data:`FRAME_CHUNK` frames at a time."""
-        if times.size <= FRAME_CHUNK:
-            return self._solve_frames(times)[0]
-        return np.concatenate([self._solve_frames(times[start : start + FRAME_CHUNK])[0] for start in range(0, times.size, FRAME_CHUNK)])
+        """Joint rotations ``(n, J, 4)`` at frame times ``times`` (module docstring: the
+        per-frame order), solved :data:`FRAME_CHUNK` frames at a time; the hands'
+        separation of these frames is kept, for frames computed again after an activation
+        to go on from it (:meth:`_go_on_from_shown`)."""
+        if times.size == 0:
+            return np.empty((0, self.avatar.joint_count, 4))
+        solved = [self._solve_frames(times[start : start + FRAME_CHUNK], continued=start == 0) for start in range(0, times.size, FRAME_CHUNK)]
+        self._separations = (int(round(times[0] * self.fps)), np.concatenate([part[3] for part in solved]))
+        return np.concatenate([part[0] for part in solved]) if len(solved) > 1 else solved[0][0]
 
-    def _solve_frames(self, times: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
+    def _solve_frames(self, times: np.ndarray, continued: bool = False) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """Joint rotations ``(n, J, 4)`` at sorted frame times ``times`` (``k / fps``), the
-        wrist positions each arm was given ``(n, 3)`` (the trunk's frame) and the trunk's
-        yaw ``(n,)``. The arms' inputs are worked out over the frames around them too
-        (:meth:`_separation_frames`), as the hands' separation at a frame depends on the
-        frames around it (:meth:`_hands_apart`)."""
+        wrist positions each arm was given ``(n, 3)`` (the trunk's frame), the trunk's yaw
+        ``(n,)`` and the hands' separation ``(n, 3)`` (:meth:`_hands_apart`, which
+        ``continued`` is handed to). The arms' inputs are worked out over the frames
+        around them too (:meth:`_separation_frames`), as the hands' separation at a frame
+        depends on the frames around it."""
         frames, pick = self._separation_frames(times)
         first, last = self._grid_span(frames)
         plan = self._grid.plan(first, last)
@@ -462,7 +470,7 @@ class MotorControl:
         turn = turned(self.avatar, yaw[pick])
         if turn is not None:
             rotations[:, self._trunk_joints] = turn.local_rotations()
-        given, arms = self._hands_apart(values, first, last, frames, pick)
+        given, arms, separation = self._hands_apart(values, first, last, frames, pick, continued)
         for arm in ARMS:
             side = AVATAR_SIDE[arm]
             rotations[:, self._arm_joints[arm]] = arms[arm]
@@ -470,7 +478,7 @@ class MotorControl:
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
-        return rotations, given, yaw[pick]
+        return rotations, given, yaw[pick], separation
 
     def _separation_frames(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The frame times the hands' separation at sorted frame times ``times`` depends
@@ -487,8 +495,8 @@ class MotorControl:
         return np.arange(low, int(index[-1]) + margin + 1) / self.fps, index.astype(int) - low
 
     def _hands_apart(
-        self, values: dict[str, tuple[np.ndarray, np.ndarray]], first: int, last: int, frames: np.ndarray, pick: np.ndarray
-    ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+        self, values: dict[str, tuple[np.ndarray, np.ndarray]], first: int, last: int, frames: np.ndarray, pick: np.ndarray, continued: bool
+    ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], np.ndarray]:
         """Per arm, the wrist positions the IK is given and the arm's joint rotations at
         the frames ``pick`` among ``frames``, from the channels' wrist positions and hand rotations
         ``values`` (the trunk's frame).
@@ -502,7 +510,10 @@ class MotorControl:
         over time (:func:`motor.body.hands_apart.eased_separation`: it grows before the
         hands would meet, instead of within one frame) and the wrists then kept out of the
         torso. Where the hands may meet nowhere among ``frames``, only the frames ``pick``
-        are solved."""
+        are solved. Also returns the separation at ``pick`` ``(n, 3)`` (the left wrist's
+        move; the right one's is its opposite); with ``continued``, frames about to be
+        shown go on from the separation worked out for them before
+        (:meth:`_go_on_from_shown`)."""
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         offset = eased_separation(hand_separation(self.avatar, left, right, left_hands, right_hands), self.fps)
         placed = {"left": left + offset, "right": right - offset}
@@ -514,8 +525,17 @@ class MotorControl:
             swivel, twist = self._grid.sample(arm, frames[solved], first, last)
             rows[arm] = np.concatenate([wrists[arm][solved], values[arm][1][solved], swivel, twist], axis=1)
             arms[arm] = self._last_arm[arm].apply(lambda rows, side=AVATAR_SIDE[arm]: _solve_rows(self.avatar, side, rows), rows[arm])
-        if solved is pick:
-            return {arm: rows[arm][:, :3] for arm in ARMS}, arms
+        if solved is not pick:
+            self._look_again(placed, rows, arms)
+            rows, arms = {arm: rows[arm][pick] for arm in ARMS}, {arm: arms[arm][pick] for arm in ARMS}
+        separation = placed["left"][pick] - left[pick]
+        if continued:
+            self._go_on_from_shown(int(round(frames[pick[0]] * self.fps)), separation, {arm: values[arm][0][pick] for arm in ARMS}, rows, arms)
+        return {arm: rows[arm][:, :3] for arm in ARMS}, arms, separation
+
+    def _look_again(self, placed: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]) -> None:
+        """The looks at the hands as the arms turned them (:meth:`_hands_apart`): moves
+        ``placed`` (before the torso) and ``rows`` and solves ``arms`` again, in place."""
         for _ in range(HANDS_APART_LOOKS):
             needs = self._reached_separation(placed, rows, arms)
             if not np.any(needs):
@@ -526,7 +546,34 @@ class MotorControl:
                 placed[arm][moved] += sign * more[moved]
                 rows[arm][moved, :3] = kept_out_of_torso(self.avatar, placed[arm][moved])
                 arms[arm][moved] = self._solved(arm, rows[arm][moved])
-        return {arm: rows[arm][pick, :3] for arm in ARMS}, {arm: arms[arm][pick] for arm in ARMS}
+
+    def _go_on_from_shown(
+        self, start: int, separation: np.ndarray, channel: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]
+    ) -> None:
+        """Frames from ``start`` on whose hands' separation ``(n, 3)`` (the left wrist's;
+        the right one's is its opposite) differs from the one worked out for them before,
+        when frames up to ``start`` have been shown: an LMP activated since then changed
+        what lies ahead, which the shown frames could not anticipate. The separation then
+        goes over from the one before to the new one over :func:`motor.body.hands_apart.reach_frames`
+        frames (C², :func:`_smootherstep`) instead of jumping; ``separation``, ``rows``
+        (from the channel's wrists ``channel``) and ``arms`` are changed in place."""
+        if self._separations is None or start != self._next_frame:
+            return
+        held_from, held = self._separations
+        skip = start - held_from
+        span = reach_frames(self.fps)
+        count = min(span, held.shape[0] - skip, separation.shape[0])
+        if skip < 0 or count <= 0:
+            return
+        before, after = held[skip : skip + count], separation[:count].copy()
+        if np.array_equal(before, after):
+            return
+        share = _smootherstep(np.arange(1, count + 1) / (span + 1))[:, None]
+        separation[:count] = before + share * (after - before)
+        changed = np.flatnonzero(np.any(separation[:count] != after, axis=1))
+        for arm, sign in (("left", 1.0), ("right", -1.0)):
+            rows[arm][changed, :3] = kept_out_of_torso(self.avatar, channel[arm][changed] + sign * separation[changed])
+            arms[arm][changed] = self._solved(arm, rows[arm][changed])
 
     def _reached_separation(self, placed: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]) -> np.ndarray:
         """How far ``(n, 3)`` the left wrist placed at ``placed["left"]`` (before the torso;
@@ -565,7 +612,7 @@ class MotorControl:
         """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
         frame times ``times``: the wrist channel's, the hands a palm thickness apart (as
         asked, and as the arms turn them) and kept out of the torso."""
-        _, wrists, yaw = self._solve_frames(np.asarray(times, dtype=float))
+        _, wrists, yaw, _ = self._solve_frames(np.asarray(times, dtype=float))
         turn = turned(self.avatar, yaw)
         return wrists if turn is None else {arm: turn.from_trunk(points) for arm, points in wrists.items()}
 
@@ -662,6 +709,11 @@ def _separation_margin(fps: float) -> int:
     on at ``fps``: the reach of each eased separation (:func:`motor.body.hands_apart.reach_frames`),
     once for the look as asked and once per look as the arms turned the hands."""
     return (1 + HANDS_APART_LOOKS) * reach_frames(fps)
+
+
+def _smootherstep(u: np.ndarray) -> np.ndarray:
+    """0 at 0, 1 at 1, with zero slope and curvature at both ends (C²)."""
+    return u * u * u * (u * (6.0 * u - 15.0) + 10.0)
 
 
 def _chain_rotation(local: np.ndarray) -> np.ndarray:
