@@ -130,6 +130,10 @@ HANDS_APART_ROUNDS = 3
 #: eased in and out over time and the arms solved again: a second look takes up what the
 #: first one's easing left (where the way the hands part turns over).
 HANDS_APART_LOOKS = 2
+#: Largest acceleration (m/s²) with which the wrists go over from the hands' separation
+#: worked out for frames before an activation to the one worked out after it
+#: (:meth:`MotorControl._go_on_from_shown`): 0.2 m/s of velocity change per frame at 60 fps.
+CROSSFADE_ACCELERATION = 12.0
 #: Frames solved in one pass: a long span is solved this many frames at a time, which
 #: gives the same frames (they depend only on their times and the activated LMPs, module
 #: docstring) with per-frame arrays that stay in the CPU's cache.
@@ -554,22 +558,25 @@ class MotorControl:
         the right one's is its opposite) differs from the one worked out for them before,
         when frames up to ``start`` have been shown: an LMP activated since then changed
         what lies ahead, which the shown frames could not anticipate. The separation then
-        goes over from the one before to the new one over :func:`motor.body.hands_apart.reach_frames`
-        frames (C², :func:`_smootherstep`) instead of jumping; ``separation``, ``rows``
-        (from the channel's wrists ``channel``) and ``arms`` are changed in place."""
+        goes over from the one before to the new one (C², :func:`_smootherstep`) instead
+        of jumping, as fast as :data:`CROSSFADE_ACCELERATION` allows (the hands are apart
+        as they should be the sooner), within :func:`motor.body.hands_apart.reach_frames`
+        frames; ``separation``, ``rows`` (from the channel's wrists ``channel``) and
+        ``arms`` are changed in place."""
         if self._separations is None or start != self._next_frame:
             return
         held_from, held = self._separations
         skip = start - held_from
-        span = reach_frames(self.fps)
-        count = min(span, held.shape[0] - skip, separation.shape[0])
+        count = min(reach_frames(self.fps), held.shape[0] - skip, separation.shape[0])
         if skip < 0 or count <= 0:
             return
         before, after = held[skip : skip + count], separation[:count].copy()
         if np.array_equal(before, after):
             return
-        share = _smootherstep(np.arange(1, count + 1) / (span + 1))[:, None]
-        separation[:count] = before + share * (after - before)
+        gap = float(np.max(np.linalg.norm(after - before, axis=1)))
+        frames = min(count, math.ceil(self.fps * math.sqrt(_SMOOTHERSTEP_CURVATURE * gap / CROSSFADE_ACCELERATION)))
+        share = _smootherstep(np.arange(1, frames + 1) / (frames + 1))[:, None]
+        separation[:frames] = before[:frames] + share * (after[:frames] - before[:frames])
         changed = np.flatnonzero(np.any(separation[:count] != after, axis=1))
         for arm, sign in (("left", 1.0), ("right", -1.0)):
             rows[arm][changed, :3] = kept_out_of_torso(self.avatar, channel[arm][changed] + sign * separation[changed])
@@ -709,6 +716,10 @@ def _separation_margin(fps: float) -> int:
     on at ``fps``: the reach of each eased separation (:func:`motor.body.hands_apart.reach_frames`),
     once for the look as asked and once per look as the arms turned the hands."""
     return (1 + HANDS_APART_LOOKS) * reach_frames(fps)
+
+
+#: Largest second derivative of :func:`_smootherstep` on [0, 1] (10 / √3).
+_SMOOTHERSTEP_CURVATURE = 10.0 / math.sqrt(3.0)
 
 
 def _smootherstep(u: np.ndarray) -> np.ndarray:
