@@ -32,9 +32,9 @@ from __future__ import annotations
 import numpy as np
 
 #: Half the time (s) over which a separation grows from 0 to what a frame needs, before
-#: the need begins (and falls after it ends). A separation of 3 cm (the corpus' largest)
-#: then adds at most 0.25 m/s to the wrist's speed and 0.04 m/s of velocity change per
-#: frame at 60 fps (a speed step is 0.5 m/s).
+#: the need begins (and falls after it ends). A separation of 3 cm switched on from one
+#: frame to the next (the corpus' largest) then adds at most 0.27 m/s to the wrist's speed
+#: and 0.07 m/s of velocity change per frame at 60 fps (a speed step is 0.5 m/s).
 SEPARATION_RAMP = 0.1
 #: How many boxes smooth the dilated separation: three give a C² (piecewise cubic) ramp.
 BOXES = 3
