@@ -65,7 +65,8 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import hands_may_meet, kept_out_of_torso, separate_hands
+from motor.body.collision import hand_separation, hands_may_meet, kept_out_of_torso, separate_hands
+from motor.body.hands_apart import eased_separation, reach_frames
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
 from motor.program.fragment import first_location
@@ -121,8 +122,18 @@ MAX_FRAME_LOOKAHEAD = 16.0
 #: contact its minimum-jerk start) and never overlap more than that and
 #: :data:`motor.body.collision.HAND_BAND` together (5 mm).
 REACHED_ALLOWANCE = 0.003
-#: Most times the hands as the arms turned them are moved apart and the arms solved again.
+#: Most times, frame by frame, the hands as the arms turned them are moved apart and the
+#: arms solved again, to find how far apart the wrists must move (solving again turns the
+#: hands anew; :meth:`MotorControl._reached_separation`).
 HANDS_APART_ROUNDS = 3
+#: How many times the hands as the arms turned them are looked at, each separation found
+#: eased in and out over time and the arms solved again: a second look takes up what the
+#: first one's easing left (where the way the hands part turns over).
+HANDS_APART_LOOKS = 2
+#: Largest acceleration (m/s²) with which the wrists go over from the hands' separation
+#: worked out for frames before an activation to the one worked out after it
+#: (:meth:`MotorControl._go_on_from_shown`): 0.2 m/s of velocity change per frame at 60 fps.
+CROSSFADE_ACCELERATION = 12.0
 #: Frames solved in one pass: a long span is solved this many frames at a time, which
 #: gives the same frames (they depend only on their times and the activated LMPs, module
 #: docstring) with per-frame arrays that stay in the CPU's cache.
@@ -168,6 +179,8 @@ class MotorControl:
         self._committed = -(10**9)  # last grid index that frames handed out used
         self._ahead: tuple[int, np.ndarray, np.ndarray] | None = None  # first frame index, rotations, face weights
         self._lookahead = FRAME_LOOKAHEAD  # seconds the next computation looks ahead
+        self._next_frame = 0  # the frame after the last one handed out
+        self._separations: tuple[int, np.ndarray] | None = None  # first frame, hands' separation of the frames computed last
         self._parents = tuple(int(p) for p in avatar.parents)
         self._forget_from = -math.inf  # no arm LMP loses control before this horizon (s)
         self._last_arm = {arm: _LastRun() for arm in ARMS}
@@ -310,8 +323,9 @@ class MotorControl:
         self._forget_from = -math.inf
         first = max(math.floor(since / SWIVEL_PERIOD - _FRAME_TOLERANCE) - TRACK_REACH, self._committed + 1)
         self._grid.forget_from(first)
-        # a frame's swivel is interpolated from grid points up to two periods after it
-        self._forget_ahead_from((first - 2) * SWIVEL_PERIOD)
+        # a frame's swivel is interpolated from grid points up to two periods after it, and
+        # its hands' separation depends on the frames up to a margin after it
+        self._forget_ahead_from((first - 2) * SWIVEL_PERIOD - _separation_margin(self.fps) / self.fps)
 
     def _forget_ahead_from(self, since: float) -> None:
         """Drop the frames computed ahead from time ``since`` on (something changes them)."""
@@ -382,6 +396,7 @@ class MotorControl:
         rotations, face = self._rotations_ahead(first, count)
         if count:
             self._committed = max(self._committed, self._grid_span(times)[1])
+            self._next_frame = first + count
             self._forget_before(float(times[0]) - HISTORY)
         if count and not np.all(np.isfinite(rotations)):
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
@@ -421,102 +436,216 @@ class MotorControl:
         return rotations[:count].copy(), faces[:count].copy()
 
     def _rotations(self, times: np.ndarray) -> np.ndarray:
-        """Joint rotations ``(n, J, 4)`` at ``times`` (module docstring: the per-frame order),
-        solved :data:`FRAME_CHUNK` frames at a time."""
-        if times.size <= FRAME_CHUNK:
-            return self._solve_frames(times)[0]
-        return np.concatenate([self._solve_frames(times[start : start + FRAME_CHUNK])[0] for start in range(0, times.size, FRAME_CHUNK)])
+        """Joint rotations ``(n, J, 4)`` at frame times ``times`` (module docstring: the
+        per-frame order), solved :data:`FRAME_CHUNK` frames at a time; the hands'
+        separation of these frames is kept, for frames computed again after an activation
+        to go on from it (:meth:`_go_on_from_shown`)."""
+        if times.size == 0:
+            return np.empty((0, self.avatar.joint_count, 4))
+        solved = [self._solve_frames(times[start : start + FRAME_CHUNK], continued=start == 0) for start in range(0, times.size, FRAME_CHUNK)]
+        self._separations = (int(round(times[0] * self.fps)), np.concatenate([part[3] for part in solved]))
+        return np.concatenate([part[0] for part in solved]) if len(solved) > 1 else solved[0][0]
 
-    def _solve_frames(self, times: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]:
-        """Joint rotations ``(n, J, 4)`` at ``times``, the wrist positions each arm was
-        given ``(n, 3)`` (the trunk's frame) and the trunk's yaw ``(n,)``."""
-        rotations = np.empty((times.size, self.avatar.joint_count, 4))
-        rotations[:] = self._rest_rotations
-        first, last = self._grid_span(times)
+    def _solve_frames(self, times: np.ndarray, continued: bool = False) -> tuple[np.ndarray, dict[str, np.ndarray], np.ndarray, np.ndarray]:
+        """Joint rotations ``(n, J, 4)`` at sorted frame times ``times`` (``k / fps``), the
+        wrist positions each arm was given ``(n, 3)`` (the trunk's frame), the trunk's yaw
+        ``(n,)`` and the hands' separation ``(n, 3)`` (:meth:`_hands_apart`, which
+        ``continued`` is handed to). The arms' inputs are worked out over the frames
+        around them too (:meth:`_separation_frames`), as the hands' separation at a frame
+        depends on the frames around it."""
+        frames, pick = self._separation_frames(times)
+        first, last = self._grid_span(frames)
         plan = self._grid.plan(first, last)
         if plan is None:
-            inputs = self._arm_inputs(times)
+            values, yaw = self._channel_inputs(frames)
         else:
             # the frames and the grid points still to solve, sampled in one pass
             grid = self._grid.times(plan[0], plan[1])
-            merged = np.concatenate([times, grid])
+            merged = np.concatenate([frames, grid])
             order = np.argsort(merged, kind="stable")
             back = np.empty_like(order)
             back[order] = np.arange(order.size)
-            sampled = self._arm_inputs(merged[order])
-            inputs = {arm: tuple(v[back[: times.size]] for v in values) for arm, values in sampled.items()}
-            self._grid.solve(*plan, {arm: tuple(v[back[times.size :]] for v in values) for arm, values in sampled.items()})
-        turn = turned(self.avatar, inputs["trunk"][0][:, 0])
+            sampled, yaw = self._channel_inputs(merged[order])
+            values = {arm: tuple(v[back[: frames.size]] for v in pair) for arm, pair in sampled.items()}
+            self._grid.solve(*plan, self._kept_apart({arm: tuple(v[back[frames.size :]] for v in pair) for arm, pair in sampled.items()}))
+            yaw = yaw[back[: frames.size]]
+        rotations = np.empty((times.size, self.avatar.joint_count, 4))
+        rotations[:] = self._rest_rotations
+        turn = turned(self.avatar, yaw[pick])
         if turn is not None:
             rotations[:, self._trunk_joints] = turn.local_rotations()
-        rows = {}
+        given, arms, separation = self._hands_apart(values, first, last, frames, pick, continued)
         for arm in ARMS:
-            wrists, hands = inputs[arm]
             side = AVATAR_SIDE[arm]
-            swivel, twist = self._grid.sample(arm, times, first, last)
-            rows[arm] = np.concatenate([wrists, hands, swivel, twist], axis=1)
-            rotations[:, self._arm_joints[arm]] = self._last_arm[arm].apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm])
+            rotations[:, self._arm_joints[arm]] = arms[arm]
             params = _sample(self.timeline((arm, "handshape")), times)
             rotations[:, self._hand_joints[arm]] = self._last_hand[arm].apply(
                 lambda rows, side=side: hand_rotations(self.avatar, side, rows), params
             )
-        self._hands_apart(rotations, rows, inputs["apart"])
-        return rotations, {arm: rows[arm][:, :3] for arm in ARMS}, inputs["trunk"][0][:, 0]
+        return rotations, given, yaw[pick], separation
 
-    def _hands_apart(self, rotations: np.ndarray, rows: dict[str, np.ndarray], apart: tuple[np.ndarray, np.ndarray]) -> None:
-        """Where the hands as the arms turned them (not quite as asked, where the joint
-        limits fall short) would still come into each other, the wrists move apart
-        (:func:`motor.body.collision.separate_hands`, with the hands' reached rotations,
-        from where they were moved apart as asked: ``apart``, left and right, before the
-        torso), are kept out of the torso and those frames' arms are solved again; up to
-        :data:`HANDS_APART_ROUNDS` times, as solving again turns the hands anew."""
-        near = np.flatnonzero(hands_may_meet(self.avatar, rows["left"][:, :3], rows["right"][:, :3]))
-        if near.size == 0:
+    def _separation_frames(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The frame times the hands' separation at sorted frame times ``times`` depends
+        on — from :func:`_separation_margin` frames before the first (not before frame 0)
+        to as many after the last — and where ``times`` lie among them. ValueError for
+        times that are not frames ``k / fps``."""
+        index = np.rint(np.asarray(times, dtype=float) * self.fps)
+        if times.size == 0:
+            return np.zeros(0), np.zeros(0, dtype=int)
+        if np.max(np.abs(index / self.fps - times)) > _FRAME_TOLERANCE:
+            raise ValueError(f"times must be frame times k / {self.fps:g} s")
+        margin = _separation_margin(self.fps)
+        low = max(int(index[0]) - margin, min(int(index[0]), 0))
+        return np.arange(low, int(index[-1]) + margin + 1) / self.fps, index.astype(int) - low
+
+    def _hands_apart(
+        self, values: dict[str, tuple[np.ndarray, np.ndarray]], first: int, last: int, frames: np.ndarray, pick: np.ndarray, continued: bool
+    ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], np.ndarray]:
+        """Per arm, the wrist positions the IK is given and the arm's joint rotations at
+        the frames ``pick`` among ``frames``, from the channels' wrist positions and hand rotations
+        ``values`` (the trunk's frame).
+
+        The hands are kept a palm thickness apart — as asked
+        (:func:`motor.body.collision.hand_separation` with the asked hand rotations),
+        then, where the hands as the arms turned them (not quite as asked, where the joint
+        limits fall short) would still come into each other, again with those rotations,
+        a few millimetres less strictly (:data:`REACHED_ALLOWANCE`), and the arms solved
+        again, up to :data:`HANDS_APART_ROUNDS` times — each separation eased in and out
+        over time (:func:`motor.body.hands_apart.eased_separation`: it grows before the
+        hands would meet, instead of within one frame) and the wrists then kept out of the
+        torso. Where the hands may meet nowhere among ``frames``, only the frames ``pick``
+        are solved. Also returns the separation at ``pick`` ``(n, 3)`` (the left wrist's
+        move; the right one's is its opposite); with ``continued``, frames about to be
+        shown go on from the separation worked out for them before
+        (:meth:`_go_on_from_shown`)."""
+        (left, left_hands), (right, right_hands) = values["left"], values["right"]
+        offset = eased_separation(hand_separation(self.avatar, left, right, left_hands, right_hands), self.fps)
+        placed = {"left": left + offset, "right": right - offset}
+        wrists = {arm: kept_out_of_torso(self.avatar, placed[arm]) for arm in ARMS}
+        meeting = hands_may_meet(self.avatar, wrists["left"], wrists["right"])
+        solved = pick if not np.any(meeting) else np.arange(frames.size)
+        rows, arms = {}, {}
+        for arm in ARMS:
+            swivel, twist = self._grid.sample(arm, frames[solved], first, last)
+            rows[arm] = np.concatenate([wrists[arm][solved], values[arm][1][solved], swivel, twist], axis=1)
+            arms[arm] = self._last_arm[arm].apply(lambda rows, side=AVATAR_SIDE[arm]: _solve_rows(self.avatar, side, rows), rows[arm])
+        if solved is not pick:
+            self._look_again(placed, rows, arms)
+            rows, arms = {arm: rows[arm][pick] for arm in ARMS}, {arm: arms[arm][pick] for arm in ARMS}
+        separation = placed["left"][pick] - left[pick]
+        if continued:
+            self._go_on_from_shown(int(round(frames[pick[0]] * self.fps)), separation, {arm: values[arm][0][pick] for arm in ARMS}, rows, arms)
+        return {arm: rows[arm][:, :3] for arm in ARMS}, arms, separation
+
+    def _look_again(self, placed: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]) -> None:
+        """The looks at the hands as the arms turned them (:meth:`_hands_apart`): moves
+        ``placed`` (before the torso) and ``rows`` and solves ``arms`` again, in place."""
+        for _ in range(HANDS_APART_LOOKS):
+            needs = self._reached_separation(placed, rows, arms)
+            if not np.any(needs):
+                break
+            more = eased_separation(needs, self.fps)
+            moved = np.flatnonzero(np.any(more != 0.0, axis=1))
+            for arm, sign in (("left", 1.0), ("right", -1.0)):
+                placed[arm][moved] += sign * more[moved]
+                rows[arm][moved, :3] = kept_out_of_torso(self.avatar, placed[arm][moved])
+                arms[arm][moved] = self._solved(arm, rows[arm][moved])
+
+    def _go_on_from_shown(
+        self, start: int, separation: np.ndarray, channel: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]
+    ) -> None:
+        """Frames from ``start`` on whose hands' separation ``(n, 3)`` (the left wrist's;
+        the right one's is its opposite) differs from the one worked out for them before,
+        when frames up to ``start`` have been shown: an LMP activated since then changed
+        what lies ahead, which the shown frames could not anticipate. The separation then
+        goes over from the one before to the new one (C², :func:`_smootherstep`) instead
+        of jumping, as fast as :data:`CROSSFADE_ACCELERATION` allows (the hands are apart
+        as they should be the sooner), within :func:`motor.body.hands_apart.reach_frames`
+        frames; ``separation``, ``rows`` (from the channel's wrists ``channel``) and
+        ``arms`` are changed in place."""
+        if self._separations is None or start != self._next_frame:
             return
-        placed = {"left": apart[0][near], "right": apart[1][near]}
+        held_from, held = self._separations
+        skip = start - held_from
+        count = min(reach_frames(self.fps), held.shape[0] - skip, separation.shape[0])
+        if skip < 0 or count <= 0:
+            return
+        before, after = held[skip : skip + count], separation[:count].copy()
+        if np.array_equal(before, after):
+            return
+        gap = float(np.max(np.linalg.norm(after - before, axis=1)))
+        frames = min(count, math.ceil(self.fps * math.sqrt(_SMOOTHERSTEP_CURVATURE * gap / CROSSFADE_ACCELERATION)))
+        share = _smootherstep(np.arange(1, frames + 1) / (frames + 1))[:, None]
+        separation[:frames] = before[:frames] + share * (after[:frames] - before[:frames])
+        changed = np.flatnonzero(np.any(separation[:count] != after, axis=1))
+        for arm, sign in (("left", 1.0), ("right", -1.0)):
+            rows[arm][changed, :3] = kept_out_of_torso(self.avatar, channel[arm][changed] + sign * separation[changed])
+            arms[arm][changed] = self._solved(arm, rows[arm][changed])
+
+    def _reached_separation(self, placed: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]) -> np.ndarray:
+        """How far ``(n, 3)`` the left wrist placed at ``placed["left"]`` (before the torso;
+        the right one the other way) must move for the hands as the arms turn them
+        (``arms``: joint rotations solved from ``rows``) to come no nearer than the palm
+        thickness less :data:`REACHED_ALLOWANCE`: found frame by frame, moving the wrists
+        and solving the arms again up to :data:`HANDS_APART_ROUNDS` times, as solving again
+        turns the hands anew. Only the frames where the hands may meet are looked at."""
+        total = np.zeros((rows["left"].shape[0], 3))
+        near = np.flatnonzero(hands_may_meet(self.avatar, rows["left"][:, :3], rows["right"][:, :3]))
+        turned_arms = {arm: arms[arm][near] for arm in ARMS}
+        trial = {arm: rows[arm][near] for arm in ARMS}
         for _ in range(HANDS_APART_ROUNDS):
-            reached = {arm: _chain_rotation(rotations[near][:, self._arm_joints[arm]]) for arm in ARMS}
-            left, right = separate_hands(self.avatar, placed["left"], placed["right"], reached["left"], reached["right"], REACHED_ALLOWANCE)
-            moved = np.any(left != placed["left"], axis=1) | np.any(right != placed["right"], axis=1)
+            if near.size == 0:
+                break
+            left, right = placed["left"][near] + total[near], placed["right"][near] - total[near]
+            reached = {arm: _chain_rotation(turned_arms[arm]) for arm in ARMS}
+            more = hand_separation(self.avatar, left, right, reached["left"], reached["right"], REACHED_ALLOWANCE)
+            moved = np.any(more != 0.0, axis=1)
             if not np.any(moved):
-                return
-            frames = near[moved]
-            for arm, wrists in (("left", left), ("right", right)):
-                placed[arm] = wrists
-                rows[arm][frames, :3] = kept_out_of_torso(self.avatar, wrists[moved])
-                side = AVATAR_SIDE[arm]
-                rotations[frames[:, None], self._arm_joints[arm][None, :]] = _LastRun().apply(lambda rows, side=side: _solve_rows(self.avatar, side, rows), rows[arm][frames])
+                break
+            near, more = near[moved], more[moved]
+            total[near] += more
+            for arm, sign, wrists in (("left", 1.0, left), ("right", -1.0, right)):
+                trial[arm] = trial[arm][moved]
+                trial[arm][:, :3] = kept_out_of_torso(self.avatar, wrists[moved] + sign * more)
+                turned_arms[arm] = self._solved(arm, trial[arm])
+        return total
+
+    def _solved(self, arm: str, rows: np.ndarray) -> np.ndarray:
+        """The arm's joint rotations ``(n, 4, 4)`` for IK input rows (:func:`_solve_rows`)."""
+        side = AVATAR_SIDE[arm]
+        return _LastRun().apply(lambda rows: _solve_rows(self.avatar, side, rows), rows)
 
     def wrist_targets(self, times: np.ndarray) -> dict[str, np.ndarray]:
         """Per arm, the wrist positions ``(n, 3)`` (avatar frame) the IK is given at sorted
-        ``times``: the wrist channel's, kept out of the torso and the hands a palm
-        thickness apart (as asked, and as the arms turn them)."""
-        _, wrists, yaw = self._solve_frames(np.asarray(times, dtype=float))
+        frame times ``times``: the wrist channel's, the hands a palm thickness apart (as
+        asked, and as the arms turn them) and kept out of the torso."""
+        _, wrists, yaw, _ = self._solve_frames(np.asarray(times, dtype=float))
         turn = turned(self.avatar, yaw)
         return wrists if turn is None else {arm: turn.from_trunk(points) for arm, points in wrists.items()}
 
-    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, ...]]:
-        """Per arm, the wrist positions and hand rotations the IK is given at sorted
-        ``times``, in the trunk's frame: the channels' values, carried into the frame of
-        the trunk turned where a hand reaches across the body (:mod:`motor.arm.reach_turn`;
-        ``"trunk"``: its yaw ``(n, 1)``), the hands a palm thickness apart and the wrists
-        kept out of the torso (a path between targets may cut through it;
-        :mod:`motor.body.collision`); ``"apart"``: the left and right wrists before the
-        torso (:meth:`_hands_apart` moves them on from there, so that the torso's ease is
-        taken once)."""
+    def _channel_inputs(self, times: np.ndarray) -> tuple[dict[str, tuple[np.ndarray, np.ndarray]], np.ndarray]:
+        """Per arm, the wrist channel's positions and the hand channel's rotations at
+        sorted ``times``, carried into the frame of the trunk turned where a hand reaches
+        across the body (:mod:`motor.arm.reach_turn`), and the trunk's yaw ``(n,)``."""
         values = {arm: (_sample(self.timeline((arm, "wrist_position")), times), _sample(self.timeline((arm, "hand_rotation")), times)) for arm in ARMS}
         turn = trunk_turn(self.avatar, values["left"][0], values["right"][0])
-        if turn is not None:
-            values = {arm: (turn.to_trunk(wrists), turn.hands_to_trunk(hands)) for arm, (wrists, hands) in values.items()}
+        if turn is None:
+            return values, np.zeros(times.size)
+        return {arm: (turn.to_trunk(wrists), turn.hands_to_trunk(hands)) for arm, (wrists, hands) in values.items()}, turn.yaw
+
+    def _kept_apart(self, values: dict[str, tuple[np.ndarray, np.ndarray]]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Channel inputs (:meth:`_channel_inputs`) with the hands a palm thickness apart,
+        instant by instant, and the wrists kept out of the torso (a path between targets
+        may cut through it; :mod:`motor.body.collision`): what the swivel's grid points are
+        solved for."""
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
-        yaw = np.zeros((times.size, 1)) if turn is None else turn.yaw[:, None]
-        return {
-            "left": (kept_out_of_torso(self.avatar, left), left_hands),
-            "right": (kept_out_of_torso(self.avatar, right), right_hands),
-            "trunk": (yaw,),
-            "apart": (left, right),
-        }
+        return {"left": (kept_out_of_torso(self.avatar, left), left_hands), "right": (kept_out_of_torso(self.avatar, right), right_hands)}
+
+    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Per arm, the wrist positions and hand rotations the swivel's grid is solved for
+        at sorted ``times``, in the trunk's frame (:meth:`_kept_apart`)."""
+        return self._kept_apart(self._channel_inputs(times)[0])
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
@@ -580,6 +709,22 @@ def _solve_rows(avatar: Avatar, side: str, rows: np.ndarray) -> np.ndarray:
     """Arm joint rotations ``(n, 4, 4)`` from rows of wrist, hand rotation, swivel, the
     swivel's zero and the twist's reference (:meth:`MotorControl._rotations`)."""
     return solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]).rotations
+
+
+def _separation_margin(fps: float) -> int:
+    """Frames either side of a frame whose channel values its hands' separation depends
+    on at ``fps``: the reach of each eased separation (:func:`motor.body.hands_apart.reach_frames`),
+    once for the look as asked and once per look as the arms turned the hands."""
+    return (1 + HANDS_APART_LOOKS) * reach_frames(fps)
+
+
+#: Largest second derivative of :func:`_smootherstep` on [0, 1] (10 / √3).
+_SMOOTHERSTEP_CURVATURE = 10.0 / math.sqrt(3.0)
+
+
+def _smootherstep(u: np.ndarray) -> np.ndarray:
+    """0 at 0, 1 at 1, with zero slope and curvature at both ends (C²)."""
+    return u * u * u * (u * (6.0 * u - 15.0) + 10.0)
 
 
 def _chain_rotation(local: np.ndarray) -> np.ndarray:

@@ -11,9 +11,11 @@
   their targets and paths with); :func:`kept_out_of_torso` keeps every frame's wrist
   targets out of it, smoothly (what the motor control does to whatever it is given): a
   path that crosses the torso's front, top or bottom bends around it;
-* :func:`separate_hands` keeps the two hands a palm thickness apart, smoothly too: hands
-  placed in contact stay as placed, hands asked to overlap are bent apart (to within
-  :data:`HAND_BAND`); hands whose paths cross pass one over the other.
+* :func:`hand_separation` (and :func:`separate_hands`, which applies it) keeps the two
+  hands a palm thickness apart, smoothly in their gap: hands placed in contact stay as
+  placed, hands asked to overlap are bent apart (to within :data:`HAND_BAND`); hands
+  whose paths cross pass one over the other. Frame by frame: over time the motor control
+  eases the separation in and out (:mod:`motor.body.hands_apart`).
 
 Both eases are C² (:func:`_eased`): a path that enters their band changes neither speed
 nor acceleration with a step. The torso's band lies in front of its margin (a clearance:
@@ -318,27 +320,43 @@ def separate_hands(
     avatar: Avatar, left: np.ndarray, right: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray, allowance: float = 0.0
 ) -> tuple[np.ndarray, np.ndarray]:
     """Wrist positions ``(n, 3)`` of both arms moved apart where their hands would come
-    closer than the palm thickness (the distance of the hands' midlines when palm meets
-    palm): each wrist moves half the deficit along the line between the hands' nearest
-    points. Where the hands cross or coincide that line is tilted toward
+    closer than the palm thickness: the left wrist by :func:`hand_separation`, the right
+    one as far the other way. Frame by frame: what the motor control does over time is
+    :mod:`motor.body.hands_apart`."""
+    half = hand_separation(avatar, left, right, left_hands, right_hands, allowance)
+    if not np.any(half):
+        return left, right
+    return left + half, right - half
+
+
+def hand_separation(
+    avatar: Avatar, left: np.ndarray, right: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray, allowance: float = 0.0
+) -> np.ndarray:
+    """How far ``(n, 3)`` (m) the left wrist moves, and the right one the other way, where
+    the hands of wrists ``left``, ``right`` ``(n, 3)`` turned by global rotations
+    ``(n, 4)`` would come closer than the palm thickness (the distance of the hands'
+    midlines when palm meets palm): half the deficit each, along the line between the
+    hands' nearest points. Where the hands cross or coincide that line is tilted toward
     :func:`_parting`, which it becomes where they meet. Hands at least the thickness
-    apart are unchanged (a contact placed at the thickness stays as placed); nearer ones
+    apart are not moved (a contact placed at the thickness stays as placed); nearer ones
     are eased apart in C² (:func:`_eased`, shifted) into :data:`HAND_BAND` below it, so
-    hands asked through each other bend apart without a speed or acceleration step and
-    overlap at most that much. With an ``allowance`` (m) the thickness is taken that much
-    smaller (a second look at hands already eased apart as asked)."""
+    hands asked through each other bend apart without a speed or acceleration step as
+    their gap changes and overlap at most that much. With an ``allowance`` (m) the
+    thickness is taken that much smaller (a second look at hands already eased apart as
+    asked)."""
     palm = avatar.collision.palm_thickness
     thickness = palm - allowance
+    out = np.zeros((len(left), 3))
     near = np.flatnonzero(hands_may_meet(avatar, left, right))
     if near.size == 0:
-        return left, right
+        return out
     l0, l1 = hand_segments(avatar, "l", left[near], left_hands[near])
     r0, r1 = hand_segments(avatar, "r", right[near], right_hands[near])
     s, t = closest_parameters(l0, l1, r0, r1)
     between = (l0 + s[:, None] * (l1 - l0)) - (r0 + t[:, None] * (r1 - r0))
     gap = quat.norm(between) - thickness
     if not np.any(gap < 0.0):
-        return left, right
+        return out
     eased = _eased(gap + HAND_BAND, HAND_BAND) - HAND_BAND
     # where the hands (nearly) pass through each other, the line between them means little:
     # tilt it toward the way they part
@@ -355,11 +373,8 @@ def separate_hands(
     along = np.einsum("ij,ij->i", between, direction)
     wanted = eased + thickness
     push = np.sqrt(np.maximum(along * along - quat.norm(between) ** 2 + wanted * wanted, 0.0)) - along
-    half = (0.5 * push)[:, None] * direction
-    left, right = np.array(left, dtype=float), np.array(right, dtype=float)
-    left[near] += half
-    right[near] -= half
-    return left, right
+    out[near] = (0.5 * push)[:, None] * direction
+    return out
 
 
 def _crossed(avatar: Avatar, spread: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray) -> np.ndarray:

@@ -39,14 +39,6 @@ def _render(avatar, start: GridLocation, end: GridLocation):
 
 HEIGHTS = ("LocChest", "LocShoulder", "LocUpperChest")
 CASES = [(height, "LocPeripheryLeft", "LocRight") for height in HEIGHTS] + [(height, "LocRight", "LocPeripheryLeft") for height in HEIGHTS]
-_PREPARED_CROSSED = pytest.mark.xfail(strict=True, reason="open: the preparation brings the hands to their crossed start through each other (a push that turns as they pass)")
-_RETRACTED_CROSSED = pytest.mark.xfail(strict=True, reason="open: the retraction from crossed arms brings the hands to rest through each other (a lateral push that flips as they pass)")
-#: The cases whose wrists still step, and where.
-_STEPPING = {
-    ("LocChest", "LocPeripheryLeft", "LocRight"): _PREPARED_CROSSED,
-    ("LocShoulder", "LocPeripheryLeft", "LocRight"): _PREPARED_CROSSED,
-    **{(height, "LocRight", "LocPeripheryLeft"): _RETRACTED_CROSSED for height in HEIGHTS},
-}
 
 
 @pytest.mark.parametrize(("height", "start", "end"), CASES)
@@ -61,7 +53,7 @@ def test_mirrored_hands_pass_one_over_the_other(avatar, height: str, start: str,
     assert np.all(left[crossed, 1] < right[crossed, 1] - 0.5 * radii), "the left hand passes below"
 
 
-@pytest.mark.parametrize(("height", "start", "end"), [pytest.param(*case, marks=_STEPPING.get(case, ())) for case in CASES])
+@pytest.mark.parametrize(("height", "start", "end"), CASES)
 def test_mirrored_hands_cross_without_a_speed_step(avatar, height: str, start: str, end: str) -> None:
     joints = _render(avatar, GridLocation(height, start, "LocNorm"), GridLocation(height, end, "LocNorm"))
     for wrist in (joints["r_wrist"], joints["l_wrist"]):
