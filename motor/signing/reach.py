@@ -19,6 +19,7 @@ from motor import quaternion as quat
 from motor.arm.ik import solve_arm
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
+from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 
 #: Shortest path length that counts as a movement, metres.
@@ -361,7 +362,8 @@ def _clear_points(
     chosen = points[mask]
     if chosen.size == 0:
         return points, np.zeros(len(points), dtype=bool), 0
-    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns[mask], across=across)[0]
+    clear = hands_clear_of_torso(avatar, AVATAR_SIDE[arm], outside_torso(avatar, chosen), turns[mask])
+    fixed = within_reach(avatar, arm, clear, turns[mask], across=across)[0]
     changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
     points = points.copy()
     points[mask] = fixed
