@@ -37,7 +37,7 @@ def torso_cylinder(avatar: Avatar) -> EllipticCylinder:
     """The avatar's torso collision volume (an elliptic cylinder, by the avatar's validation)."""
     torso = avatar.collision["torso"]
     if not isinstance(torso, EllipticCylinder):
-        raise ValueError(f"avatar {avatar.name!r}: the torso collision volume must be an elliptic cylinder to plan hands against it")
+        raise TypeError(f"avatar {avatar.name!r}: the torso collision volume must be an elliptic cylinder to plan hands against it")
     return torso
 
 
