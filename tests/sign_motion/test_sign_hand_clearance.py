@@ -23,7 +23,6 @@ from agent.export.bvh import bvh_text
 from bench.motion_audit.avatar_file import read_avatar, unit_scale
 from bench.motion_audit.bvh_reader import parse_bvh
 from bench.motion_audit.continuity import joint_turns
-from bench.motion_audit.distance import Capsule as AuditCapsule
 from bench.motion_audit.distance import EllipticCylinder as AuditCylinder
 from bench.motion_audit.distance import capsule_depth
 from bench.motion_audit.kinematics import forward_kinematics
@@ -33,8 +32,13 @@ from motor import quaternion as quat
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.body.avatar import load_avatar
 from motor.hand.shape import FINGER_START, PLAY_BEND, handshape_params, played
-from motor.signing.hand_clearance import HAND_CLEARANCE, hand_torso_push, hands_clear_of_torso, torso_cylinder
 from motor.program.lmp import ChannelState, TimePegs
+from motor.signing.hand_clearance import (
+    HAND_CLEARANCE,
+    hand_torso_push,
+    hands_clear_of_torso,
+    torso_cylinder,
+)
 from motor.signing.lmp import SignChannelLMP
 from motor.signing.sequence import realize_signs
 from motor.trajectory.biocontrol import profile
