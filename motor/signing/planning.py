@@ -52,8 +52,10 @@ parallel as it says, for that part; ``neutralspace`` is neutral space.
 (:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
 near the shoulder step around its front, and positions so far across the body that the
 IK reports the upper arm in the torso step back toward the arm's side
-(:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
-(:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
+(:func:`motor.signing.reach.within_reach`); a wrist whose hand (its collision capsule, in the
+hand's rotation there) would still enter the torso moves forward by what the hand needs
+(:func:`motor.signing.hand_clearance.hands_clear_of_torso`); midpoints are checked where that
+opened long chords (:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
 is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`). Moves whose
 final paths (cleared, and travelled in law time) need more time than they were given within
 their manner's speed budget are then slowed, the sign's clock warped with them

@@ -1,6 +1,7 @@
 """Sign paths kept within the arm's reach and out of the body (seed 000, section 4.4).
 
-Every wrist position a sign plan passes through is checked with the arm IK: positions out
+Every wrist position a sign plan passes through is kept with its hand out of the torso
+(:mod:`motor.signing.hand_clearance`) and checked with the arm IK: positions out
 of reach are pulled in, positions too near the shoulder step around its front, positions
 so far across the body that no swivel keeps the upper arm out of the torso step back to
 the arm's own side; chords between moved neighbours are refined with checked midpoints.
@@ -228,7 +229,9 @@ def clear_paths(
     across: bool = True,
 ) -> tuple[list[np.ndarray], int]:
     """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
-    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`); with
+    outside the torso, the hand in those rotations too, and within reach
+    (:func:`outside_torso`, :func:`motor.signing.hand_clearance.hands_clear_of_torso`,
+    :func:`within_reach`); with
     ``keep_ends`` the first and last points stay. Also returns how many points moved.
 
     Each path first gets evenly spaced points inserted wherever neighbours lie more than
