@@ -54,14 +54,33 @@ def hand_torso_push(avatar: Avatar, side: str, wrists: np.ndarray, rotations: np
     torso = torso_cylinder(avatar)
     capsule = avatar.collision.arm(side, "hand")
     grow = capsule.radius + clearance
-    start, end = hand_segments(avatar, side, wrists, np.asarray(rotations, dtype=float).reshape(-1, 4))
+    push = np.zeros(wrists.shape[0])
+    # only wrists within the hand's reach of the grown torso can have a hand in it
+    rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    reach = grow + max(float(np.linalg.norm(capsule.a - rest)), float(np.linalg.norm(capsule.b - rest)))
+    near = _within_box(torso, wrists, reach)
+    if not np.any(near):
+        return push
+    start, end = hand_segments(avatar, side, wrists[near], np.asarray(rotations, dtype=float).reshape(-1, 4)[near])
     points = start[:, None, :] + CAPSULE_SAMPLES[None, :, None] * (end - start)[:, None, :]
     width, depth = torso.half_width + grow, torso.half_depth + grow
     across = (points[..., 0] - torso.center[0]) / width
     front = torso.center[2] + depth * np.sqrt(np.maximum(1.0 - across * across, 0.0))
     level = (points[..., 1] > torso.bottom - grow) & (points[..., 1] < torso.top + grow)
     needed = np.where(level & (np.abs(across) < 1.0), front - points[..., 2], 0.0)
-    return np.maximum(needed.max(axis=1), 0.0)
+    push[near] = np.maximum(needed.max(axis=1), 0.0)
+    return push
+
+
+def _within_box(torso: EllipticCylinder, points: np.ndarray, reach: float) -> np.ndarray:
+    """Which points ``(n, 3)`` lie within ``reach`` (m) of the torso's bounding box (or
+    behind it): the only wrists whose hand can touch it."""
+    return (
+        (np.abs(points[:, 0] - torso.center[0]) < torso.half_width + reach)
+        & (points[:, 1] > torso.bottom - reach)
+        & (points[:, 1] < torso.top + reach)
+        & (points[:, 2] < torso.center[2] + torso.half_depth + reach)
+    )
 
 
 def hands_clear_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, rotations: np.ndarray, clearance: float = HAND_CLEARANCE) -> np.ndarray:
