@@ -174,6 +174,31 @@ def _apply_bending(params: np.ndarray, fingers: tuple[str, ...], bending: str, s
         params[start], params[start + 2], params[start + 3] = base, middle, end
 
 
+#: How far a long finger bends or unbends at its base when it plays (finger play), as a
+#: proportion of the base joint's maximum bend: a straight finger bends to half bent (the
+#: halfbent bending), a bent one opens by as much.
+PLAY_BEND = 0.5
+#: A finger bent at least this much at its base and middle joints (a folded, unselected
+#: finger: a fist's, a pinch's other fingers) does not play.
+PLAY_FOLDED = 0.9
+
+
+def played(params: np.ndarray, fingers: tuple[str, ...]) -> np.ndarray:
+    """The hand parameters ``(PARAMETER_COUNT,)`` with each of the long ``fingers`` moved
+    by :data:`PLAY_BEND` at its base joint — bent where it is straighter than half bent,
+    opened where it is more bent — its other joints and splay as they are; folded fingers
+    (:data:`PLAY_FOLDED`) stay. One step of finger play: a change *of* the hand's shape by
+    a finger's small movement, so that a bent finger is not snapped open to half bent
+    and back (a 100° turn of its middle joint every tenth of a second)."""
+    out = np.array(params, dtype=float)
+    for finger in fingers:
+        base = FINGER_START + 4 * LONG_FINGERS.index(finger)
+        if out[base] >= PLAY_FOLDED and out[base + 2] >= PLAY_FOLDED:
+            continue
+        out[base] += PLAY_BEND if out[base] < 0.5 else -PLAY_BEND
+    return out
+
+
 def hand_rotations(avatar: Avatar, side: str, params: np.ndarray) -> np.ndarray:
     """Local rotations ``(n, 17, 4)`` of one hand's joints (order of ``avatar.hand_joints``).
 

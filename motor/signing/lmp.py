@@ -393,6 +393,11 @@ class SignChannelLMP:
             kept clear of the torso), or None for the direct way.
         traced: the wrist chain traced ahead for the activation state expected, or None;
             any other state is activated the plain way.
+        via_fractions: ``(k,)`` fractions of the way, strictly increasing within (0, 1),
+            at which a channel moved by even fractions (hand rotation, hand shape) passes
+            its ``via`` values — those at which the wrist passes its own way points, so
+            that the hand turns along the wrist's transition as the transition was
+            planned (kept clear of the torso with these turns) — or None: evenly.
     """
 
     channel: Channel
@@ -402,11 +407,17 @@ class SignChannelLMP:
     transition: str = "lax"
     via: np.ndarray | None = None
     traced: TracedChain | None = None
+    via_fractions: np.ndarray | None = None
     _templates: dict[bool, _Template] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if not self.pegs.ready > self.pegs.start:
             raise ValueError(f"{self.channel}: the transition needs time (start {self.pegs.start}, ready {self.pegs.ready})")
+        if self.via_fractions is not None:
+            fractions = np.asarray(self.via_fractions, dtype=float)
+            count = 0 if self.via is None else np.asarray(self.via).shape[0]
+            if fractions.shape != (count,) or not (np.all(np.diff(fractions) > 0.0) and fractions.min(initial=0.5) > 0.0 and fractions.max(initial=0.5) < 1.0):
+                raise ValueError(f"{self.channel}: via_fractions must be {count} strictly increasing fractions within (0, 1), got {fractions}")
         previous = self.pegs.ready
         for move in self.moves:
             if move.start < previous - 1e-9:
@@ -448,7 +459,19 @@ class SignChannelLMP:
             else:
                 chain.append(move)
             previous = chain[-1].values[-1]
-        return _Track.of(rotation, here, chain, by_distance)
+        if by_distance or self.via_fractions is None:
+            return _Track.of(rotation, here, chain, by_distance)
+        return _Track.keyed(
+            rotation, here, np.array([m.start for m in chain]), np.array([m.end for m in chain]), [m.manner for m in chain],
+            [m.values for m in chain], self._key_fractions(),
+        )  # fmt: skip
+
+    def _key_fractions(self) -> list[np.ndarray]:
+        """Fractions of the way at the values of the transition (through :attr:`via` at
+        :attr:`via_fractions`) and of each move (even)."""
+        assert self.via_fractions is not None
+        transition = np.concatenate([[0.0], np.asarray(self.via_fractions, dtype=float), [1.0]])
+        return [transition, *(np.linspace(0.0, 1.0, m.values.shape[0]) for m in self.moves)]
 
     def _template(self, rotation: bool, flip: bool, first: np.ndarray) -> _Template:
         """The track of a channel moved by even fractions of its values (hand rotation, hand
@@ -465,7 +488,7 @@ class SignChannelLMP:
                 values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
             templates[flip] = _Template(_Track.keyed(
                 rotation, first, np.array([self.pegs.start, *(m.start for m in self.moves)]), np.array([self.pegs.ready, *(m.end for m in self.moves)]),
-                [self.transition, *(m.manner for m in self.moves)], values, None,
+                [self.transition, *(m.manner for m in self.moves)], values, None if self.via_fractions is None else self._key_fractions(),
             ))  # fmt: skip
         return templates[flip]
 

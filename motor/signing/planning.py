@@ -30,7 +30,8 @@ wavy and zigzag paths come from :mod:`motor.trajectory.guiding_strokes`; circles
 radii ``CIRCLE_FRACTIONS`` of the arm's length and start where the hand is (clock
 positions choose where on the circle). Local movements: nodding and swinging turn the
 wrist by :data:`LOCAL_ANGLE` (down–up, side to side), twisting turns the forearm, finger
-play bends alternate fingers, stirring is a small horizontal circle. Durations are
+play bends or opens alternate fingers by half a bend from their own shape (folded fingers
+stay), stirring is a small horizontal circle. Durations are
 :func:`motor.trajectory.biocontrol.movement_duration` of the movement kind in the sign's manner,
 independent of size. Time profiles: targetted for the sign's movements, linear for
 circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
@@ -51,8 +52,10 @@ parallel as it says, for that part; ``neutralspace`` is neutral space.
 (:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
 near the shoulder step around its front, and positions so far across the body that the
 IK reports the upper arm in the torso step back toward the arm's side
-(:func:`motor.signing.reach.within_reach`); midpoints are checked where that opened long chords
-(:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
+(:func:`motor.signing.reach.within_reach`); a wrist whose hand (its collision capsule, in the
+hand's rotation there) would still enter the torso moves forward by what the hand needs
+(:func:`motor.signing.hand_clearance.hands_clear_of_torso`); midpoints are checked where that
+opened long chords (:func:`motor.signing.reach.clear_paths`). A warning names every sign whose paths were changed. The upper arm
 is otherwise kept out of the torso by the IK's swivel (:mod:`motor.arm.ik`). Moves whose
 final paths (cleared, and travelled in law time) need more time than they were given within
 their manner's speed budget are then slowed, the sign's clock warped with them
@@ -87,6 +90,7 @@ from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
+from motor.hand.shape import played
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
@@ -122,7 +126,6 @@ from mura.values import (
     BetweenLocation,
     BodySite,
     Direction,
-    FingerBend,
     GridLocation,
     HandShape,
     Location,
@@ -814,10 +817,11 @@ class _SignCompiler:
         return _Change(hand, rotations=quat.continuous(quat.multiply(turns, rotation)))
 
     def fingerplay(self, hand: _Hand) -> _Change:
-        """Fingers bending in turn: index and ring, then middle and pinky, then back."""
-        shape = hand.shape
-        first = self.geometry.params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("index", "ring"), "halfbent"),)))
-        second = self.geometry.params(replace(shape, finger_bends=shape.finger_bends + (FingerBend(("middle", "pinky"), "halfbent"),)))
+        """Fingers moving in turn: index and ring, then middle and pinky, then back, each
+        bending or opening by a half bend from its own shape (:func:`motor.hand.shape.played`;
+        the folded fingers of a fist or pinch stay folded)."""
+        first = played(hand.params, ("index", "ring"))
+        second = played(hand.params, ("middle", "pinky"))
         return _Change(hand, shapes=np.stack([hand.params, first, second, first, hand.params]))
 
     # -- from hand moves to channel moves ------------------------------------------------

@@ -1,6 +1,7 @@
 """Sign paths kept within the arm's reach and out of the body (seed 000, section 4.4).
 
-Every wrist position a sign plan passes through is checked with the arm IK: positions out
+Every wrist position a sign plan passes through is kept with its hand out of the torso
+(:mod:`motor.signing.hand_clearance`) and checked with the arm IK: positions out
 of reach are pulled in, positions too near the shoulder step around its front, positions
 so far across the body that no swivel keeps the upper arm out of the torso step back to
 the arm's own side; chords between moved neighbours are refined with checked midpoints.
@@ -19,6 +20,7 @@ from motor import quaternion as quat
 from motor.arm.ik import solve_arm
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
+from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 
 #: Shortest path length that counts as a movement, metres.
@@ -227,7 +229,9 @@ def clear_paths(
     across: bool = True,
 ) -> tuple[list[np.ndarray], int]:
     """Wrist paths ``(m, 3)`` (with the hand's rotations ``(m, 4)`` along them) kept
-    outside the torso and within reach (:func:`outside_torso`, :func:`within_reach`); with
+    outside the torso, the hand in those rotations too, and within reach
+    (:func:`outside_torso`, :func:`motor.signing.hand_clearance.hands_clear_of_torso`,
+    :func:`within_reach`); with
     ``keep_ends`` the first and last points stay. Also returns how many points moved.
 
     Each path first gets evenly spaced points inserted wherever neighbours lie more than
@@ -361,7 +365,8 @@ def _clear_points(
     chosen = points[mask]
     if chosen.size == 0:
         return points, np.zeros(len(points), dtype=bool), 0
-    fixed = within_reach(avatar, arm, outside_torso(avatar, chosen), turns[mask], across=across)[0]
+    clear = hands_clear_of_torso(avatar, AVATAR_SIDE[arm], outside_torso(avatar, chosen), turns[mask])
+    fixed = within_reach(avatar, arm, clear, turns[mask], across=across)[0]
     changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
     points = points.copy()
     points[mask] = fixed

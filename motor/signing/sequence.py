@@ -36,7 +36,7 @@ from motor.control import MotorControl
 from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
-from motor.signing.lmp import SignChannelLMP
+from motor.signing.lmp import PATH_DENSITY, SignChannelLMP, TracedChain
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.path_batch import stopping_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
@@ -118,13 +118,13 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     ))  # fmt: skip
     timings: list[SignTiming] = []
     warnings: list[str] = []
-    for plan, (_, targets), way, (start, ready, end), manner, sign in zip(plans, legs, ways, spans, manners, moves):
+    for plan, (here, targets), way, (start, ready, end), manner, sign in zip(plans, legs, ways, spans, manners, moves):
         pegs = TimePegs(start, ready, ready, ready + 0.5 * plan.duration, end, end, end)
         traced = {arm: next(chains) for arm in ARMS}
         lmps = [
             SignChannelLMP(
                 (arm, channel), pegs, targets[arm].channel(channel), sign[(arm, channel)], manner,
-                *((way[arm], traced[arm]) if channel == "wrist_position" else (None, None)),
+                *_transition_keys(channel, here[arm], targets[arm], way[arm], traced[arm]),
             )
             for arm in ARMS for channel in CHANNELS
         ]  # fmt: skip
@@ -135,10 +135,11 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         warnings.extend(nonmanual.warnings)
     retract = TimePegs.movement(clock, clock + back)
     traced = {arm: next(chains) for arm in ARMS}
+    last = legs[-1][0]
     control.activate(SignProgram("rest", tuple(
         SignChannelLMP(
             (arm, channel), retract, rest[arm].channel(channel), (), "lax",
-            *((ways[-1][arm], traced[arm]) if channel == "wrist_position" else (None, None)),
+            *_transition_keys(channel, last[arm], rest[arm], ways[-1][arm], traced[arm]),
         )
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
@@ -222,6 +223,40 @@ def _transition_ways(
         for way, path in zip(ways, cleared):
             way[arm] = path[1:-1]
     return ways
+
+
+def _transition_keys(
+    channel: str, before: HandPose, after: HandPose, way: np.ndarray, traced: TracedChain
+) -> tuple[np.ndarray | None, TracedChain | None, np.ndarray | None]:
+    """The ``via``, ``traced`` and ``via_fractions`` of one channel's transition: the wrist
+    passes its way points (along its traced chain); the hand turns with it, through the
+    turns its way was kept clear of the torso with (:func:`_transition_ways`: the slerp
+    between the two postures at the way points' even fractions), each reached when the
+    wrist reaches its way point (:func:`_way_fractions`); a way whose wrist stops on the
+    way (a reversal) or whose points the trace merged, and the hand shape, change evenly."""
+    if channel == "wrist_position":
+        return way, traced, None
+    if channel != "hand_rotation" or way.shape[0] == 0:
+        return None, None, None
+    fractions = _way_fractions(traced, way.shape[0])
+    if fractions is None:
+        return None, None, None
+    turns = quat.slerp(before.rotation, after.rotation, _even_fractions(way.shape[0] + 2)[1:-1])
+    return turns, None, fractions
+
+
+def _way_fractions(traced: TracedChain, count: int) -> np.ndarray | None:
+    """Fractions of the transition's way (its law time, as the wrist travels it) at which
+    the wrist passes the ``count`` interior way points; None unless the transition is
+    one piece traced :data:`motor.signing.lmp.PATH_DENSITY` points per chord (no
+    reversal, no way point dropped), or if the fractions do not rise strictly."""
+    # a transition split at a reversal begins with a piece through fewer way points
+    if not traced.values or traced.values[0].shape[0] != 1 + PATH_DENSITY * (count + 1):
+        return None
+    fractions = traced.fractions[0][PATH_DENSITY : PATH_DENSITY * (count + 1) : PATH_DENSITY]
+    if fractions.shape != (count,) or not (np.all(np.diff(fractions) > 0.0) and fractions[0] > 0.0 and fractions[-1] < 1.0):
+        return None
+    return fractions
 
 
 def _way_path(before: HandPose, after: HandPose, way: np.ndarray) -> np.ndarray:
