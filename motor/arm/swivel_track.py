@@ -10,8 +10,8 @@ the elbow where it was whatever the arm's elevation. The right arm's track is fo
 first; the left arm's keeps clear of the right arm where that track puts it at the same
 grid point (a cost of the point itself, not of the look ahead). Then both are found again,
 the right keeping clear of where the left's first track puts it, the left of the right's
-second: where the arms crowd each other (hands crossing over), the right elbow no longer
-takes the only room the left one had. Each of the four tracks goes on from its own state
+second, where the left arm's first track still comes near the right one's (hands crossing
+over): the right elbow no longer takes the only room the left one had. Each of the four tracks goes on from its own state
 at the grid point before (the first tracks' are kept beside the second's), so the tracks
 still depend on nothing but those states and the channel values ahead; where the arms
 keep apart and the second tracks stand where the first do, the second are the first. The forearm twist is
@@ -135,7 +135,8 @@ class SwivelGrid:
     def _tracks(self, costs: dict, before: dict[str, SwivelState | None], left: np.ndarray | None) -> tuple[dict, dict, bool]:
         """Both arms' tracks and poses, in turn: the right arm's keeping clear of the left
         arm's elbows at ``left (n, 3)`` (None: of nothing), the left arm's of the right's
-        track; and whether the left arm came near the right one."""
+        track; and whether the left arm's track still comes near the right one's (its
+        chosen swivels pay for it somewhere)."""
         tracks, poses = {}, {}
         last = ARMS[-1]
         other = None if left is None else costs[last].segments(self.avatar, AVATAR_SIDE[last], left)
@@ -143,8 +144,10 @@ class SwivelGrid:
         for arm in ARMS:
             now = None if other is None else costs[arm].near_other(self.avatar, other)
             near = now is not None and bool(np.any(now))
-            crowded = crowded or (near and arm == last)
             tracks[arm], poses[arm] = self._track(costs[arm], before[arm], now if near else None)
+            if near and arm == last:
+                cells = tracks[arm][0] % now.shape[1]
+                crowded = bool(np.any(np.take_along_axis(now, cells[: now.shape[0], None], axis=1) > 0.0))
             other = costs[arm].segments(self.avatar, AVATAR_SIDE[arm], poses[arm][0])
         return tracks, poses, crowded
 
