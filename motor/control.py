@@ -132,8 +132,9 @@ HANDS_APART_ROUNDS = 3
 HANDS_APART_LOOKS = 2
 #: Largest acceleration (m/s²) with which the wrists go over from the hands' separation
 #: worked out for frames before an activation to the one worked out after it
-#: (:meth:`MotorControl._go_on_from_shown`): 0.2 m/s of velocity change per frame at 60 fps.
-CROSSFADE_ACCELERATION = 12.0
+#: (:meth:`MotorControl._go_on_from_shown`): 0.27 m/s of velocity change per frame at 60 fps,
+#: half a speed step; at 12 m/s² `sign_here`'s hands stayed 1.03 cm into each other for a frame.
+CROSSFADE_ACCELERATION = 16.0
 #: Frames solved in one pass: a long span is solved this many frames at a time, which
 #: gives the same frames (they depend only on their times and the activated LMPs, module
 #: docstring) with per-frame arrays that stay in the CPU's cache.
@@ -586,7 +587,8 @@ class MotorControl:
         """How far ``(n, 3)`` the left wrist placed at ``placed["left"]`` (before the torso;
         the right one the other way) must move for the hands as the arms turn them
         (``arms``: joint rotations solved from ``rows``) to come no nearer than the palm
-        thickness less :data:`REACHED_ALLOWANCE`: found frame by frame, moving the wrists
+        thickness less :data:`REACHED_ALLOWANCE` where the torso then leaves the wrists
+        (its push may carry one hand into the other): found frame by frame, moving the wrists
         and solving the arms again up to :data:`HANDS_APART_ROUNDS` times, as solving again
         turns the hands anew. Only the frames where the hands may meet are looked at."""
         total = np.zeros((rows["left"].shape[0], 3))
@@ -596,17 +598,17 @@ class MotorControl:
         for _ in range(HANDS_APART_ROUNDS):
             if near.size == 0:
                 break
-            left, right = placed["left"][near] + total[near], placed["right"][near] - total[near]
             reached = {arm: _chain_rotation(turned_arms[arm]) for arm in ARMS}
-            more = hand_separation(self.avatar, left, right, reached["left"], reached["right"], REACHED_ALLOWANCE)
+            # measured where the torso leaves the wrists (it may push one into the other)
+            more = hand_separation(self.avatar, trial["left"][:, :3], trial["right"][:, :3], reached["left"], reached["right"], REACHED_ALLOWANCE)
             moved = np.any(more != 0.0, axis=1)
             if not np.any(moved):
                 break
             near, more = near[moved], more[moved]
             total[near] += more
-            for arm, sign, wrists in (("left", 1.0, left), ("right", -1.0, right)):
+            for arm, sign in (("left", 1.0), ("right", -1.0)):
                 trial[arm] = trial[arm][moved]
-                trial[arm][:, :3] = kept_out_of_torso(self.avatar, wrists[moved] + sign * more)
+                trial[arm][:, :3] = kept_out_of_torso(self.avatar, placed[arm][near] + sign * total[near])
                 turned_arms[arm] = self._solved(arm, trial[arm])
         return total
 
