@@ -334,16 +334,15 @@ class Compiler:
         beyond = -1.0 if dominant == "left" else 1.0
         if not any(beyond * (float(np.asarray(key.value)[0]) - center[0]) > 0.0 for key in keys):
             return mirrored
-        capsules = [self.avatar.collision.arm(side, "forearm") for side in "lr"]
-        drop = np.array([0.0, sum(c.radius for c in capsules) + CROSSING_CLEARANCE, 0.0])
+        gap = sum(self.avatar.collision.arm(side, "forearm").radius for side in "lr") + CROSSING_CLEARANCE
         kept = np.array(touching)
         reached = uncrowded_placement(self.avatar, AVATAR_SIDE[dominant], np.array([np.asarray(key.value, dtype=float) for key in keys]), kept).points
         image = mirror_points(reached, symmetry, center)
-        lower = np.full(len(image), drop[1])
+        lower = np.full(len(image), gap)
         for _ in range(STACKING_ROUNDS):
             below = image - lower[:, None] * np.array([0.0, 1.0, 0.0])
             placed = uncrowded_placement(self.avatar, AVATAR_SIDE["left" if dominant == "right" else "right"], below, kept).points
-            short = drop[1] - (image[:, 1] - placed[:, 1])
+            short = gap - (image[:, 1] - placed[:, 1])
             if not np.any(short > _SAME_PLACE):
                 break
             lower += np.maximum(short, 0.0)

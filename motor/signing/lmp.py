@@ -297,7 +297,7 @@ class _Track:
 
     def state(self, time: float) -> ChannelState:
         """Value and velocity (angular velocity for rotations) looking back from ``time``."""
-        return _state_of(self, self.rotation, time)
+        return _state_of(self, time)
 
 
 @dataclass(frozen=True, eq=False)
@@ -314,24 +314,28 @@ class _Carried:
     window: float
 
     @property
+    def rotation(self) -> bool:
+        return self.track.rotation
+
+    @property
     def warnings(self) -> tuple[str, ...]:
         return self.track.warnings
 
     def sample(self, times: np.ndarray) -> np.ndarray:
         planned = self.track.sample(times)
         weight, _ = incoming_blend(times, self.time, self.window)
-        if self.track.rotation:
+        if self.rotation:
             return quat.multiply(quat.from_rotation_vector(weight[:, None] * self.velocity), planned)
         return planned + weight[:, None] * self.velocity
 
     def state(self, time: float) -> ChannelState:
-        return _state_of(self, self.track.rotation, time)
+        return _state_of(self, time)
 
 
-def _state_of(track: _Track | _Carried, rotation: bool, time: float) -> ChannelState:
+def _state_of(track: _Track | _Carried, time: float) -> ChannelState:
     """Value and velocity (angular velocity for rotations) of ``track`` looking back from ``time``."""
     v = track.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
-    if rotation:
+    if track.rotation:
         one, two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1::-1])))
         velocity = (4.0 * one - two) / (2.0 * _STEP)
     else:
