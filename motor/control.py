@@ -126,10 +126,13 @@ REACHED_ALLOWANCE = 0.003
 #: arms solved again, to find how far apart the wrists must move (solving again turns the
 #: hands anew; :meth:`MotorControl._reached_separation`).
 HANDS_APART_ROUNDS = 3
-#: How many times the hands as the arms turned them are looked at, each separation found
-#: eased in and out over time and the arms solved again: a second look takes up what the
-#: first one's easing left (where the way the hands part turns over).
-HANDS_APART_LOOKS = 2
+#: Most times the hands as the arms turned them are looked at, each separation found
+#: eased in and out over time and the arms solved again: a later look takes up what the
+#: one before left — its easing (where the way the hands part turns over), or hands the
+#: arms turn anew as the wrists move (SHUT-OR-CLOSED1's crossed index fingers, which the
+#: joint limits turn about 100° from the plan: two looks left them 2.7 cm into each
+#: other, the fourth found nothing left to do). Looks stop once one finds nothing.
+HANDS_APART_LOOKS = 5
 #: Largest acceleration (m/s²) with which the wrists go over from the hands' separation
 #: worked out for frames before an activation to the one worked out after it
 #: (:meth:`MotorControl._go_on_from_shown`): 0.27 m/s of velocity change per frame at 60 fps,
