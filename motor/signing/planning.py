@@ -48,8 +48,12 @@ compound sign with its own symmetry operator) makes both hands take part, mirror
 parallel as it says, for that part; ``neutralspace`` is neutral space.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
-:data:`motor.body.collision.TORSO_MARGIN`), or behind it, are pushed forward onto its front surface
-(:func:`outside_torso`); positions beyond the arm's reach are pulled in, positions too
+:data:`motor.body.collision.TORSO_MARGIN`), or behind it, are first eased out of it as the
+motor control eases every frame (:func:`kept_out_of_torso`: continuous across the torso's
+top and bottom, where a push onto the front surface alone would make a path step out by
+the torso's depth in one sample), then cleared as paths (:func:`motor.signing.reach.clear_paths`,
+whose pushes are shared smoothly along each hand's moves so that a circle or a line keeps
+its shape); positions beyond the arm's reach are pulled in, positions too
 near the shoulder step around its front, and positions so far across the body that the
 IK reports the upper arm in the torso step back toward the arm's side
 (:func:`motor.signing.reach.within_reach`); a wrist whose hand (its collision capsule, in the
@@ -87,7 +91,7 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import AVATAR_SIDE, Avatar
-from motor.body.collision import outside_torso
+from motor.body.collision import kept_out_of_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
 from motor.hand.shape import played
@@ -886,7 +890,7 @@ def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
     """The layouts with their wrist paths — each palm path less the offset to the palm,
     blended from the first posture's to the last's by the fraction of the way
     (:func:`motor.signing.reach.arc_fractions`) — and every wrist position, first postures
-    too, placed out of the torso (:func:`outside_torso`); all the moves of all the layouts
+    too, eased out of the torso (:func:`kept_out_of_torso`, continuous in the position); all the moves of all the layouts
     in one pass, each row's arithmetic that of a move alone."""
     moves = [move for layout in layouts for palms in layout.palms.values() for move in palms]
     points = [pose.wrist[None] for layout in layouts for pose in layout.first.values()]
@@ -899,7 +903,7 @@ def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
         points.append(wrists)
     if not points:
         return list(layouts)
-    placed = outside_torso(avatar, np.concatenate(points))
+    placed = kept_out_of_torso(avatar, np.concatenate(points))
     hands = iter(placed[: len(points) - bool(moves)])
     paths = iter(np.split(placed[len(points) - bool(moves) :], np.cumsum(counts)[:-1]) if moves else ())
     return [

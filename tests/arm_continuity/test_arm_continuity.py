@@ -47,7 +47,6 @@ _INFEASIBLE_MAX: dict[tuple[str, str], str] = {
     ("murml_12_denule_regal", "torso"): "both arms cross the body close to the chest; a trunk turn cannot serve both",
     ("murml_12_denule_regal", "arms"): "both arms cross the body close to the chest; the forearms must cross",
     ("murml_19_ruzanego_bruecke", "arms"): "both arms cross the body 20 cm in front of the chest",
-    ("sign_Ind_5", "palms"): "go-with-you: the hands cross the midline into each other",
 }
 #: On the default avatar the published inputs' defects still open on its proportions (its
 #: arms are 22 % shorter than max's, its shoulders narrower), each named.

@@ -113,9 +113,11 @@ def test_repetition_without_displacement_repeats_in_place(avatar) -> None:
     plan = _plan(avatar, f"{HAND} hamchest hammover hamrepeatfromstartseveral")
     strokes = [move for move in plan.moves[("right", "wrist_position")] if move.manner != "lax"]
     starts = np.array([move.values[0] for move in strokes])
-    # in place to within 0.1 mm: clearing the path out of the torso spreads each point's
-    # displacement along the path, so passes with different neighbours differ by microns
-    assert np.allclose(starts, starts[0], atol=1e-4)
+    # in place to within a centimetre: the chest pushes these passes forward by up to
+    # 12 cm, and clearing spreads each point's push over SPREAD metres of the hand's arc,
+    # so passes with different neighbours (the first has the start posture on one side
+    # only) are pushed up to 9 mm differently
+    assert np.all(np.linalg.norm(starts - starts[0], axis=1) < 0.01)
 
 
 def test_bracketed_repetition_needs_a_displacement_or_the_bracket_end() -> None:
