@@ -1023,13 +1023,15 @@ class _Parser:
         """The change from the current posture to ``posture`` (one hand or both)."""
         dominant = self.changes(posture.dominant, token)
         if posture.constellation is not None:
-            place = posture.constellation.dominant
-            if place is not None and posture.constellation.contact is not None:
-                place = _with_contact(place, posture.constellation.contact)
-            dominant = _join(dominant, self.changes(_Hand(location=place), token))
-        if posture.other is None and posture.constellation is None:
-            return dominant or Dynamic("HandShape", (Segment(SegmentKind.LINEAR, where=token.where, modifiers=("etc",)),), where=token.where)
-        other = self.changes(posture.other or _Hand(), token, keep=False)
+            meeting = self.changes(_Hand(location=_meeting_site(posture.constellation)), token)
+            if posture.other is None:
+                # the hand's own new shape and orientation are the sign's (both hands' under
+                # symmetry); only the move onto the other hand is the dominant hand's
+                return _join(dominant, scoped_to(meeting, self.dominant) if meeting is not None else None) or _no_change(token)
+            dominant = _join(dominant, meeting)
+        if posture.other is None:
+            return dominant or _no_change(token)
+        other = self.changes(posture.other, token, keep=False)
         parts = [scoped_to(part, arm) for part, arm in ((dominant, self.dominant), (other, self.dominant.other)) if part is not None]
         return parts[0] if len(parts) == 1 else Parallel(tuple(parts), where=token.where)
 
@@ -1063,6 +1065,23 @@ def _features(hand: _Hand) -> dict[str, object]:
         "PalmOrientation": hand.palm,
         "HandLocation": hand.location,
     }
+
+
+def _meeting_site(constellation: HandConstellation) -> Location:
+    """Where the dominant hand goes to form ``constellation`` from elsewhere: the other
+    hand's site (its palm when none is named) at the contact, with the dominant hand's own
+    site as the part of it that is there."""
+    target = constellation.nondominant or BodySite("palm")
+    if constellation.contact is not None:
+        target = _with_contact(target, constellation.contact)
+    if isinstance(constellation.dominant, BodySite):
+        target = _with_hand_part(target, replace(constellation.dominant, proximity=None))
+    return target
+
+
+def _no_change(token: Token) -> Constraint:
+    """A change of posture that names nothing new: the hand shape held (``etc``)."""
+    return Dynamic("HandShape", (Segment(SegmentKind.LINEAR, where=token.where, modifiers=("etc",)),), where=token.where)
 
 
 def _join(first: Constraint | None, second: Constraint | None) -> Constraint | None:

@@ -5,8 +5,9 @@ hand, the first posture (wrist, global hand rotation, hand parameters) and the s
 moves on its own clock ``[0, duration]``, one :class:`motor.signing.lmp.Move` per channel.
 
 **Where the hand is.** A location names where the *palm centre* goes (the avatar's
-``palm`` site of that hand); the wrist is placed so that it gets there with the hand in
-its orientation and shape. Locations come from :func:`motor.body.locations.resolve_location`:
+``palm`` site of that hand), or the part of the hand its contact bracket names
+(``hamchin [hamtouch hamthumb hamfingertip]``: the thumb's tip); the wrist is placed so
+that it gets there with the hand in its orientation and shape. Locations come from :func:`motor.body.locations.resolve_location`:
 body sites with their proximity and side, the signing-space grid, and sites on the other
 arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
 a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
@@ -20,7 +21,10 @@ symmetry the path is translated, not mirrored. Alternating symmetry plays the
 non-dominant hand's path displacements reversed (one hand goes down while the other goes
 up). Leaves scoped to one arm move that hand only. A hand constellation puts the
 non-dominant hand at the pair's location and the dominant hand so that its named site
-meets the non-dominant hand's (touch, close …). A dominant hand located on the other hand
+meets the non-dominant hand's (touch, close …). A symmetric sign whose hands change into
+a constellation (``hamreplace … hampinkyside hamplus hampinkyside``) brings both hands
+together, each halfway, the pair meeting on the sagittal plane; the moves of a parallel
+group are planned to the hands as its shape and orientation changes leave them. A dominant hand located on the other hand
 or arm in a one-handed sign brings the other hand up as a passive base
 (:data:`PASSIVE_POSTURE`).
 
@@ -98,7 +102,7 @@ from motor.hand.shape import played
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import arc_fractions_of_paths, within_reach_all
+from motor.signing.reach import arc_fractions, arc_fractions_of_paths, within_reach_all
 from motor.signing.retiming import retimed_all
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.guiding_strokes import (
@@ -424,7 +428,7 @@ class _SignCompiler:
         fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
         palm = self.palm_vector(self.dominant, fingers, dominant.palm)
         mirrored = replace(hand, fingers=mirror_directions(fingers, self.sagittal), palm=mirror_directions(palm, self.sagittal))
-        return mirrored.at(self.locate(self.other, posture.location, mirrored, None))
+        return mirrored.at(self.locate(self.other, posture.location, mirrored, None) + self.part_to_palm(self.other, mirrored, posture.location))
 
     def other_posture(self) -> HandPosture:
         """The non-dominant hand's posture: its own fields, else the mirrored dominant's
@@ -451,7 +455,7 @@ class _SignCompiler:
         palm = self.palm_vector(arm, fingers, posture.palm)
         params = self.geometry.params(shape)
         hand = _Hand(np.zeros(3), fingers, palm, shape, params)
-        return hand.at(self.locate(arm, posture.location, hand, other))
+        return hand.at(self.locate(arm, posture.location, hand, other) + self.part_to_palm(arm, hand, posture.location))
 
     def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
         if palm is None:
@@ -530,6 +534,15 @@ class _SignCompiler:
         """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
         return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
 
+    def part_to_palm(self, arm: str, hand: _Hand, location: Location) -> np.ndarray | float:
+        """From the part of the hand a location puts at its site (``hand_part``: HamNoSys'
+        contact by the fingertip, the pinky side …) to the palm centre ``(3,)`` that
+        locations place, for the hand's rotation and shape; 0 without a named part."""
+        part = location.hand_part if isinstance(location, BodySite) else None
+        if part is None or not _is_hand_site(part) or part.site == _PALM.site:
+            return 0.0
+        return self.offset(arm, hand, _PALM) - self.offset(arm, hand, replace(_normalized(part), proximity=_PALM.proximity))
+
     def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
         return hand.location - self.offset(arm, hand, _PALM)
 
@@ -567,7 +580,16 @@ class _SignCompiler:
                 self.compile(child)
             return
         base = dict(self.hands)
-        steps = [self.leaf(leaf) for leaf in leaves]
+        # moves are planned to the hands as the group leaves them: a site on the other hand
+        # is where that hand's new orientation puts it
+        steps = [self.leaf(leaf) for leaf in leaves if leaf.slot != "HandLocation"]
+        places = [leaf for leaf in leaves if leaf.slot == "HandLocation"]
+        if places and steps:
+            self.hands = {**base, **{arm: change.hand for arm, change in _merge_steps(steps, base).changes.items()}}
+        try:
+            steps += [self.leaf(leaf) for leaf in places]
+        finally:
+            self.hands = base
         self.apply(_merge_steps(steps, base))
 
     def symmetrical(self, node: Symmetrical) -> None:
@@ -684,6 +706,8 @@ class _SignCompiler:
             changes = {lead: change}
             if len(arms) > 1:
                 changes[arms[1]] = self.follower_path(arms[1], hands[arms[1]], change, hands[lead])
+            elif self.meet_halfway(lead, segment):
+                changes = self.met_halfway(lead, change)
         elif leaf.slot in ("HandShape", "ExtFingerOrientation", "PalmOrientation"):
             kind, profile = "straight", manner
             changes = {arm: self.posture_change(arm, hands[arm], leaf.slot, segment, arm != lead) for arm in arms}
@@ -691,6 +715,25 @@ class _SignCompiler:
             self.note(f"slot {leaf.slot} is not realized by the hands")
             return _Step(0.0, manner, {})
         return _Step(max(movement_duration(kind, manner), self.shortest(changes, profile)), profile, changes)
+
+    def meet_halfway(self, arm: str, segment: Segment) -> bool:
+        """Whether the dominant hand's move onto the other hand meets it halfway: under
+        symmetry both hands are active, so a constellation they change into (``hamreplace``
+        … ``hampinkyside hamplus hampinkyside``) brings them together in front of the
+        body's midline, not the dominant hand across to wherever the other one is."""
+        return arm == self.dominant and self.symmetric and self.other in self.hands and _on_other_hand(segment.end)
+
+    def met_halfway(self, arm: str, change: _Change) -> dict[str, _Change]:
+        """The dominant hand's ``change`` onto the other hand, both hands moved sideways
+        (x, m) so that where they meet — halfway between the dominant palm's target and the
+        other palm — lies on the sagittal plane: the dominant path bent toward it along its
+        arc, the other hand on a straight line."""
+        assert change.path is not None
+        other = self.hands[self.other]
+        shift = np.array([-0.5 * (change.hand.location[0] + other.location[0]), 0.0, 0.0])
+        path = change.path + arc_fractions(change.path)[:, None] * shift
+        moved = other.at(other.location + shift)
+        return {arm: replace(change, hand=change.hand.at(path[-1]), path=path), self.other: _Change(moved, path=_line(other.location, moved.location))}
 
     def shortest(self, changes: Mapping[str, _Change], manner: str) -> float:
         """The least time (s) the hands' paths need within the speed budget of ``manner``
@@ -704,7 +747,7 @@ class _SignCompiler:
         size = segment.size if segment.size in SIZE_FRACTIONS else "normal"
         contact = any(m.startswith("contact=") and m != "contact=close" for m in segment.modifiers)
         if segment.end is not None:
-            end = self.locate(arm, segment.end, hand, None, here=start)
+            end = self.locate(arm, segment.end, hand, None, here=start) + self.part_to_palm(arm, hand, segment.end)
             contact = contact or _touches(segment.end)
         elif segment.direction is not None:
             end = start + _unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
