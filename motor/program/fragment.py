@@ -118,7 +118,13 @@ NEUTRAL_LOCATION = GridLocation("LocChest", "LocCCenterRight", "LocNorm")
 SAME_TIME = 1e-9
 #: Clearance (m) between the forearms of mirrored arms that cross over each other
 #: (:meth:`Compiler.stacked`).
-CROSSING_CLEARANCE = 0.01
+CROSSING_CLEARANCE = 0.015
+#: Smallest fraction of the way from elbow to wrist at which crossing forearms are taken
+#: to cross (:meth:`Compiler.crossing_gap`): the lowering grows as the fraction shrinks,
+#: to twice the thickness at most (at 0.4, max's lowered hand of ``12_denule_regal``
+#: went down past the chest, where placing it out of the body brought the forearms 5.6 cm
+#: into each other again).
+CROSSING_NEAREST = 0.5
 #: Most rounds of lowering the image's keys again where placing them (into reach, out of
 #: the body) raised them back toward the dominant hand (:meth:`Compiler.stacked`).
 STACKING_ROUNDS = 4
@@ -334,11 +340,11 @@ class Compiler:
         beyond = -1.0 if dominant == "left" else 1.0
         if not any(beyond * (float(np.asarray(key.value)[0]) - center[0]) > 0.0 for key in keys):
             return mirrored
-        gap = sum(self.avatar.collision.arm(side, "forearm").radius for side in "lr") + CROSSING_CLEARANCE
         kept = np.array(touching)
         reached = uncrowded_placement(self.avatar, AVATAR_SIDE[dominant], np.array([np.asarray(key.value, dtype=float) for key in keys]), kept).points
         image = mirror_points(reached, symmetry, center)
-        lower = np.full(len(image), gap)
+        gap = self.crossing_gap(reached, center, dominant)
+        lower = gap.copy()
         for _ in range(STACKING_ROUNDS):
             below = image - lower[:, None] * np.array([0.0, 1.0, 0.0])
             placed = uncrowded_placement(self.avatar, AVATAR_SIDE["left" if dominant == "right" else "right"], below, kept).points
@@ -347,6 +353,22 @@ class Compiler:
                 break
             lower += np.maximum(short, 0.0)
         return tuple(key if touch else replace(key, value=point) for key, touch, point in zip(mirrored, touching, below))
+
+    def crossing_gap(self, wrists: np.ndarray, center: np.ndarray, dominant: str) -> np.ndarray:
+        """How far (m, ``(n,)``) the image's wrists go below the dominant hand's mirror image
+        for the forearms to cross the forearms' thickness and :data:`CROSSING_CLEARANCE`
+        apart. The forearms cross at the mirror plane, a fraction t of the way from the
+        elbows (about under the shoulders, level with each other) to the wrists ``(n, 3)``,
+        where they are only t of the wrists' height apart: the wrists are lowered by the
+        thickness over t — twice it for hands reaching as far past the plane as the
+        shoulder is before it (``12_denule_regal``'s shelf, whose forearms crossed 6.9 cm
+        into each other at the thickness alone) — t taken no smaller than
+        :data:`CROSSING_NEAREST`. Keys on the dominant hand's own side count as t = 1."""
+        thickness = sum(self.avatar.collision.arm(side, "forearm").radius for side in "lr") + CROSSING_CLEARANCE
+        shoulder = self.avatar.rest_positions[self.avatar.joint_index(f"{AVATAR_SIDE[dominant]}_shoulder"), 0] - center[0]
+        span = np.abs(wrists[:, 0] - center[0] - shoulder)
+        fraction = np.clip(abs(shoulder) / np.maximum(span, 1e-9), CROSSING_NEAREST, 1.0)
+        return thickness / fraction
 
     def kept_apart(self, keys: tuple[Key, ...], symmetry: Symmetry, center: np.ndarray, dominant: str) -> tuple[Key, ...]:
         """Dominant-hand location keys at least a palm thickness from their mirror images
