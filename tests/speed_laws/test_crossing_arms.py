@@ -61,9 +61,22 @@ def test_mirrored_hands_cross_without_a_speed_step(avatar, height: str, start: s
         assert change.max() < STEP, f"a wrist speed step of {change.max():.2f} m/s"
 
 
-@pytest.mark.xfail(strict=True, reason="open: the wrists pass a forearm apart, but the elbows are not placed so that the forearms do (2–6 cm into each other)")
+#: Cases whose forearms still cross into each other (strict: should one pass, the set
+#: must shrink). The wrists are lowered by the thickness over the fraction of the forearm
+#: where they cross (:meth:`motor.program.fragment.Compiler.crossing_gap`), which
+#: cleared the shoulder-high crossings; at the chest the elbows are not placed so that
+#: the forearms pass apart.
+OPEN_CROSSINGS = {
+    ("LocChest", "LocPeripheryLeft", "LocRight"),
+    ("LocChest", "LocRight", "LocPeripheryLeft"),
+    ("LocUpperChest", "LocPeripheryLeft", "LocRight"),
+}
+
+
 @pytest.mark.parametrize(("height", "start", "end"), CASES)
-def test_crossed_forearms_stay_apart(avatar, height: str, start: str, end: str) -> None:
+def test_crossed_forearms_stay_apart(request, avatar, height: str, start: str, end: str) -> None:
+    if (height, start, end) in OPEN_CROSSINGS:
+        request.applymarker(pytest.mark.xfail(strict=True, reason="open: the elbows are not placed so that the forearms pass apart (2–6 cm into each other)"))
     joints = _render(avatar, GridLocation(height, start, "LocNorm"), GridLocation(height, end, "LocNorm"))
     radii = sum(avatar.collision.arm(side, "forearm").radius for side in "lr")
     apart = segment_distance(joints["r_elbow"], joints["r_wrist"], joints["l_elbow"], joints["l_wrist"])
