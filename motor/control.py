@@ -65,7 +65,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import hand_separation, hands_may_meet, kept_out_of_torso, separate_hands
+from motor.body.collision import hand_separation, hands_kept_out_of_torso, hands_may_meet, kept_out_of_torso, separate_hands
 from motor.body.hands_apart import eased_separation, reach_frames
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
@@ -522,6 +522,7 @@ class MotorControl:
         move; the right one's is its opposite); with ``continued``, frames about to be
         shown go on from the separation worked out for them before
         (:meth:`_go_on_from_shown`)."""
+        values = self._hands_out_of_torso(values)
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         offset = eased_separation(hand_separation(self.avatar, left, right, left_hands, right_hands), self.fps)
         placed = {"left": left + offset, "right": right - offset}
@@ -540,6 +541,21 @@ class MotorControl:
         if continued:
             self._go_on_from_shown(int(round(frames[pick[0]] * self.fps)), separation, {arm: values[arm][0][pick] for arm in ARMS}, rows, arms)
         return {arm: rows[arm][:, :3] for arm in ARMS}, arms, separation
+
+    def _hands_out_of_torso(self, values: dict[str, tuple[np.ndarray, np.ndarray]]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Channel inputs of consecutive frames with each wrist moved as far as its hand,
+        in the asked rotation, needs to stay out of the torso
+        (:func:`motor.body.collision.hands_kept_out_of_torso`, measured where the torso
+        leaves the wrist), that push eased in and out over time as the hands' separation is
+        (:func:`motor.body.hands_apart.eased_separation`: a hand turning into the body on
+        its way down to rest needs centimetres within a few frames, which pushed at once
+        would step the wrist's velocity)."""
+        out = {}
+        for arm, (wrists, hands) in values.items():
+            kept = kept_out_of_torso(self.avatar, wrists)
+            push = hands_kept_out_of_torso(self.avatar, AVATAR_SIDE[arm], kept, hands) - kept
+            out[arm] = (wrists + eased_separation(push, self.fps), hands) if np.any(push) else (wrists, hands)
+        return out
 
     def _look_again(self, placed: dict[str, np.ndarray], rows: dict[str, np.ndarray], arms: dict[str, np.ndarray]) -> None:
         """The looks at the hands as the arms turned them (:meth:`_hands_apart`): moves
@@ -645,7 +661,11 @@ class MotorControl:
         solved for."""
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
-        return {"left": (kept_out_of_torso(self.avatar, left), left_hands), "right": (kept_out_of_torso(self.avatar, right), right_hands)}
+        left, right = kept_out_of_torso(self.avatar, left), kept_out_of_torso(self.avatar, right)
+        return {
+            "left": (hands_kept_out_of_torso(self.avatar, "l", left, left_hands), left_hands),
+            "right": (hands_kept_out_of_torso(self.avatar, "r", right, right_hands), right_hands),
+        }
 
     def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Per arm, the wrist positions and hand rotations the swivel's grid is solved for

@@ -22,6 +22,12 @@ import numpy as np
 import pytest
 from checks import TURN_LIMIT_DEG, figures
 
+from agent.export.bvh import bvh_text
+from bench.motion_audit.avatar_file import read_avatar, unit_scale
+from bench.motion_audit.bvh_reader import parse_bvh
+from bench.motion_audit.kinematics import forward_kinematics
+from bench.motion_audit.penetration import group_depths
+from bench.motion_audit.volumes import audit_volumes
 from motor.body.avatar import load_avatar
 from motor.control import MotorControl
 from motor.signing.plan import SignPlan
@@ -143,6 +149,23 @@ def test_the_arms_stay_out_of_the_torso(avatar, name, request):
     _expect(avatar, name, "torso", request)
     _, _, found = rendered(avatar, name)
     assert found.torso_depth <= DEPTH_LIMIT, f"{name}: an arm {100 * found.torso_depth:.1f} cm into the torso"
+
+
+@pytest.mark.parametrize("avatar", AVATARS)
+@pytest.mark.parametrize("name", CASES)
+def test_the_hands_stay_out_of_the_torso(avatar, name):
+    """Read back from the BVH with the motion audit's reader, kinematics and volumes (the
+    hand a capsule from the wrist to the middle finger's knuckle, as thick as the palm):
+    ``41_tanedila_welle``'s left hand, turning on its way down to rest, went 2.9 cm into
+    the hip while its wrist was clear."""
+    _, motion, _ = rendered(avatar, name)
+    bvh = parse_bvh(bvh_text(motion), f"{name}.bvh")
+    avatar_file = read_avatar(avatar)
+    kinematics = forward_kinematics(bvh, unit_scale(bvh, avatar_file))
+    volumes = audit_volumes(avatar_file, kinematics)
+    depth = group_depths(kinematics, volumes["torso"], [volumes["l_hand"], volumes["r_hand"]])
+    frame = int(np.argmax(depth.max(axis=1)))
+    assert depth.max() <= DEPTH_LIMIT, f"{name}: a hand {100 * depth.max():.1f} cm in the torso at {frame / FPS:.2f} s"
 
 
 @pytest.mark.parametrize("avatar", AVATARS)

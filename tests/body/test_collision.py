@@ -16,6 +16,8 @@ from motor.body.collision import (
     SOFT_BAND,
     TORSO_MARGIN,
     capsule_distance,
+    hand_segments,
+    hands_kept_out_of_torso,
     inside_torso,
     kept_out_of_torso,
     outside_torso,
@@ -190,6 +192,35 @@ def test_wrists_are_kept_out_of_the_torso_smoothly(avatar):
     assert not np.any(inside_torso(avatar, placed))
     assert np.array_equal(outside_torso(avatar, placed), placed)
     assert not np.any(inside_torso(avatar, kept_out_of_torso(avatar, placed)))
+
+
+#: Hands turned so that they point back into the body (the direction the hand's capsule
+#: runs from the wrist), as a hand turns on its way down to rest.
+HAND_WAYS = {"back": (0.0, 0.0, -1.0), "down and back": (0.0, -0.7, -0.7), "across and back": (1.0, 0.0, -1.0), "up and back": (0.0, 0.5, -1.0)}
+
+
+@pytest.mark.parametrize("way", sorted(HAND_WAYS))
+@pytest.mark.parametrize("side", ["l", "r"])
+def test_hands_are_kept_out_of_the_torso_smoothly(avatar, side, way):
+    """A wrist sweeping down past the chest and hip with its hand turned into the body:
+    the pushed hand's capsule axis stays the capsule's radius out of the torso, and the
+    push changes continuously along the sweep (no more than a few times the wrist's own
+    step from sample to sample)."""
+    y = np.linspace(avatar.torso.top + 0.15, avatar.torso.bottom - 0.15, 2001)
+    front = avatar.torso.center[2] + avatar.torso.half_depth + TORSO_MARGIN + 0.005
+    wrists = np.stack([np.full_like(y, 0.02), y, np.full_like(y, front)], axis=1)
+    rest_axis = avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a
+    turn = quat.between_vectors(rest_axis / np.linalg.norm(rest_axis), np.asarray(HAND_WAYS[way]) / np.linalg.norm(HAND_WAYS[way]))
+    hands = np.repeat(np.asarray(turn, dtype=float).reshape(1, 4), y.size, axis=0)
+    pushed = hands_kept_out_of_torso(avatar, side, wrists, hands)
+    start, end = hand_segments(avatar, side, pushed, hands)
+    radius = avatar.collision.arm(side, "hand").radius
+    for fraction in np.linspace(0.0, 1.0, 9):
+        points = start + fraction * (end - start)
+        assert not np.any(inside_torso(avatar, points, radius - 1e-3)), f"{way}: the hand's axis within its radius of the torso"
+    step = np.linalg.norm(np.diff(pushed - wrists, axis=0), axis=1)
+    assert step.max() < 5.0 * abs(y[1] - y[0]), f"{way}: the push jumps by {1000 * step.max():.1f} mm between samples"
+    assert np.any(pushed != wrists), f"{way}: the sweep never needs a push"
 
 
 def test_hands_are_kept_a_palm_thickness_apart_symmetrically(avatar):
