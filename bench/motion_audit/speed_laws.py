@@ -71,6 +71,9 @@ MIN_UNIT_PATH = 0.02
 MIN_UNIT_FRAMES = 4
 #: Still frames around a unit included in its jerk (the third difference spans 4 frames).
 JERK_MARGIN = 2
+#: Distance (m) past which a wrist counts as having left rest when a movement's onset is
+#: read to a fraction of a frame (:func:`_onset`): beyond the BVH's rounding.
+_MOVED = 1e-6
 
 
 def peak_speed(path: np.ndarray, fps: float) -> tuple[float, int]:
@@ -230,7 +233,37 @@ def jerk_ratio(path: np.ndarray, unit: Unit, fps: float) -> float | None:
     else:
         backwards = _boundary(inside[::-1], fps)
         end = Boundary(-backwards.speed, backwards.acceleration)
-    reference_inside = minimum_jerk_distance(length, (frames - 1) / fps, start, end, np.arange(frames) / fps)
-    reference = np.concatenate((np.zeros(before), reference_inside, np.full(after, length)))
+    reference = _fitted_reference(distance - distance[before], length, frames, before, start, end, unit, fps)
     peak = _peak_third_difference(reference, fps)
     return _peak_third_difference(distance, fps) / peak if peak > 0 else None
+
+
+def _fitted_reference(distance: np.ndarray, length: float, frames: int, before: int, start: Boundary, end: Boundary, unit: Unit, fps: float) -> np.ndarray:
+    """The minimum-jerk reference for a unit's ``distance`` (m, from the unit's first
+    frame, with ``before`` still frames ahead of it). A movement leaves or reaches rest
+    between frames, not on the unit's still end frame, so where it does the reference
+    starts or ends where the movement does, to a fraction of a frame
+    (:func:`_onset`); spanning whole frames, a 0.4 s minimum-jerk movement that started
+    between frames scored 1.2 against itself."""
+    onset = _onset(distance[before:]) if unit.from_rest else 0.0
+    finish = _onset(length - distance[before : before + frames][::-1]) if unit.to_rest else 0.0
+    times = (np.arange(distance.size) - before - onset) / fps
+    duration = (frames - 1 - onset - finish) / fps
+    inside = minimum_jerk_distance(length, duration, start, end, np.clip(times, 0.0, duration))
+    return np.where(times < 0.0, 0.0, inside) if unit.from_rest else inside
+
+
+def _onset(distance: np.ndarray) -> float:
+    """Frames after the first sample of ``distance`` (m, 0 there, at rest) at which the
+    movement starts: a start from rest with neither speed nor acceleration travels
+    as the cube of the time since its onset, so the first two samples past it, ``s₁`` and
+    ``s₂`` at frames ``i`` and ``i + 1``, put it ``1 / ((s₂ / s₁)^⅓ − 1)`` frames before
+    ``i``; 0 where that cannot be read."""
+    moving = np.flatnonzero(distance > _MOVED)
+    if moving.size == 0 or moving[0] + 1 >= distance.size:
+        return 0.0
+    first = int(moving[0])
+    ratio = np.cbrt(distance[first + 1] / distance[first])
+    if ratio <= 1.0:
+        return 0.0
+    return float(np.clip(first - 1.0 / (ratio - 1.0), max(first - 1.0, 0.0), float(first)))

@@ -92,6 +92,20 @@ def test_minimum_jerk_movement_has_jerk_ratio_one(frames, span):
     assert speed_laws.jerk_ratio(path, units[0], FPS) == pytest.approx(1.0, abs=0.05)
 
 
+@pytest.mark.parametrize("seconds", [0.4, 0.6, 1.0])
+@pytest.mark.parametrize("phase", [0.0, 0.3, 0.7])
+def test_minimum_jerk_movement_starting_between_frames_has_jerk_ratio_one(seconds, phase):
+    """A minimum-jerk movement that leaves and reaches rest between two frames: its unit
+    spans whole frames (from the last still frame to the first), up to two frames more
+    than the movement; the reference, fitted to a fraction of a frame, is the movement
+    itself (spanning whole frames, a 0.4 s movement scored 1.2)."""
+    t = np.arange(int(round(2.0 * FPS))) / FPS
+    tau = np.clip((t - 0.5 - phase / FPS) / seconds, 0.0, 1.0)
+    path = np.outer(tau**3 * (10 - 15 * tau + 6 * tau**2), (0.25, 0.05, 0.1)) + [0.1, 1.0, 0.3]
+    (unit,) = movement.segment(path, FPS).units
+    assert speed_laws.jerk_ratio(path, unit, FPS) == pytest.approx(1.0, abs=0.03)
+
+
 @pytest.mark.parametrize(
     "profile, low",
     [
