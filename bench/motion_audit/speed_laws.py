@@ -74,6 +74,10 @@ JERK_MARGIN = 2
 #: Distance (m) past which a wrist counts as having left rest when a movement's onset is
 #: read to a fraction of a frame (:func:`_onset`): beyond the BVH's rounding.
 _MOVED = 1e-6
+#: Speed (m/s) below which a unit's end between two movements (a speed valley) counts as
+#: a stop for its reference: the wrist turned back through it, or paused too briefly for a
+#: hold, and its reference leaves or reaches rest there, to a fraction of a frame.
+STILL_SPEED = 0.02
 
 
 def peak_speed(path: np.ndarray, fps: float) -> tuple[float, int]:
@@ -227,30 +231,34 @@ def jerk_ratio(path: np.ndarray, unit: Unit, fps: float) -> float | None:
     if frames < MIN_UNIT_FRAMES or length < MIN_UNIT_PATH:
         return None
     inside = distance[before : before + frames]
-    start = REST if unit.from_rest else _boundary(inside, fps)
-    if unit.to_rest:
-        end = REST
-    else:
-        backwards = _boundary(inside[::-1], fps)
-        end = Boundary(-backwards.speed, backwards.acceleration)
-    reference = _fitted_reference(distance - distance[before], length, frames, before, start, end, unit, fps)
+    start = _boundary(inside, fps)
+    backwards = _boundary(inside[::-1], fps)
+    leaves = unit.from_rest or abs(start.speed) < STILL_SPEED
+    arrives = unit.to_rest or abs(backwards.speed) < STILL_SPEED
+    start = REST if leaves else start
+    end = REST if arrives else Boundary(-backwards.speed, backwards.acceleration)
+    reference = _fitted_reference(distance - distance[before], length, frames, before, start, end, (leaves, arrives), fps)
     peak = _peak_third_difference(reference, fps)
     return _peak_third_difference(distance, fps) / peak if peak > 0 else None
 
 
-def _fitted_reference(distance: np.ndarray, length: float, frames: int, before: int, start: Boundary, end: Boundary, unit: Unit, fps: float) -> np.ndarray:
+def _fitted_reference(
+    distance: np.ndarray, length: float, frames: int, before: int, start: Boundary, end: Boundary, at_rest: tuple[bool, bool], fps: float
+) -> np.ndarray:
     """The minimum-jerk reference for a unit's ``distance`` (m, from the unit's first
     frame, with ``before`` still frames ahead of it). A movement leaves or reaches rest
-    between frames, not on the unit's still end frame, so where it does the reference
-    starts or ends where the movement does, to a fraction of a frame
-    (:func:`_onset`); spanning whole frames, a 0.4 s minimum-jerk movement that started
-    between frames scored 1.2 against itself."""
-    onset = _onset(distance[before:]) if unit.from_rest else 0.0
-    finish = _onset(length - distance[before : before + frames][::-1]) if unit.to_rest else 0.0
+    — a hold, or a valley where the wrist all but stops (:data:`STILL_SPEED`), as where it
+    turns back: ``at_rest`` says which ends do — between frames, not on the unit's end
+    frame, so there the reference starts or ends where the movement does, to a fraction
+    of a frame (:func:`_onset`); spanning whole frames, a 0.4 s minimum-jerk movement that
+    started between frames scored 1.2 against itself, and one that turned back 1.7."""
+    leaves, arrives = at_rest
+    onset = _onset(distance[before:]) if leaves else 0.0
+    finish = _onset(length - distance[before : before + frames][::-1]) if arrives else 0.0
     times = (np.arange(distance.size) - before - onset) / fps
     duration = (frames - 1 - onset - finish) / fps
     inside = minimum_jerk_distance(length, duration, start, end, np.clip(times, 0.0, duration))
-    return np.where(times < 0.0, 0.0, inside) if unit.from_rest else inside
+    return np.where(times < 0.0, 0.0, inside) if leaves else inside
 
 
 def _onset(distance: np.ndarray) -> float:
