@@ -65,7 +65,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import hand_separation, hands_kept_out_of_torso, hands_may_meet, kept_out_of_torso, separate_hands
+from motor.body.collision import hand_push_out_of_torso, hand_separation, hands_kept_out_of_torso, hands_may_meet, kept_out_of_torso, separate_hands
 from motor.body.hands_apart import eased_separation, reach_frames
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
@@ -131,8 +131,15 @@ HANDS_APART_ROUNDS = 3
 #: one before left — its easing (where the way the hands part turns over), or hands the
 #: arms turn anew as the wrists move (SHUT-OR-CLOSED1's crossed index fingers, which the
 #: joint limits turn about 100° from the plan: two looks left them 2.7 cm into each
-#: other, the fourth found nothing left to do). Looks stop once one finds nothing.
-HANDS_APART_LOOKS = 5
+#: other, three 0.1 cm; go-with-you's palms, on max, 0.6 cm into each other after three
+#: looks, 0.5 after four). Looks stop once one finds
+#: nothing more than :data:`LOOK_TOLERANCE` to do. Each look widens the frames a frame's
+#: separation depends on by :func:`motor.body.hands_apart.reach_frames`
+#: (:func:`_separation_margin`), which every window computes: five looks cost signs a
+#: tenth of their synthesis speed, each look about 4 %.
+HANDS_APART_LOOKS = 4
+#: A look that asks no wrist to move more than this (m, along any axis) is the last one.
+LOOK_TOLERANCE = 5e-4
 #: Largest acceleration (m/s²) with which the wrists go over from the hands' separation
 #: worked out for frames before an activation to the one worked out after it
 #: (:meth:`MotorControl._go_on_from_shown`): 0.27 m/s of velocity change per frame at 60 fps,
@@ -552,8 +559,7 @@ class MotorControl:
         would step the wrist's velocity)."""
         out = {}
         for arm, (wrists, hands) in values.items():
-            kept = kept_out_of_torso(self.avatar, wrists)
-            push = hands_kept_out_of_torso(self.avatar, AVATAR_SIDE[arm], kept, hands) - kept
+            push = hand_push_out_of_torso(self.avatar, AVATAR_SIDE[arm], wrists, hands)
             out[arm] = (wrists + eased_separation(push, self.fps), hands) if np.any(push) else (wrists, hands)
         return out
 
@@ -562,7 +568,7 @@ class MotorControl:
         ``placed`` (before the torso) and ``rows`` and solves ``arms`` again, in place."""
         for _ in range(HANDS_APART_LOOKS):
             needs = self._reached_separation(placed, rows, arms)
-            if not np.any(needs):
+            if not np.any(np.abs(needs) > LOOK_TOLERANCE):
                 break
             more = eased_separation(needs, self.fps)
             moved = np.flatnonzero(np.any(more != 0.0, axis=1))

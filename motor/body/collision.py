@@ -305,37 +305,69 @@ def hands_kept_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands
     so that the wrist does not jump as the deepest point changes), twice. Only wrists
     within a hand's length of the torso's box are looked at; the same array is returned
     when none moves."""
+    near = _near_torso(avatar, side, wrists)
+    if near.size == 0:
+        return wrists
+    kept = _hand_out_of_torso(avatar, side, wrists[near], hands[near])
+    if kept is None:
+        return wrists
+    out = np.array(wrists, dtype=float)
+    out[near] = kept
+    return out
+
+
+def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
+    """How far ``(n, 3)`` (m) each wrist ``(n, 3)``, once :func:`kept_out_of_torso` has kept
+    it out, must move further for its hand (global rotations ``(n, 4)``) to stay out too
+    (:func:`hands_kept_out_of_torso`); zeros where it need not. Only the wrists near the
+    torso are kept out to measure it."""
+    push = np.zeros((len(wrists), 3))
+    near = _near_torso(avatar, side, wrists, TORSO_MARGIN + SOFT_BAND)
+    if near.size == 0:
+        return push
+    kept = kept_out_of_torso(avatar, wrists[near])
+    cleared = _hand_out_of_torso(avatar, side, kept, hands[near])
+    if cleared is not None:
+        push[near] = cleared - kept
+    return push
+
+
+def _near_torso(avatar: Avatar, side: str, wrists: np.ndarray, slack: float = 0.0) -> np.ndarray:
+    """Indices of the wrists ``(n, 3)`` whose hand on ``side`` can come near the torso:
+    within a hand's length (and ``slack`` m) of its box, or behind it."""
     capsule = avatar.collision.arm(side, "hand")
     torso = avatar.torso
-    reach = float(np.linalg.norm(capsule.b - capsule.a)) + 2.0 * capsule.radius + SOFT_BAND + _HAND_REACH_SLACK
-    near = np.flatnonzero(
+    reach = float(np.linalg.norm(capsule.b - capsule.a)) + 2.0 * capsule.radius + SOFT_BAND + _HAND_REACH_SLACK + slack
+    return np.flatnonzero(
         (np.abs(wrists[:, 0] - torso.center[0]) < torso.half_width + reach)
         & (wrists[:, 1] > torso.bottom - reach - EDGE_BAND)
         & (wrists[:, 1] < torso.top + reach + EDGE_BAND)
         & (wrists[:, 2] < torso.center[2] + torso.half_depth + reach)
     )
-    if near.size == 0:
-        return wrists
-    kept = wrists[near]
-    turns = hands[near]
+
+
+def _hand_out_of_torso(avatar: Avatar, side: str, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
+    """The rounds of :func:`hands_kept_out_of_torso` on wrists ``kept`` ``(m, 3)``; None
+    when none moves."""
+    radius = avatar.collision.arm(side, "hand").radius
+    rows = np.arange(len(kept))
+    kept = np.array(kept, dtype=float)
     moved = False
     for _ in range(_HAND_ROUNDS):
-        start, end = hand_segments(avatar, side, kept, turns)
+        start, end = hand_segments(avatar, side, kept[rows], turns[rows])
         points = start[:, None, :] + HAND_AXIS_SAMPLES[None, :, None] * (end - start)[:, None, :]
         flat = points.reshape(-1, 3)
-        push = (kept_out_of_torso(avatar, flat, capsule.radius) - flat).reshape(points.shape)
+        push = (kept_out_of_torso(avatar, flat, radius) - flat).reshape(points.shape)
         depth = np.linalg.norm(push, axis=2)
         deepest = depth.max(axis=1)
-        if not np.any(deepest > 0.0):
+        pushed = deepest > 0.0
+        if not np.any(pushed):
             break
-        weight = (depth / np.maximum(deepest, _TINY)[:, None]) ** 8
-        kept = kept + np.einsum("nk,nkd->nd", weight, push) / np.maximum(weight.sum(axis=1), 1.0)[:, None]
+        weight = (depth[pushed] / deepest[pushed, None]) ** 8
+        rows = rows[pushed]
+        kept[rows] += np.einsum("nk,nkd->nd", weight, push[pushed]) / np.maximum(weight.sum(axis=1), 1.0)[:, None]
         moved = True
-    if not moved:
-        return wrists
-    out = np.array(wrists, dtype=float)
-    out[near] = kept
-    return out
+    return kept if moved else None
 
 
 def inside_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGIN) -> np.ndarray:
