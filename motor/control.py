@@ -65,7 +65,7 @@ from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
-from motor.body.collision import hand_push_out_of_torso, hand_separation, hands_kept_out_of_torso, hands_may_meet, kept_out_of_torso, separate_hands
+from motor.body.collision import hand_push_out_of_torso, hand_separation, hands_may_meet, kept_out_of_torso, separate_hands
 from motor.body.hands_apart import eased_separation, reach_frames
 from motor.hand.shape import hand_rotations
 from motor.motion import Motion
@@ -552,7 +552,7 @@ class MotorControl:
     def _hands_out_of_torso(self, values: dict[str, tuple[np.ndarray, np.ndarray]]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Channel inputs of consecutive frames with each wrist moved as far as its hand,
         in the asked rotation, needs to stay out of the torso
-        (:func:`motor.body.collision.hands_kept_out_of_torso`, measured where the torso
+        (:func:`motor.body.collision.hand_push_out_of_torso`, measured where the torso
         leaves the wrist), that push eased in and out over time as the hands' separation is
         (:func:`motor.body.hands_apart.eased_separation`: a hand turning into the body on
         its way down to rest needs centimetres within a few frames, which pushed at once
@@ -662,15 +662,14 @@ class MotorControl:
 
     def _kept_apart(self, values: dict[str, tuple[np.ndarray, np.ndarray]]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Channel inputs (:meth:`_channel_inputs`) with the hands a palm thickness apart,
-        instant by instant, and the wrists kept out of the torso (a path between targets
-        may cut through it; :mod:`motor.body.collision`): what the swivel's grid points are
-        solved for."""
+        instant by instant, and the wrists and hands kept out of the torso (a path between
+        targets may cut through it; :mod:`motor.body.collision`): what the swivel's grid
+        points are solved for."""
         (left, left_hands), (right, right_hands) = values["left"], values["right"]
         left, right = separate_hands(self.avatar, left, right, left_hands, right_hands)
-        left, right = kept_out_of_torso(self.avatar, left), kept_out_of_torso(self.avatar, right)
         return {
-            "left": (hands_kept_out_of_torso(self.avatar, "l", left, left_hands), left_hands),
-            "right": (hands_kept_out_of_torso(self.avatar, "r", right, right_hands), right_hands),
+            arm: (kept_out_of_torso(self.avatar, wrists) + hand_push_out_of_torso(self.avatar, AVATAR_SIDE[arm], wrists, hands), hands)
+            for arm, (wrists, hands) in (("left", (left, left_hands)), ("right", (right, right_hands)))
         }
 
     def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:

@@ -40,7 +40,7 @@ TORSO_MARGIN = 0.04
 SOFT_BAND = 0.02
 EDGE_BAND = 0.08
 #: Fractions of the hand capsule's axis (wrist 0, knuckles 1) kept out of the torso by
-#: :func:`hands_kept_out_of_torso`, the rounds it takes, and how much farther than a hand's
+#: :func:`hand_push_out_of_torso`, the rounds it takes, and how much farther than a hand's
 #: length (m) from the torso's box it looks.
 HAND_AXIS_SAMPLES = np.linspace(0.0, 1.0, 5)
 _HAND_ROUNDS = 2
@@ -290,37 +290,20 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     return out
 
 
-def hands_kept_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
-    """Wrist positions ``(n, 3)`` (trunk frame, m) moved so that the whole hand on ``side``,
-    turned by global rotations ``hands`` ``(n, 4)``, stays out of the torso, smoothly: what
-    :func:`kept_out_of_torso` does to the wrist, done to the hand's capsule. A wrist
-    clear of the torso may still carry the palm into it (fingers pointing back at the
-    body as the hand turns on its way down to rest: ``41_tanedila_welle``'s left hand
-    went 2.9 cm into the hip).
-
-    Points along the capsule's axis (:data:`HAND_AXIS_SAMPLES`) are kept out of the torso
-    grown by the capsule's radius (:func:`kept_out_of_torso`, continuous in position);
-    the wrist moves by their pushes averaged with weights growing as the push's eighth
-    power (the deepest point's push, blended continuously where two points are as deep,
-    so that the wrist does not jump as the deepest point changes), twice. Only wrists
-    within a hand's length of the torso's box are looked at; the same array is returned
-    when none moves."""
-    near = _near_torso(avatar, side, wrists)
-    if near.size == 0:
-        return wrists
-    kept = _hand_out_of_torso(avatar, side, wrists[near], hands[near])
-    if kept is None:
-        return wrists
-    out = np.array(wrists, dtype=float)
-    out[near] = kept
-    return out
-
-
 def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
-    """How far ``(n, 3)`` (m) each wrist ``(n, 3)``, once :func:`kept_out_of_torso` has kept
-    it out, must move further for its hand (global rotations ``(n, 4)``) to stay out too
-    (:func:`hands_kept_out_of_torso`); zeros where it need not. Only the wrists near the
-    torso are kept out to measure it."""
+    """How far ``(n, 3)`` (m) each wrist ``(n, 3)`` (trunk frame), once
+    :func:`kept_out_of_torso` has kept it out, must move further for the whole hand on
+    ``side``, turned by global rotations ``hands`` ``(n, 4)``, to stay out too; zeros where
+    it need not. A wrist clear of the torso may still carry the palm into it (fingers
+    pointing back at the body as the hand turns on its way down to rest:
+    ``41_tanedila_welle``'s left hand went 2.9 cm into the hip).
+
+    Points along the hand capsule's axis (:data:`HAND_AXIS_SAMPLES`) are kept out of the
+    torso grown by the capsule's radius (:func:`kept_out_of_torso`, continuous in
+    position); the wrist moves by their pushes averaged with weights growing as the
+    push's eighth power (the deepest point's push, blended continuously where two points
+    are as deep, so that the wrist does not jump as the deepest point changes), twice.
+    Only the wrists within a hand's length of the torso's box are kept out and looked at."""
     push = np.zeros((len(wrists), 3))
     near = _near_torso(avatar, side, wrists, TORSO_MARGIN + SOFT_BAND)
     if near.size == 0:
@@ -347,8 +330,8 @@ def _near_torso(avatar: Avatar, side: str, wrists: np.ndarray, slack: float = 0.
 
 
 def _hand_out_of_torso(avatar: Avatar, side: str, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
-    """The rounds of :func:`hands_kept_out_of_torso` on wrists ``kept`` ``(m, 3)``; None
-    when none moves."""
+    """The rounds of :func:`hand_push_out_of_torso` on wrists ``kept`` ``(m, 3)`` already
+    kept out of the torso: where they move; None when none moves."""
     radius = avatar.collision.arm(side, "hand").radius
     rows = np.arange(len(kept))
     kept = np.array(kept, dtype=float)

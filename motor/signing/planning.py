@@ -534,13 +534,13 @@ class _SignCompiler:
         """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
         return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
 
-    def part_to_palm(self, arm: str, hand: _Hand, location: Location) -> np.ndarray | float:
+    def part_to_palm(self, arm: str, hand: _Hand, location: Location | None) -> np.ndarray:
         """From the part of the hand a location puts at its site (``hand_part``: HamNoSys'
         contact by the fingertip, the pinky side …) to the palm centre ``(3,)`` that
-        locations place, for the hand's rotation and shape; 0 without a named part."""
+        locations place, for the hand's rotation and shape; zeros without a named part."""
         part = location.hand_part if isinstance(location, BodySite) else None
         if part is None or not _is_hand_site(part) or part.site == _PALM.site:
-            return 0.0
+            return np.zeros(3)
         return self.offset(arm, hand, _PALM) - self.offset(arm, hand, replace(_normalized(part), proximity=_PALM.proximity))
 
     def wrist(self, arm: str, hand: _Hand) -> np.ndarray:

@@ -17,7 +17,7 @@ from motor.body.collision import (
     TORSO_MARGIN,
     capsule_distance,
     hand_segments,
-    hands_kept_out_of_torso,
+    hand_push_out_of_torso,
     inside_torso,
     kept_out_of_torso,
     outside_torso,
@@ -212,7 +212,7 @@ def test_hands_are_kept_out_of_the_torso_smoothly(avatar, side, way):
     rest_axis = avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a
     turn = quat.between_vectors(rest_axis / np.linalg.norm(rest_axis), np.asarray(HAND_WAYS[way]) / np.linalg.norm(HAND_WAYS[way]))
     hands = np.repeat(np.asarray(turn, dtype=float).reshape(1, 4), y.size, axis=0)
-    pushed = hands_kept_out_of_torso(avatar, side, wrists, hands)
+    pushed = kept_out_of_torso(avatar, wrists) + hand_push_out_of_torso(avatar, side, wrists, hands)
     start, end = hand_segments(avatar, side, pushed, hands)
     radius = avatar.collision.arm(side, "hand").radius
     for fraction in np.linspace(0.0, 1.0, 9):
