@@ -478,7 +478,7 @@ class MotorControl:
             back[order] = np.arange(order.size)
             sampled, yaw = self._channel_inputs(merged[order])
             values = {arm: tuple(v[back[: frames.size]] for v in pair) for arm, pair in sampled.items()}
-            self._grid.solve(*plan, self._kept_apart({arm: tuple(v[back[frames.size :]] for v in pair) for arm, pair in sampled.items()}))
+            self._grid.solve(*plan, self._kept_apart({arm: tuple(v[back[frames.size :]] for v in pair) for arm, pair in sampled.items()}), _turning(yaw[back[frames.size :]]))
             yaw = yaw[back[: frames.size]]
         rotations = np.empty((times.size, self.avatar.joint_count, 4))
         rotations[:] = self._rest_rotations
@@ -714,7 +714,8 @@ class MotorControl:
         first, last = self._grid_span(times)
         plan = self._grid.plan(first, last)
         if plan is not None:
-            self._grid.solve(*plan, self._arm_inputs(self._grid.times(plan[0], plan[1])))
+            values, yaw = self._channel_inputs(self._grid.times(plan[0], plan[1]))
+            self._grid.solve(*plan, self._kept_apart(values), _turning(yaw))
         swivel = self._grid.sample(arm, times, first, last)[0]
         return swivel[:, 0] + swivel_of(swivel[:, 1:], *swivel_zeros(self.avatar, AVATAR_SIDE[arm], self._arm_inputs(times)[arm][0]))
 
@@ -739,6 +740,11 @@ def _solve_rows(avatar: Avatar, side: str, rows: np.ndarray) -> np.ndarray:
     """Arm joint rotations ``(n, 4, 4)`` from rows of wrist, hand rotation, swivel, the
     swivel's zero and the twist's reference (:meth:`MotorControl._rotations`)."""
     return solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]).rotations
+
+
+def _turning(yaw: np.ndarray) -> np.ndarray | None:
+    """The trunk's yaw ``(n,)`` (radians), None where it never turns."""
+    return yaw if np.any(yaw != 0.0) else None
 
 
 def _separation_margin(fps: float) -> int:

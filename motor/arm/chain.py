@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
+from motor.arm.reach_turn import turned
 from motor.body.avatar import Avatar, check_side
 
 #: Reach (fraction of arm length from the resting shoulder) where the clavicle starts to
@@ -238,7 +239,9 @@ class ArmPlacement:
     ``torso_q (n, 4)`` is the clavicles' parent's global rotation (None: upright, at
     rest); ``body_frame`` (rotation
     ``(n, 4)``, translation ``(n, 3)``) carries the body's rest geometry to where it is,
-    None when the torso stands upright at rest."""
+    None when the torso stands upright at rest; ``hips_frame`` does so for the volumes
+    that stay with the hips when the arm is solved in the frame of a trunk turned toward
+    a reach (:mod:`motor.arm.reach_turn`), None when it is not turned."""
 
     chain: ArmChain
     torso_q: np.ndarray | None
@@ -248,13 +251,15 @@ class ArmPlacement:
     targets: np.ndarray
     hands: np.ndarray | None
     body_frame: tuple[np.ndarray, np.ndarray] | None
+    hips_frame: tuple[np.ndarray, np.ndarray] | None = None
 
     def take(self, rows: np.ndarray) -> ArmPlacement:
         """The placements of the selected frames."""
         frame = None if self.body_frame is None else (self.body_frame[0][rows], self.body_frame[1][rows])
+        hips = None if self.hips_frame is None else (self.hips_frame[0][rows], self.hips_frame[1][rows])
         return ArmPlacement(
             self.chain, None if self.torso_q is None else self.torso_q[rows], self.clavicle_local[rows], self.sc_global[rows], self.circle.take(rows),
-            self.targets[rows], None if self.hands is None else self.hands[rows], frame,
+            self.targets[rows], None if self.hands is None else self.hands[rows], frame, hips,
         )  # fmt: skip
 
 
@@ -265,9 +270,12 @@ def place_arm(
     hand_rotations: np.ndarray | None = None,
     torso_rotations: np.ndarray | None = None,
     torso_positions: np.ndarray | None = None,
+    trunk_yaw: np.ndarray | None = None,
 ) -> ArmPlacement:
     """The clavicle, shoulder and elbow circle for wrist targets ``(n, 3)`` (see
-    :func:`motor.arm.ik.solve_arm` for the arguments)."""
+    :func:`motor.arm.ik.solve_arm` for the arguments); ``trunk_yaw (n,)`` (radians), the
+    turn of the trunk in whose frame the targets are given (:mod:`motor.arm.reach_turn`),
+    places the volumes that stay with the hips."""
     chain = arm_chain(avatar, check_side(side))
     targets = np.asarray(wrist_targets, dtype=float).reshape(-1, 3)
     frames = targets.shape[0]
@@ -284,4 +292,16 @@ def place_arm(
     sc_global = clavicle_local if torso_q is None else quat.multiply(torso_q, clavicle_local)
     shoulder = sc_position + quat.rotate(sc_global, chain.clavicle)
     circle = ElbowCircle.of(chain, shoulder, targets, torso_q)
-    return ArmPlacement(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame)
+    return ArmPlacement(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame, hips_frame(avatar, trunk_yaw))
+
+
+def hips_frame(avatar: Avatar, trunk_yaw: np.ndarray | None) -> tuple[np.ndarray, np.ndarray] | None:
+    """Where the volumes that stay with the hips are, seen from a trunk turned by
+    ``trunk_yaw (n,)`` radians: the rotation ``(n, 4)`` and translation ``(n, 3)`` taking
+    their rest geometry into the trunk's frame (:meth:`motor.arm.reach_turn.TrunkTurn.to_trunk`);
+    None where the trunk is not turned."""
+    turn = None if trunk_yaw is None else turned(avatar, np.asarray(trunk_yaw, dtype=float))
+    if turn is None:
+        return None
+    inverse = quat.conjugate(turn.rotation)
+    return inverse, turn.rest - quat.rotate(inverse, turn.position)

@@ -4,13 +4,16 @@ The arm's segments are the avatar's ``upper_arm`` and ``forearm`` capsules, carr
 their bones (the part of each capsule's axis between its end points, projected onto the
 bone: the swivel search moves them with the elbow without building rotations). The
 obstacles are the body's volumes (torso, pelvis, neck, head and any others that move
-with neither arm), carried rigidly by the clavicles' parent joint when the torso turns,
-and optionally the other arm's three capsules at the same instants.
+with neither arm), each carried rigidly by the joint the avatar file names for it — when
+the trunk turns toward a reach, the neck and head turn with the shoulders while the
+torso and pelvis stay with the hips — and optionally the other arm's three capsules at
+the same instants.
 
 :func:`clearance` gives, for ``(n, K)`` candidate elbow positions (as coordinate arrays),
 a penalty that grows quadratically as a segment comes within :data:`CLEARANCE` of an
-obstacle (so the feasible set is entered from its inside, smoothly) and the depth of the
-deepest penetration of the body. Only the frames whose arm, for some candidate, comes
+obstacle (so the feasible set is entered from its inside, smoothly), and more steeply
+once it is more than :data:`TOLERATED_DEPTH` inside, and the depth of the deepest
+penetration of the body. Only the frames whose arm, for some candidate, comes
 near an obstacle's bounding box are measured against it.
 """
 
@@ -22,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor import quaternion as quat
+from motor.arm.reach_turn import TURN_JOINTS
 from motor.body.avatar import HAND_JOINTS, Avatar
 from motor.body.collision import Components, capsule_apart, segments_apart
 from motor.body.volumes import Capsule, Ellipsoid, Volume
@@ -31,6 +35,13 @@ CLEARANCE = 0.01
 #: Penalty of a segment at the obstacle's surface; it grows with the square of the
 #: distance inside the clearance, per :data:`CLEARANCE`.
 CONTACT_PENALTY = 50.0
+#: Further penalty of a segment deeper than :data:`TOLERATED_DEPTH` (m) inside the body
+#: or the other arm's upper arm and forearm, per :data:`CLEARANCE` of the depth beyond it,
+#: squared: a hand rotation the swivel leaves unachieved (up to 312,
+#: :mod:`motor.arm.swivel_cost`) must not buy an upper arm a centimetre into the chest.
+#: Tolerating a few millimetres keeps the cost of arms that merely touch as it was.
+PENETRATION_PENALTY = 300.0
+TOLERATED_DEPTH = 0.005
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,10 +60,14 @@ class ArmCapsules:
 
 @dataclass(frozen=True, eq=False)
 class Obstacle:
-    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame)."""
+    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame), and
+    whether it turns with the trunk where a hand reaches across the body
+    (:data:`motor.arm.reach_turn.TURN_JOINTS`: it moves with one of them or a joint
+    beyond) or stays with the hips (the torso, carried by the lowest lumbar joint)."""
 
     volume: Volume
     box: np.ndarray
+    turns: bool
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,6 +108,7 @@ def arm_capsules(avatar: Avatar, side: str) -> ArmCapsules:
 def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
     """The body's volumes with their bounding boxes."""
     limbs = frozenset(f"{side}_{joint}" for side in "lr" for joint in ("sternoclavicular", "shoulder", "elbow", "wrist", *HAND_JOINTS))
+    turning = _turning_joints(avatar)
     obstacles = []
     for volume in avatar.collision.body(limbs):
         if isinstance(volume, Capsule):
@@ -104,8 +120,21 @@ def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
                 [volume.center[0] - volume.half_width, volume.bottom, volume.center[2] - volume.half_depth],
                 [volume.center[0] + volume.half_width, volume.top, volume.center[2] + volume.half_depth],
             ])  # fmt: skip
-        obstacles.append(Obstacle(volume, box))
+        obstacles.append(Obstacle(volume, box, volume.joint in turning))
     return tuple(obstacles)
+
+
+def _turning_joints(avatar: Avatar) -> frozenset[str]:
+    """The joints the trunk's turn carries: the first turning spine joint and every joint beyond it."""
+    first = avatar.joint_index(TURN_JOINTS[0])
+    turning = set()
+    for index, name in enumerate(avatar.joint_names):
+        joint = index
+        while joint >= 0 and joint != first:
+            joint = avatar.parents[joint]
+        if joint == first:
+            turning.add(name)
+    return frozenset(turning)
 
 
 def arm_segments(capsules: ArmCapsules, shoulder: np.ndarray, elbow: np.ndarray, wrist: np.ndarray, hands: np.ndarray) -> ArmSegments:
@@ -126,6 +155,14 @@ def penalty(distance: np.ndarray) -> np.ndarray:
     return CONTACT_PENALTY * inside * inside
 
 
+def overlap_penalty(distance: np.ndarray) -> np.ndarray:
+    """Cost of a segment's signed distance (m) from a body volume or the other arm's upper
+    arm or forearm: :func:`penalty`, and :data:`PENETRATION_PENALTY` more, quadratic in
+    the depth beyond :data:`TOLERATED_DEPTH`."""
+    depth = np.maximum(-distance - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
+    return penalty(distance) + PENETRATION_PENALTY * depth * depth
+
+
 def clearance(
     avatar: Avatar,
     side: str,
@@ -135,54 +172,76 @@ def clearance(
     body_frame: tuple[np.ndarray, np.ndarray] | None = None,
     other: ArmSegments | None = None,
     body: bool = True,
+    hips_frame: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Penalty and body penetration depth (m) ``(n, K)`` of the arm from ``shoulder`` to
     ``wrist`` ``(n, 3)`` with its elbow at the coordinate arrays ``elbow`` ``(n, K)``.
 
     ``body_frame`` (rotation ``(n, 4)``, translation ``(n, 3)``) carries the body's rest
-    geometry to where it is when the torso is not upright (None: upright, at rest).
-    ``other``: the other arm's capsules at the same instants, kept clear of too;
-    ``body``: False to keep clear of the other arm only."""
+    geometry to where it is when the torso is not upright (None: upright, at rest);
+    ``hips_frame``, if given, does so for the volumes that do not turn with the trunk
+    (:attr:`Obstacle.turns`), which stand still while the arm is solved in the turned
+    trunk's frame. ``other``: the other arm's capsules at the same instants, kept clear
+    of too; ``body``: False to keep clear of the other arm only."""
     capsules = arm_capsules(avatar, side)
     shape = elbow[0].shape
     cost = np.zeros(shape)
     depth = np.zeros(shape)
-    if body and body_frame is not None:
-        rotation, translation = body_frame
-        inverse = quat.conjugate(rotation)
-        rest_shoulder, rest_wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
-        stacked = np.stack(elbow, axis=-1) - translation[:, None]
-        rest_elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
-    else:
-        rest_shoulder, rest_wrist, rest_elbow = shoulder, wrist, elbow
-    if body:
-        boxes = _boxes(capsules, rest_shoulder, rest_wrist, rest_elbow)
-        for (a, b, radius), (low, high) in zip(_segments(capsules, rest_shoulder, rest_wrist, rest_elbow), boxes):
-            for obstacle in body_obstacles(avatar):
-                near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
-                if not np.any(near):
-                    continue
-                if np.all(near):
-                    distance = capsule_apart(obstacle.volume, a, b, radius)
-                    cost += penalty(distance)
-                    np.maximum(depth, -distance, out=depth)
-                    continue
-                rows = np.flatnonzero(near)
-                distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
-                cost[rows] += penalty(distance)
-                depth[rows] = np.maximum(depth[rows], -distance)
+    if body and hips_frame is None:
+        _body_clearance(capsules, body_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth)
+    elif body:
+        for turns, frame in ((True, body_frame), (False, hips_frame)):
+            obstacles = tuple(o for o in body_obstacles(avatar) if o.turns == turns)
+            if obstacles:
+                _body_clearance(capsules, obstacles, shoulder, wrist, elbow, frame, cost, depth)
     if other is not None:
         boxes = _boxes(capsules, shoulder, wrist, elbow)
         for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
-            for a_other, b_other, r_other in other.capsules():
+            for part, (a_other, b_other, r_other) in zip(("upper", "fore", "hand"), other.capsules()):
                 near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
                 if not np.any(near):
                     continue
                 rows = np.flatnonzero(near)
                 ends = tuple(a_other[rows, i : i + 1] for i in range(3)), tuple(b_other[rows, i : i + 1] for i in range(3))
                 distance = segments_apart(tuple(c[rows] for c in a), tuple(c[rows] for c in b), *ends)
-                cost[rows] += penalty(distance - radius - r_other)
+                # hands may touch the other arm (where it is asked): theirs is the plain penalty
+                cost[rows] += (penalty if part == "hand" else overlap_penalty)(distance - radius - r_other)
     return cost, np.maximum(depth, 0.0)
+
+
+def _body_clearance(
+    capsules: ArmCapsules,
+    obstacles: tuple[Obstacle, ...],
+    shoulder: np.ndarray,
+    wrist: np.ndarray,
+    elbow: Components,
+    frame: tuple[np.ndarray, np.ndarray] | None,
+    cost: np.ndarray,
+    depth: np.ndarray,
+) -> None:
+    """:func:`clearance`'s penalty and depth of the arm against ``obstacles`` whose rest
+    geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``."""
+    if frame is not None:
+        rotation, translation = frame
+        inverse = quat.conjugate(rotation)
+        shoulder, wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
+        stacked = np.stack(elbow, axis=-1) - translation[:, None]
+        elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
+    boxes = _boxes(capsules, shoulder, wrist, elbow)
+    for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
+        for obstacle in obstacles:
+            near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
+            if not np.any(near):
+                continue
+            if np.all(near):
+                distance = capsule_apart(obstacle.volume, a, b, radius)
+                cost += overlap_penalty(distance)
+                np.maximum(depth, -distance, out=depth)
+                continue
+            rows = np.flatnonzero(near)
+            distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
+            cost[rows] += overlap_penalty(distance)
+            depth[rows] = np.maximum(depth[rows], -distance)
 
 
 def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:

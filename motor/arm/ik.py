@@ -129,7 +129,7 @@ def solve_arm(
         if swivel_from is not None:
             psi = psi + swivel_of(np.asarray(swivel_from, dtype=float), circle.down, circle.out)
     arm = _arm_at(setup.chain, circle, psi, setup.sc_global, setup.hands, twist_reference)
-    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame)[1][:, 0]
+    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame, hips_frame=setup.hips_frame)[1][:, 0]
     return ArmSolution(
         rotations=np.stack((setup.clavicle_local, arm.shoulder_local, arm.elbow_local, arm.wrist_local), axis=1),
         shoulder=circle.shoulder,
@@ -210,16 +210,17 @@ class TrackCosts:
         return candidate_costs(avatar, self.placement.take(rows), self.natural[rows], other, own=False)
 
 
-def track_costs(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray) -> TrackCosts:
+def track_costs(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray, trunk_yaw: np.ndarray | None = None) -> TrackCosts:
     """Swivel costs at ``m`` consecutive instants for a track, from wrist targets and hand
     rotations ``(m + 1, ...)`` that include the instant before (for the first turn of the
-    swivel's zero). Runs of identical instants are measured once."""
-    placement = place_arm(avatar, side, wrist_targets, hand_rotations)
+    swivel's zero), given in the frame of the trunk turned by ``trunk_yaw`` ``(m + 1,)``
+    (radians, None: not turned). Runs of identical instants are measured once."""
+    placement = place_arm(avatar, side, wrist_targets, hand_rotations, trunk_yaw=trunk_yaw)
     circle = placement.circle
     turns = swivel_of(circle.down[:-1], circle.down[1:], circle.out[1:])
     rows = placement.take(slice(1, None))
     natural = natural_swivel(rows.chain, rows.circle, rows.targets, rows.torso_q)
-    values = np.concatenate([rows.targets, rows.hands], axis=1)
+    values = np.concatenate([rows.targets, rows.hands] + ([] if trunk_yaw is None else [np.asarray(trunk_yaw, dtype=float)[1:, None]]), axis=1)
     starts = np.concatenate([[0], np.flatnonzero(np.any(values[1:] != values[:-1], axis=1)) + 1])
     unique = candidate_costs(avatar, rows.take(starts), natural[starts])
     costs = np.repeat(unique, np.diff(np.append(starts, len(values))), axis=0)

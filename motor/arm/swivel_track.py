@@ -106,16 +106,17 @@ class SwivelGrid:
         """The grid times whose channel values :meth:`solve` needs for ``start … end``."""
         return np.arange(start - 1, end + HORIZON + 1) * SWIVEL_PERIOD
 
-    def solve(self, start: int, end: int, fresh: bool, inputs: dict[str, tuple[np.ndarray, np.ndarray]]) -> None:
+    def solve(self, start: int, end: int, fresh: bool, inputs: dict[str, tuple[np.ndarray, np.ndarray]], trunk_yaw: np.ndarray | None = None) -> None:
         """Grid states ``start … end`` of both arms (module docstring) from the arms' wrist
-        positions and hand rotations at :meth:`times`."""
+        positions and hand rotations at :meth:`times`, given in the frame of the trunk
+        turned by ``trunk_yaw`` there (radians, None: not turned)."""
         if fresh:
             self.first = start
             for arm in ARMS:
                 self._arms[arm].rows = self._arms[arm].rows[:0]
         count = end - start + 1
         before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
-        costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm]) for arm in ARMS}
+        costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm], trunk_yaw) for arm in ARMS}
         first, first_poses, crowded = self._tracks(costs, {arm: None if state is None else state[2] for arm, state in before.items()}, None)
         again = {arm: None if state is None else state[0] for arm, state in before.items()}
         if crowded or any(state is not None and state[0] != state[2] for state in before.values()):

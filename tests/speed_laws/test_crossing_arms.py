@@ -67,7 +67,6 @@ def test_mirrored_hands_cross_without_a_speed_step(avatar, height: str, start: s
 #: cleared the shoulder-high crossings; at the chest the elbows are not placed so that
 #: the forearms pass apart.
 OPEN_CROSSINGS = {
-    ("LocChest", "LocPeripheryLeft", "LocRight"),
     ("LocChest", "LocRight", "LocPeripheryLeft"),
     ("LocUpperChest", "LocPeripheryLeft", "LocRight"),
 }
