@@ -203,7 +203,10 @@ def _cylinder_distance(cylinder: EllipticCylinder, a: Components, b: Components)
     nearest = -(x0 * dx + z0 * dz) / np.maximum(dx * dx + dz * dz, _TINY)
     t = np.minimum(np.maximum(nearest, enter), np.maximum(leave, enter))
     radial = np.where(inside, _radial(x0 + t * dx, z0 + t * dz, width, depth), np.inf)
-    within = inside & (enter <= 0.0) & (leave >= 1.0)
+    # the parts above or below are never nearer where the part within the height range is
+    # inside the cylinder, or holds the point nearest its axis
+    closest = np.minimum(np.maximum(nearest, 0.0), 1.0)
+    within = inside & ((enter <= 0.0) & (leave >= 1.0) | (radial <= 0.0) | (closest >= enter) & (closest <= leave))
     if np.all(within):
         return radial
     shape = np.broadcast(radial, within, x0, z0, dx, dz, y0, dy).shape
