@@ -11,8 +11,8 @@ that it gets there with the hand in its orientation and shape. Locations come fr
 body sites with their proximity and side, the signing-space grid, and sites on the other
 arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
 a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
-Site names the resolver does not know are read as documented in :data:`SITE_ALIASES` and
-:data:`PROXIMITY_ALIASES`; the bare ``contact`` site keeps the hand where it is.
+Site names the resolver does not know are read as documented in :data:`motor.signing.sites.SITE_ALIASES` and
+:data:`~motor.signing.sites.PROXIMITY_ALIASES`; the bare ``contact`` site keeps the hand where it is.
 
 **Two hands.** Under ``lr`` symmetry the non-dominant hand's path is the dominant hand's
 mirrored across the symmetry's planes (the sagittal plane ``x = 0`` at least), its
@@ -28,8 +28,8 @@ group are planned to the hands as its shape and orientation changes leave them. 
 or arm in a one-handed sign brings the other hand up as a passive base
 (:data:`PASSIVE_POSTURE`).
 
-**Movements.** Straight moves go ``SIZE_FRACTIONS`` of the arm's length (small, normal,
-large); arcs bulge by :data:`ARC_EXTENT` of the chord to the side their name gives;
+**Movements** (:mod:`motor.signing.path_shapes`). Straight moves go ``SIZE_FRACTIONS`` of the arm's length (small, normal,
+large); arcs bulge by ``ARC_EXTENT`` of the chord to the side their name gives;
 wavy and zigzag paths come from :mod:`motor.trajectory.guiding_strokes`; circles and ellipses have
 radii ``CIRCLE_FRACTIONS`` of the arm's length and start where the hand is (clock
 positions choose where on the circle). Local movements: nodding and swinging turn the
@@ -88,7 +88,7 @@ import gc
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
-from functools import lru_cache, partial
+from functools import partial
 from typing import TypeVar
 
 import numpy as np
@@ -97,21 +97,23 @@ from motor import quaternion as quat
 from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.body.collision import kept_out_of_torso
 from motor.body.kinematics import Pose
-from motor.body.locations import ARM_SITES, FINGER_SITES, resolve_location
+from motor.body.locations import resolve_location
 from motor.hand.shape import played
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
+from motor.signing.path_shapes import SIZE_FRACTIONS, circle, curve, line, unit
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, arc_fractions_of_paths, within_reach_all
 from motor.signing.retiming import retimed_all
-from motor.trajectory.biocontrol import movement_duration, shortest_duration
-from motor.trajectory.guiding_strokes import (
-    curve_breakpoints,
-    default_normal,
-    ellipse_breakpoints,
-    wavy,
-    zigzag,
+from motor.signing.sites import (
+    hand_site,
+    is_hand_site,
+    leaf_location,
+    normalized,
+    on_other_hand,
+    touches,
 )
+from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.symmetry import mirror_directions
 from mura.constraints import (
     Arm,
@@ -130,7 +132,6 @@ from mura.constraints import Sequence as SequenceNode
 from mura.errors import SpecError
 from mura.signs import HandPosture, Sign
 from mura.values import (
-    AXES,
     BetweenLocation,
     BodySite,
     Direction,
@@ -140,15 +141,6 @@ from mura.values import (
     PalmOrientation,
 )
 
-#: Length of a straight movement by HamNoSys size, fractions of the arm's length.
-SIZE_FRACTIONS: dict[str, float] = {"small": 0.12, "normal": 0.25, "large": 0.4}
-#: Radius of a circle by size, fractions of the arm's length; stirring is "small".
-CIRCLE_FRACTIONS: dict[str, float] = {"small": 0.05, "normal": 0.09, "large": 0.15}
-#: Bulge of an arc over its chord; amplitude of wavy and zigzag paths over their length.
-ARC_EXTENT = 0.3
-WAVE_AMPLITUDE = 0.12
-WAVES = 2
-ZIGS = 4
 #: Wrist turn of nodding and swinging, forearm turn of twisting, radians.
 LOCAL_ANGLE = 0.45
 #: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
@@ -170,15 +162,8 @@ PASSIVE_POSTURE = HandPosture(
     PalmOrientation((0.0, 1.0, 0.0)),
     GridLocation("LocStomach", "LocCCenterLeft", "LocNorm"),
 )
-#: Sites the parser writes that the resolver does not name, read as the nearest it does.
-SITE_ALIASES: dict[str, str] = {"finger": "fingerpad", "thumb": "thumb"}
-#: Proximities outside the resolver's table: at arm's length is far; behind the body is
-#: read as near; crossing and interlocking fingers are contact.
-PROXIMITY_ALIASES: dict[str, str] = {"armextended": "far", "behind": "near", "brushing": "touch", "cross": "touch", "interlock": "touch"}
 #: HamNoSys manners to (duration manner, profile manner) of the biocontrol tables.
 MANNERS: dict[str, str] = {"targetted": "targetted", "fast": "fast", "slow": "slow", "tense": "tense", "halt": "sudden_stop", "rest": "sudden_stop"}
-_PATH_POINTS = 8
-_CIRCLE_POINTS = 32
 _SAME = 1e-6
 _CHANNELS = ("wrist_position", "hand_rotation", "handshape")
 _PALM = BodySite("palm", proximity="touch")
@@ -407,7 +392,7 @@ class _SignCompiler:
         sign = self.sign
         dominant = sign.posture
         leaves = iter_leaves(sign.movement) if sign.movement is not None else ()
-        touched = _on_other_hand(dominant.location) or any(_on_other_hand(_leaf_location(leaf)) for leaf in leaves)
+        touched = on_other_hand(dominant.location) or any(on_other_hand(leaf_location(leaf)) for leaf in leaves)
         needs_base = sign.two_handed or touched
         if needs_base:
             self.hands[self.other] = self.other_hand()
@@ -436,7 +421,7 @@ class _SignCompiler:
         own = self.sign.nondominant or HandPosture()
         if self.symmetric:
             base = self.sign.posture
-            if _on_other_hand(base.location):
+            if on_other_hand(base.location):
                 base = replace(base, location=None)
         elif self.sign.two_handed and self.sign.nondominant is not None:
             base = replace(PASSIVE_POSTURE, shape=self.sign.posture.shape or PASSIVE_POSTURE.shape)
@@ -480,12 +465,12 @@ class _SignCompiler:
             return (1.0 - location.fraction) * first + location.fraction * second
         if not isinstance(location, BodySite):
             return self.geometry.location(location, AVATAR_SIDE[arm])
-        site = _normalized(location)
+        site = normalized(location)
         if site.site == "contact":
             return self.neutral(arm) if here is None else here
         if site.site == "neutralspace":
             return self.neutral(arm)
-        if _on_other_hand(site):
+        if on_other_hand(site):
             other_arm = "left" if arm == "right" else "right"
             other_hand = other or self.hands.get(other_arm)
             if other_hand is None:
@@ -512,16 +497,16 @@ class _SignCompiler:
         other = self.hands[self.other]
         if constellation.location is not None:
             other = other.at(self.locate(self.other, constellation.location, other, None))
-        other_site = _hand_site(constellation.nondominant, constellation.contact)
-        own_site = _hand_site(constellation.dominant, "touch")
-        if _is_hand_site(other_site):
+        other_site = hand_site(constellation.nondominant, constellation.contact)
+        own_site = hand_site(constellation.dominant, "touch")
+        if is_hand_site(other_site):
             pose = self.arm_pose(self.other, other)
             meeting = resolve_location(self.avatar, other_site, AVATAR_SIDE[self.dominant], pose)
         else:
             meeting = other.location
         dominant = self.hands[self.dominant]
         palm = self.offset(self.dominant, dominant, _PALM)
-        own = self.offset(self.dominant, dominant, own_site) if _is_hand_site(own_site) else palm
+        own = self.offset(self.dominant, dominant, own_site) if is_hand_site(own_site) else palm
         self.hands[self.other] = other
         self.hands[self.dominant] = dominant.at(meeting - own + palm)
 
@@ -539,9 +524,9 @@ class _SignCompiler:
         contact by the fingertip, the pinky side …) to the palm centre ``(3,)`` that
         locations place, for the hand's rotation and shape; zeros without a named part."""
         part = location.hand_part if isinstance(location, BodySite) else None
-        if part is None or not _is_hand_site(part) or part.site == _PALM.site:
+        if part is None or not is_hand_site(part) or part.site == _PALM.site:
             return np.zeros(3)
-        return self.offset(arm, hand, _PALM) - self.offset(arm, hand, replace(_normalized(part), proximity=_PALM.proximity))
+        return self.offset(arm, hand, _PALM) - self.offset(arm, hand, replace(normalized(part), proximity=_PALM.proximity))
 
     def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
         return hand.location - self.offset(arm, hand, _PALM)
@@ -637,7 +622,7 @@ class _SignCompiler:
         if displacement is None or displacement.direction is None:
             return None
         size = displacement.size if displacement.size in SIZE_FRACTIONS else "small"
-        vector = _unit(displacement.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
+        vector = unit(displacement.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
         shifts = {self.dominant: vector}
         if self.symmetric and self.other in self.hands:
             shifts[self.other] = mirror_directions(vector, self.path_mirror)
@@ -664,7 +649,7 @@ class _SignCompiler:
         for arm, change in step.changes.items():
             before = self.hands[arm]
             after = change.hand
-            path = change.path if change.path is not None else _line(before.location, after.location)
+            path = change.path if change.path is not None else line(before.location, after.location)
             rotations = change.rotations if change.rotations is not None else np.array([self.rotation(arm, before), self.rotation(arm, after)])
             shapes = change.shapes if change.shapes is not None else np.array([before.params, after.params])
             self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
@@ -721,7 +706,7 @@ class _SignCompiler:
         symmetry both hands are active, so a constellation they change into (``hamreplace``
         … ``hampinkyside hamplus hampinkyside``) brings them together in front of the
         body's midline, not the dominant hand across to wherever the other one is."""
-        return arm == self.dominant and self.symmetric and self.other in self.hands and _on_other_hand(segment.end)
+        return arm == self.dominant and self.symmetric and self.other in self.hands and on_other_hand(segment.end)
 
     def met_halfway(self, arm: str, change: _Change) -> dict[str, _Change]:
         """The dominant hand's ``change`` onto the other hand, both hands moved sideways
@@ -733,7 +718,7 @@ class _SignCompiler:
         shift = np.array([-0.5 * (change.hand.location[0] + other.location[0]), 0.0, 0.0])
         path = change.path + arc_fractions(change.path)[:, None] * shift
         moved = other.at(other.location + shift)
-        return {arm: replace(change, hand=change.hand.at(path[-1]), path=path), self.other: _Change(moved, path=_line(other.location, moved.location))}
+        return {arm: replace(change, hand=change.hand.at(path[-1]), path=path), self.other: _Change(moved, path=line(other.location, moved.location))}
 
     def shortest(self, changes: Mapping[str, _Change], manner: str) -> float:
         """The least time (s) the hands' paths need within the speed budget of ``manner``
@@ -748,20 +733,22 @@ class _SignCompiler:
         contact = any(m.startswith("contact=") and m != "contact=close" for m in segment.modifiers)
         if segment.end is not None:
             end = self.locate(arm, segment.end, hand, None, here=start) + self.part_to_palm(arm, hand, segment.end)
-            contact = contact or _touches(segment.end)
+            contact = contact or touches(segment.end)
         elif segment.direction is not None:
-            end = start + _unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
+            end = start + unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
         else:
             end = start
         kind = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}[segment.kind]
         if segment.kind is SegmentKind.CIRCLE:
-            points = self.circle(start, segment)
+            points = circle(start, segment, self.arm_length)
         elif segment.kind is SegmentKind.CURVE and np.linalg.norm(end - start) > _SAME:
-            points = self.curve(start, end, segment)
+            points, note = curve(start, end, segment)
+            if note:
+                self.note(note)
         else:
             if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
-            points = _line(start, end)
+            points = line(start, end)
         if manner == "sudden_stop":
             profile = "sudden_stop"
         elif segment.kind is SegmentKind.CIRCLE:
@@ -771,47 +758,6 @@ class _SignCompiler:
         else:
             profile = manner
         return _Change(hand.at(points[-1]), path=points), kind, profile
-
-    def curve(self, start: np.ndarray, end: np.ndarray, segment: Segment) -> np.ndarray:
-        chord = end - start
-        normal = None if segment.normal is None else np.asarray(segment.normal.vector, dtype=float)
-        if segment.shape == "wavy":
-            return wavy(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), WAVES, normal)
-        if segment.shape == "zigzag":
-            return zigzag(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), ZIGS, normal)
-        letter = (segment.shape or "arcu").removeprefix("arc")
-        bulge = np.asarray(AXES.get(letter, AXES["u"]), dtype=float)
-        across = bulge - (bulge @ chord) / (chord @ chord) * chord
-        if np.linalg.norm(across) < 1e-6:
-            self.note(f"arc {segment.shape!r} bulges along its own chord; bulging in the default plane")
-            plane = default_normal(chord)
-        else:
-            plane = np.cross(chord, across)  # LeftC bulges toward plane × chord = across
-        return curve_breakpoints(start, end, plane, "LeftC", ARC_EXTENT).points
-
-    def circle(self, start: np.ndarray, segment: Segment) -> np.ndarray:
-        """A circle (or ellipse, or arc between clock positions) starting at ``start``."""
-        stirring = segment.shape in ("stircw", "stirccw")
-        if segment.normal is not None:
-            axis = _unit(segment.normal.vector)
-        else:
-            axis = np.array([0.0, -1.0 if segment.shape == "stircw" else 1.0, 0.0]) if stirring else np.array([0.0, 0.0, 1.0])
-        size = "small" if stirring else (segment.size if segment.size in CIRCLE_FRACTIONS else "normal")
-        radius = CIRCLE_FRACTIONS[size] * self.arm_length
-        modifiers = dict(m.split("=", 1) for m in segment.modifiers if "=" in m)
-        e1, e2 = _circle_axes(axis)
-        begin = _clock_angle(modifiers.get("start"), axis, e1, e2, default=np.pi)
-        sweep = 2.0 * np.pi
-        if modifiers.get("end") not in (None, "full"):
-            finish = _clock_angle(modifiers["end"], axis, e1, e2, default=begin)
-            sweep = (finish - begin) % (2.0 * np.pi) or 2.0 * np.pi
-        ellipse = modifiers.get("ellipse")
-        semi = (radius, radius * 0.55) if ellipse else (radius, radius)
-        major = {"h": AXES["l"], "v": AXES["u"], "ur": (-0.7071, 0.7071, 0.0), "ul": (0.7071, 0.7071, 0.0)}.get(ellipse or "", e1)
-        points = ellipse_breakpoints(np.zeros(3), semi, axis, None if ellipse is None else major, begin, sweep, _CIRCLE_POINTS)
-        if ellipse is None:
-            points = ellipse_breakpoints(np.zeros(3), semi, axis, e1, begin, sweep, _CIRCLE_POINTS)
-        return points - points[0] + start
 
     def follower_path(self, arm: str, hand: _Hand, lead: _Change, lead_hand: _Hand) -> _Change:
         """The non-dominant hand's path under symmetry: the dominant's displacements
@@ -1032,86 +978,20 @@ def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
 
 
 #: The sample numbers of a straight path as :func:`numpy.linspace` counts them, a column.
-_SAMPLES = np.arange(_PATH_POINTS, dtype=float).reshape(-1, 1)
 
 
-def _line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
-    """``np.linspace(start, end, _PATH_POINTS)`` for points ``(3,)``, with numpy's
-    arithmetic (its step, its care for zero steps, the end placed exactly) and without its
-    overhead: a collection of signs draws thousands of straight paths."""
-    delta = end - start
-    step = delta / (_PATH_POINTS - 1)
-    points = (_SAMPLES / (_PATH_POINTS - 1)) * delta if np.any(step == 0) else _SAMPLES * step
-    points += start
-    points[-1] = end
-    return points
 
 
-def _unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:
-    v = np.asarray(vector, dtype=float)
-    norm = float(np.linalg.norm(v))
-    if norm < 1e-9:
-        raise ValueError("direction of zero length")
-    return v / norm
 
 
-def _circle_axes(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """In-plane axes: up (forward for a vertical axis) projected, and axis × e1."""
-    up, forward = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
-    reference = up if abs(axis @ up) <= abs(axis @ forward) else forward
-    e1 = reference - (reference @ axis) * axis
-    e1 /= np.linalg.norm(e1)
-    return e1, np.cross(axis, e1)
 
 
-def _clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.ndarray, default: float) -> float:
-    """Angle on the circle of a clock position (direction letters from the centre)."""
-    if not letters or any(letter not in AXES for letter in letters):
-        return default
-    direction = np.sum([AXES[letter] for letter in letters], axis=0)
-    direction = direction - (direction @ axis) * axis
-    if np.linalg.norm(direction) < 1e-9:
-        return default
-    # the hand starts at that clock position: the angle of the point from the centre
-    return float(np.arctan2(direction @ e2, direction @ e1))
 
 
-@lru_cache(maxsize=4096)
-def _normalized(site: BodySite) -> BodySite:
-    name = site.site.split(":")[0]
-    name = SITE_ALIASES.get(name, name)
-    proximity = PROXIMITY_ALIASES.get(site.proximity or "", site.proximity)
-    return replace(site, site=name, proximity=proximity)
 
 
-def _on_other_hand(location: Location | None) -> bool:
-    if isinstance(location, BetweenLocation):
-        return _on_other_hand(location.first) or _on_other_hand(location.second)
-    if not isinstance(location, BodySite):
-        return False
-    return _is_hand_site(_normalized(location))
 
 
-def _leaf_location(leaf: Static | Dynamic) -> Location | None:
-    """The location a HandLocation leaf moves to, if it names one."""
-    if leaf.slot != "HandLocation":
-        return None
-    if isinstance(leaf, Static):
-        return leaf.value if isinstance(leaf.value, (BodySite, BetweenLocation)) else None
-    return next((s.end for s in leaf.segments if isinstance(s.end, (BodySite, BetweenLocation))), None)
 
 
-def _is_hand_site(site: BodySite) -> bool:
-    return site.site in ARM_SITES or site.site in FINGER_SITES or site.site == "thumb"
 
-
-def _hand_site(location: Location | None, contact: str | None) -> BodySite:
-    """A constellation's site of one hand (the palm when none is named), at the contact."""
-    proximity = {"touch": "touch", "close": "close", "interlock": "touch", "cross": "touch"}.get(contact or "", "close")
-    if isinstance(location, BodySite):
-        return replace(_normalized(location), proximity=proximity)
-    return BodySite("palm", proximity=proximity)
-
-
-def _touches(location: Location) -> bool:
-    return isinstance(location, BodySite) and location.proximity in ("touch", "interlock", "cross")

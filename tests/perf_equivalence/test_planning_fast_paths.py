@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from motor.body.avatar import ARMS, load_avatar
-from motor.signing import planning
+from motor.signing import path_shapes, planning
 from motor.signing.lmp import stopping_length
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
@@ -159,4 +159,4 @@ LINE_CASES = {
 @pytest.mark.parametrize("case", LINE_CASES)
 def test_a_straight_path_is_numpys_linspace(case):
     start, end = (np.array(point) for point in LINE_CASES[case])
-    assert planning._line(start, end).tobytes() == np.linspace(start, end, planning._PATH_POINTS).tobytes()
+    assert path_shapes.line(start, end).tobytes() == np.linspace(start, end, path_shapes.PATH_POINTS).tobytes()

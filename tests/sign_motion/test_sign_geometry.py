@@ -7,7 +7,8 @@ import pytest
 from sign_helpers import sign_from
 
 from motor.body.kinematics import forward_kinematics
-from motor.signing.planning import INITIAL_HOLD, SIZE_FRACTIONS, plan_sign
+from motor.signing.path_shapes import SIZE_FRACTIONS
+from motor.signing.planning import INITIAL_HOLD, plan_sign
 from motor.signing.sequence import check_motion, realize_signs
 from motor.trajectory.biocontrol import movement_duration
 
