@@ -98,22 +98,17 @@ def test_volumes_that_stay_with_the_hips_are_measured_where_they_stand(
                 circle.wrist,
             )
         ]
-        (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
-        upper = capsule_depth(
-            joints[0] + u0 * (joints[1] - joints[0]),
-            joints[0] + u1 * (joints[1] - joints[0]),
-            capsules.upper_radius,
-            shape,
-        )[0]
-        fore = capsule_depth(
-            joints[1] + f0 * (joints[2] - joints[1]),
-            joints[1] + f1 * (joints[2] - joints[1]),
-            capsules.fore_radius,
-            shape,
-        )[0]
+        upper = _depth(joints[0], joints[1], capsules.upper_ends, capsules.upper_radius, shape)
+        fore = _depth(joints[1], joints[2], capsules.fore_ends, capsules.fore_radius, shape)
         expected = np.maximum(np.maximum(upper, fore), 0.0)
         shallow = expected < SHALLOW
         assert measured[shallow, k] == pytest.approx(expected[shallow], abs=1e-3)
+
+
+def _depth(start, end, fractions, radius, shape):
+    """The audit's depth in ``shape`` of the capsule over ``fractions`` of ``start``–``end``."""
+    a, b = (start + f * (end - start) for f in fractions)
+    return capsule_depth(a, b, radius, shape)[0]
 
 
 def _chest_table(avatar, side: str) -> np.ndarray:
