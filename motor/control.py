@@ -672,10 +672,12 @@ class MotorControl:
             for arm, (wrists, hands) in (("left", (left, left_hands)), ("right", (right, right_hands)))
         }
 
-    def _arm_inputs(self, times: np.ndarray) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    def _arm_inputs(self, times: np.ndarray) -> tuple[dict[str, tuple[np.ndarray, np.ndarray]], np.ndarray | None]:
         """Per arm, the wrist positions and hand rotations the swivel's grid is solved for
-        at sorted ``times``, in the trunk's frame (:meth:`_kept_apart`)."""
-        return self._kept_apart(self._channel_inputs(times)[0])
+        at sorted ``times``, in the trunk's frame (:meth:`_kept_apart`), and the trunk's
+        yaw there (None where it never turns)."""
+        values, yaw = self._channel_inputs(times)
+        return self._kept_apart(values), _turning(yaw)
 
     def _forget_before(self, horizon: float) -> None:
         """Drop LMPs that lost control before ``horizon`` (module docstring)."""
@@ -714,10 +716,9 @@ class MotorControl:
         first, last = self._grid_span(times)
         plan = self._grid.plan(first, last)
         if plan is not None:
-            values, yaw = self._channel_inputs(self._grid.times(plan[0], plan[1]))
-            self._grid.solve(*plan, self._kept_apart(values), _turning(yaw))
+            self._grid.solve(*plan, *self._arm_inputs(self._grid.times(plan[0], plan[1])))
         swivel = self._grid.sample(arm, times, first, last)[0]
-        return swivel[:, 0] + swivel_of(swivel[:, 1:], *swivel_zeros(self.avatar, AVATAR_SIDE[arm], self._arm_inputs(times)[arm][0]))
+        return swivel[:, 0] + swivel_of(swivel[:, 1:], *swivel_zeros(self.avatar, AVATAR_SIDE[arm], self._arm_inputs(times)[0][arm][0]))
 
     @staticmethod
     def _grid_span(times: np.ndarray) -> tuple[int, int]:

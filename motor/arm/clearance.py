@@ -124,6 +124,13 @@ def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
     return tuple(obstacles)
 
 
+@functools.lru_cache(maxsize=32)
+def _turning_and_staying(avatar: Avatar) -> tuple[tuple[Obstacle, ...], tuple[Obstacle, ...]]:
+    """The body's obstacles that turn with the trunk, and those that stay with the hips."""
+    obstacles = body_obstacles(avatar)
+    return tuple(o for o in obstacles if o.turns), tuple(o for o in obstacles if not o.turns)
+
+
 def _turning_joints(avatar: Avatar) -> frozenset[str]:
     """The joints the trunk's turn carries: the first turning spine joint and every joint beyond it."""
     first = avatar.joint_index(TURN_JOINTS[0])
@@ -190,8 +197,7 @@ def clearance(
     if body and hips_frame is None:
         _body_clearance(capsules, body_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth)
     elif body:
-        for turns, frame in ((True, body_frame), (False, hips_frame)):
-            obstacles = tuple(o for o in body_obstacles(avatar) if o.turns == turns)
+        for obstacles, frame in zip(_turning_and_staying(avatar), (body_frame, hips_frame)):
             if obstacles:
                 _body_clearance(capsules, obstacles, shoulder, wrist, elbow, frame, cost, depth)
     if other is not None:
