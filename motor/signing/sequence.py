@@ -30,6 +30,7 @@ from functools import cache
 import numpy as np
 
 from motor import quaternion as quat
+from motor.arm.hand_turn import takes_long_way, turn_way
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
@@ -54,6 +55,9 @@ REST_TAIL = 0.3
 #: which are checked against the torso and the arm's reach.
 TRANSITION_SPACING = 0.03
 MIN_TRANSITION_POINTS = 4
+#: Interior keys of a hand turning the long way round (:mod:`motor.arm.hand_turn`) where
+#: its wrist gives no way points to turn along: each step then stays below half a turn.
+LONG_WAY_KEYS = 3
 #: Channels of one arm that a sign drives.
 CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 
@@ -124,7 +128,7 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         lmps = [
             SignChannelLMP(
                 (arm, channel), pegs, targets[arm].channel(channel), sign[(arm, channel)], manner,
-                *_transition_keys(channel, here[arm], targets[arm], way[arm], traced[arm]),
+                *_transition_keys(avatar, arm, channel, here[arm], targets[arm], way[arm], traced[arm]),
             )
             for arm in ARMS for channel in CHANNELS
         ]  # fmt: skip
@@ -139,7 +143,7 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
     control.activate(SignProgram("rest", tuple(
         SignChannelLMP(
             (arm, channel), retract, rest[arm].channel(channel), (), "lax",
-            *_transition_keys(channel, last[arm], rest[arm], ways[-1][arm], traced[arm]),
+            *_transition_keys(avatar, arm, channel, last[arm], rest[arm], ways[-1][arm], traced[arm]),
         )
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
@@ -216,8 +220,11 @@ def _transition_ways(
         fractions = np.concatenate([_even_fractions(int(count)) for count in counts])
         leg = np.repeat(np.arange(len(legs)), counts)
         points = starts[leg] + fractions[:, None] * steps[leg]
-        # the slerp between the leg's two hand rotations (rotations_along of two keys)
-        turns = quat.slerp(np.array([before[arm].rotation for before, _ in legs])[leg], np.array([after[arm].rotation for _, after in legs])[leg], np.clip(fractions, 0.0, 1.0))
+        # the hand's turn between the leg's two rotations (the way _transition_keys turns it)
+        turns = np.concatenate([
+            turn_way(avatar, AVATAR_SIDE[arm], before[arm].rotation, after[arm].rotation, _even_fractions(int(count)))
+            for (before, after), count in zip(legs, counts)
+        ])  # fmt: skip
         split = np.cumsum(counts)[:-1]
         cleared, _ = clear_paths(avatar, arm, np.split(points, split), np.split(turns, split), keep_ends=True, across=False)
         for way, path in zip(ways, cleared):
@@ -226,23 +233,28 @@ def _transition_ways(
 
 
 def _transition_keys(
-    channel: str, before: HandPose, after: HandPose, way: np.ndarray, traced: TracedChain
+    avatar: Avatar, arm: str, channel: str, before: HandPose, after: HandPose, way: np.ndarray, traced: TracedChain
 ) -> tuple[np.ndarray | None, TracedChain | None, np.ndarray | None]:
     """The ``via``, ``traced`` and ``via_fractions`` of one channel's transition: the wrist
     passes its way points (along its traced chain); the hand turns with it, through the
-    turns its way was kept clear of the torso with (:func:`_transition_ways`: the slerp
-    between the two postures at the way points' even fractions), each reached when the
-    wrist reaches its way point (:func:`_way_fractions`); a way whose wrist stops on the
-    way (a reversal) or whose points the trace merged, and the hand shape, change evenly."""
+    turns its way was kept clear of the torso with (:func:`_transition_ways`: the hand's
+    turn between the two postures, :func:`motor.arm.hand_turn.turn_way`, at the way
+    points' even fractions), each reached when the wrist reaches its way point
+    (:func:`_way_fractions`); a way whose wrist stops on the way (a reversal) or whose
+    points the trace merged, and the hand shape, change evenly — a hand turning the long
+    way round then through :data:`LONG_WAY_KEYS` keys, as a slerp between the two ends
+    would take the short way."""
     if channel == "wrist_position":
         return way, traced, None
-    if channel != "hand_rotation" or way.shape[0] == 0:
+    if channel != "hand_rotation":
         return None, None, None
-    fractions = _way_fractions(traced, way.shape[0])
+    side = AVATAR_SIDE[arm]
+    fractions = None if way.shape[0] == 0 else _way_fractions(traced, way.shape[0])
     if fractions is None:
-        return None, None, None
-    turns = quat.slerp(before.rotation, after.rotation, _even_fractions(way.shape[0] + 2)[1:-1])
-    return turns, None, fractions
+        if not takes_long_way(avatar, side, before.rotation, after.rotation):
+            return None, None, None
+        return turn_way(avatar, side, before.rotation, after.rotation, _even_fractions(LONG_WAY_KEYS + 2)[1:-1]), None, None
+    return turn_way(avatar, side, before.rotation, after.rotation, _even_fractions(way.shape[0] + 2)[1:-1]), None, fractions
 
 
 def _way_fractions(traced: TracedChain, count: int) -> np.ndarray | None:

@@ -40,6 +40,10 @@ SHARED = REPO.parent / "shared"
 FPS = 60.0
 #: Signs sampled per corpus, evenly through it.
 SIGNS_PER_CORPUS = 12
+#: Signs measured besides the sample, by corpus and gloss, each for the case it pins.
+NAMED_SIGNS: dict[tuple[str, str], str] = {
+    ("Indian_SL.sigml", "ignore"): "the right hand goes from fingers up to rest: turned by a slerp, its fingers swept back into the hip",
+}
 #: Largest depth (m) of an arm segment in the torso or in the other arm.
 DEPTH_LIMIT = 0.01
 #: Largest overlap (m) of two hands' palms (the wrists are kept apart as the arms turn the
@@ -78,6 +82,9 @@ def _sign_cases() -> list[tuple[str, bytes, str]]:
         elements = [m.group(0) for m in _SIGN.finditer((folder / corpus).read_bytes())]
         step = len(elements) // SIGNS_PER_CORPUS
         cases += [(f"sign_{corpus[:3]}_{i}", element, corpus) for i, element in enumerate(elements[::step][:SIGNS_PER_CORPUS])]
+        for named_corpus, gloss in NAMED_SIGNS:
+            if named_corpus == corpus:
+                cases += [(f"sign_{corpus[:3]}_{gloss}", e, corpus) for e in elements if f'gloss="{gloss}"'.encode() in e[:200]]
     return cases
 
 
