@@ -76,12 +76,12 @@ from motor.program.gesture import (
     Planner,
     rest_handshape,
     retraction_duration,
+    retraction_lmp,
 )
 from motor.program.lmp import (
     LMP,
     ChannelState,
     ChannelTimeline,
-    RetractionLMP,
     TimePegs,
 )
 from motor.signing.behavior import SignBehaviorPlanner
@@ -387,8 +387,7 @@ class MotorControl:
             pegs = TimePegs.movement(at_time, at_time + retraction_duration(float(np.linalg.norm(wrist - rest.wrist))))
             for channel in channels:
                 kept = [lmp for lmp in self._lmps[channel] if lmp.pegs.start < at_time]
-                target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(channel[1], rest_handshape())
-                self._lmps[channel] = [*kept, RetractionLMP(channel, pegs, np.asarray(target, dtype=float))]
+                self._lmps[channel] = [*kept, retraction_lmp(self.avatar, channel, pegs, "rest")]
                 self._timelines.pop(channel, None)
                 self._pending[channel].clear()
                 self._changed(channel, at_time)

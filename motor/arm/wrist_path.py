@@ -12,18 +12,25 @@ path (:func:`motor.trajectory.spline.phases`) is sampled every :data:`SPACING` m
 its curve; if any sample has to be moved, the phase is replaced by the samples, placed and
 their corners rounded (:data:`ROUNDING`), as its new breakpoints (timed evenly by arc
 length between the phase's own start and end times, which are all the power law keeps of
-them). Holds and reversals stay where they
-were (a reversal next to a replaced phase as a hold of :data:`STOP`). Positions are
-metres in the avatar frame, times seconds.
+them). Holds and reversals stay where they were (a reversal next to a replaced phase as a
+hold of :data:`STOP`). Positions are metres in the avatar frame, times seconds.
+
+The curve between two breakpoints is not kept from crowding the arm (each breakpoint is,
+:func:`uncrowded_placement`): bowed as preparations and retractions are
+(:mod:`motor.arm.bowed_way`), then rounded, ``41_tanedila_welle``'s stroke went from 1.3
+to 1.15 cm into the chest but its wrist's velocity stepped by 0.5 m/s where the bowed
+phase met its hold, and unrounded it broke the acceleration budget (the stroke took 2 s
+longer).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
+
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
-from dataclasses import dataclass, replace
-
+from motor.arm.bowed_way import CROWDING_TOLERANCE
 from motor.arm.chain import arm_chain, exact_reach
 from motor.arm.ik import solve_arm
 from motor.body.avatar import Avatar
@@ -40,9 +47,6 @@ STOP = 1e-3
 #: How far (m) the IK may fall short of a point before it is moved into reach (rounding
 #: only: a point left just out of reach would make the wrist stop short and jerk).
 REACH_TOLERANCE = 1e-6
-#: How deep (m) the arm may enter the body to reach a point before the point is moved
-#: forward (:func:`uncrowded`).
-CROWDING_TOLERANCE = 0.005
 #: Rounds of alternately clearing the torso and moving into reach (usually one).
 _ROUNDS = 4
 #: Rounds of moving points forward out of the arm's way (:func:`uncrowded`).

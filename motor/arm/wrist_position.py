@@ -6,7 +6,8 @@ which never exceeds :data:`motor.trajectory.spline.MAX_WRIST_SPEED`): it starts 
 rest and follows the power law.
 At activation the LMP takes the channel's value and velocity and prepends the
 *preparation*: the minimum-jerk movement from that state to rest at the first breakpoint
-(:func:`motor.trajectory.spline.approach`).
+(:func:`motor.trajectory.spline.approach`), bowed around the body where its straight way
+would crowd the arm (:mod:`motor.arm.bowed_way`).
 
 **The stroke onset is visible** (Kendon's pre-stroke hold, as Greta does). The preparation
 always arrives at rest, by the ``ready`` peg — a speed minimum of zero at the
@@ -32,6 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from motor.arm.bowed_way import SAMPLES, bowed_trajectory, find_bow
+from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.program.lmp import Channel, ChannelState, TimePegs, check_activation
 from motor.trajectory.speed_budget import CEILING, budget
 from motor.trajectory.spline import (
@@ -100,6 +103,8 @@ class WristPositionLMP:
             carried into the realization.
         stroke: the stroke's trajectory through the breakpoints at their times, when the
             planner has formed it already; otherwise it is formed here.
+        avatar: the body whose arm this is: the preparation bows around it where its
+            straight way would crowd the arm (:mod:`motor.arm.bowed_way`); None: straight.
     """
 
     side: str
@@ -108,6 +113,7 @@ class WristPositionLMP:
     breakpoint_times: np.ndarray | None = None
     warnings: tuple[str, ...] = ()
     stroke: WristTrajectory | None = None
+    avatar: Avatar | None = None
 
     def __post_init__(self) -> None:
         points = np.atleast_2d(np.asarray(self.breakpoints, dtype=float))
@@ -160,13 +166,21 @@ class WristPositionLMP:
                     f"{CEILING.peak_speed} m/s or {CEILING.peak_acceleration} m/s²; the stroke starts {arrival - onset:.3f} s late"
                 )
                 preparation = approach(here, velocity, begin, first, arrival)
-            pieces.append(preparation)
+            pieces.append(self._bowed(preparation))
         stroke = self._stroke_from(max(arrival, onset), max(0.0, arrival - onset))
         still_from = pieces[-1].end if pieces else state.time
         if stroke.start > still_from:
             pieces.append(held(first, still_from, stroke.start))
         pieces.append(stroke)
         return SplineRealization(joined(pieces).with_warnings(notes))
+
+    def _bowed(self, preparation: WristTrajectory) -> WristTrajectory:
+        """The preparation bowed around the body where it would crowd the arm."""
+        if self.avatar is None:
+            return preparation
+        way = preparation.position(np.linspace(preparation.start, preparation.end, SAMPLES))
+        found = find_bow(self.avatar, AVATAR_SIDE[self.side], way)
+        return preparation if found is None else bowed_trajectory(preparation, found)
 
     def _stroke_from(self, onset: float, late: float) -> WristTrajectory:
         """The stroke from rest at ``onset`` (late by ``late`` seconds when the preparation

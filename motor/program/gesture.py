@@ -26,6 +26,7 @@ import numpy as np
 
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.wrist_path import followable, uncrowded_placement
+from motor.arm.wrist_retraction import WristRetractionLMP
 from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
@@ -420,7 +421,7 @@ class Planner:
         held = replace(pegs, end=pegs.relax)
         lmps: list[LMP] = []
         if path is not None:
-            lmps.append(WristPositionLMP(arm, held, path.points, path.times, stroke=path.trajectory))
+            lmps.append(WristPositionLMP(arm, held, path.points, path.times, stroke=path.trajectory, avatar=self.avatar))
         shapes = stroke.tracks.get((arm, "shape"), ())
         if shapes:
             times, values = self.prepared(timed_values(shapes), pegs.ready)
@@ -477,9 +478,13 @@ class Planner:
 
 
 def retraction_lmp(avatar: Avatar, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
-    """The LMP taking ``channel`` back to the avatar's ``posture`` (``rest`` or ``interim_rest``)."""
+    """The LMP taking ``channel`` back to the avatar's ``posture`` (``rest`` or
+    ``interim_rest``); the wrist's way bows around the body where the straight way would
+    crowd the arm (:class:`motor.arm.wrist_retraction.WristRetractionLMP`)."""
     arm, name = channel
     rest = avatar.postures[posture][AVATAR_SIDE[arm]]
+    if name == "wrist_position":
+        return WristRetractionLMP(channel, pegs, np.asarray(rest.wrist, dtype=float), avatar=avatar)
     target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
     return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
 
