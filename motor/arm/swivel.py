@@ -39,7 +39,7 @@ class SwivelLMP(VectorKeyframeLMP):
 #: grid points (per radian squared), the largest change per grid point in candidate
 #: steps, and how many grid points ahead each choice looks.
 SMOOTHNESS = 2.0
-MAX_STEP = 2
+MAX_STEP = 3
 HORIZON = 8
 DISCOUNT = 0.7
 
