@@ -115,10 +115,11 @@ def _spares_the_arm(avatar: Avatar, side: str, way: np.ndarray, found: Bow) -> b
 
 def bowed_trajectory(trajectory: WristTrajectory, found: Bow) -> WristTrajectory:
     """A one-piece wrist trajectory (a preparation) with ``found``'s bow added over its
-    time: exactly, as knots where the bow starts and stops being whole (between them and
-    the ends the bow is a quintic in time, as the piece is)."""
+    time: exactly, as knots at the bow's ramps' edges (between two of them the bow is a
+    quintic in time, or constant, as the piece is a quintic; at each edge its slope and
+    curvature vanish, so the knots keep the piece's velocity and acceleration)."""
     start, end = trajectory.start, trajectory.end
-    fractions = np.unique([0.0, found.window[0][1], found.window[1][0], 1.0])
+    fractions = np.unique(np.clip([0.0, *found.window[0], *found.window[1], 1.0], 0.0, 1.0))
     times = start + fractions * (end - start)
     positions = trajectory.position(times) + bow(fractions, found.window)[0][:, None] * found.displacement
     return WristTrajectory(times, positions, trajectory.velocity(times), trajectory.acceleration(times), trajectory.warnings)
