@@ -38,6 +38,14 @@ def turn_way(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray, f
     return _along_arc(before, axis, turn, np.asarray(fractions, dtype=float))
 
 
+def turn_vector(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """The turn of :func:`turn_way` as a rotation vector ``(3,)`` (radians) in the hand's
+    own frame at ``before``: ``before · exp(s · vector)`` runs along the arc of least cost
+    as ``s`` goes from 0 to 1."""
+    axis, turn = _arc(avatar, side, before, after)
+    return quat.rotate(quat.conjugate(np.asarray(before, dtype=float)), axis) * turn
+
+
 def takes_long_way(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray) -> bool:
     """Whether :func:`turn_way` turns the hand the long way round (more than half a turn),
     which a slerp between the two rotations would not."""

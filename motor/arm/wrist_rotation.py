@@ -2,6 +2,8 @@
 
 Keys are scalar-last unit quaternions in the avatar frame; the targets come from the
 extended-finger direction and palm orientation (:mod:`motor.arm.hand_orientation`).
+The hand's retraction to rest (:class:`HandRetractionLMP`) turns the way of least cost
+(:mod:`motor.arm.hand_turn`), which a slerp need not.
 """
 
 from __future__ import annotations
@@ -10,14 +12,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from motor.arm.hand_turn import turn_vector
+from motor.body.avatar import AVATAR_SIDE, Avatar
 from motor.program.lmp import (
     Channel,
     ChannelState,
+    RetractionLMP,
     RotationKeyframes,
     TimePegs,
     as_profile,
     key_times,
     rotation_keyframes,
+    rotation_turn,
 )
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
 
@@ -48,3 +54,20 @@ class WristRotationLMP:
     def activate(self, state: ChannelState) -> RotationKeyframes:
         return rotation_keyframes(self.channel, state, self.keys, self.key_times, self.time_profile)
 
+
+
+@dataclass(frozen=True, eq=False)
+class HandRetractionLMP(RetractionLMP):
+    """The hand's orientation (``(arm, "hand_rotation")``) back to rest, turning the way of
+    least cost for the hand of ``avatar`` (None: a slerp's way): fingers raised and
+    lowered to rest turn about half a turn either way, and a slerp may sweep them back
+    toward the body."""
+
+    avatar: Avatar | None = field(default=None, kw_only=True)
+
+    def activate(self, state: ChannelState) -> RotationKeyframes:
+        rest = np.asarray(self.rest, dtype=float)
+        if self.avatar is None:
+            return rotation_keyframes(self.channel, state, rest[None], np.array([self.pegs.ready]), self.time_profile)
+        step = turn_vector(self.avatar, AVATAR_SIDE[self.channel[0]], np.asarray(state.value, dtype=float), rest)
+        return rotation_turn(self.channel, state, rest, self.pegs.ready, self.time_profile, step)

@@ -28,7 +28,7 @@ from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.wrist_path import followable, uncrowded_placement
 from motor.arm.wrist_retraction import WristRetractionLMP
 from motor.arm.wrist_position import WristPositionLMP, preparation_timing
-from motor.arm.wrist_rotation import WristRotationLMP
+from motor.arm.wrist_rotation import HandRetractionLMP, WristRotationLMP
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.hand.lmp import HandShapeLMP
 from motor.hand.shape import handshape_params
@@ -480,11 +480,14 @@ class Planner:
 def retraction_lmp(avatar: Avatar, channel: tuple[str, str], pegs: TimePegs, posture: str) -> RetractionLMP:
     """The LMP taking ``channel`` back to the avatar's ``posture`` (``rest`` or
     ``interim_rest``); the wrist's way bows around the body where the straight way would
-    crowd the arm (:class:`motor.arm.wrist_retraction.WristRetractionLMP`)."""
+    crowd the arm (:class:`motor.arm.wrist_retraction.WristRetractionLMP`), and the hand
+    turns the way of least cost (:class:`motor.arm.wrist_rotation.HandRetractionLMP`)."""
     arm, name = channel
     rest = avatar.postures[posture][AVATAR_SIDE[arm]]
     if name == "wrist_position":
         return WristRetractionLMP(channel, pegs, np.asarray(rest.wrist, dtype=float), avatar=avatar)
+    if name == "hand_rotation":
+        return HandRetractionLMP(channel, pegs, np.asarray(rest.hand_rotation, dtype=float), avatar=avatar)
     target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
     return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
 

@@ -224,6 +224,15 @@ def rotation_keyframes(
     return RotationKeyframes(knots, rotations, np.asarray(state.velocity, dtype=float), time_profile)
 
 
+def rotation_turn(channel: Channel, state: ChannelState, target: np.ndarray, time: float, time_profile: TimeProfile, step: np.ndarray) -> RotationKeyframes:
+    """Activation of one turn from the state to ``target`` by ``time``, along the local
+    rotation vector ``step`` ``(3,)`` (the state's rotation times ``exp(step)`` is the
+    target up to sign): a slerp's turn, or the long way round."""
+    turned = rotation_keyframes(channel, state, np.asarray(target, dtype=float)[None], np.array([time]), time_profile)
+    object.__setattr__(turned, "_steps", np.asarray(step, dtype=float)[None])
+    return turned
+
+
 def key_times(pegs: TimePegs, count: int, given: np.ndarray | Sequence[float] | None, name: str) -> np.ndarray:
     """Key times: given, or the first key at ``ready`` and the rest spread over the stroke."""
     if given is None:

@@ -6,6 +6,7 @@ of rotations on both sides of both avatars.
 * A turn of less than :data:`NEAR_HALF` keeps the short arc (a slerp's).
 * A hand turned from the fingers up to the fingers down, whatever the palm does, keeps the
   fingers from pointing back toward the body on the way (the short arc may not).
+* A gesture's hand retraction to rest turns that way too.
 """
 
 from __future__ import annotations
@@ -16,7 +17,10 @@ import pytest
 from motor import quaternion as quat
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.hand_turn import takes_long_way, turn_way
+from motor.arm.wrist_rotation import HandRetractionLMP
 from motor.body.avatar import load_avatar
+from motor.program.lmp import ChannelState, RetractionLMP, TimePegs
+from motor.trajectory.biocontrol import minimum_jerk
 
 AVATARS = ("max", "makehuman")
 SIDES = ("l", "r")
@@ -97,3 +101,34 @@ def test_the_short_arc_would_point_the_fingers_back_in_some_of_these_turns(avata
                 raised, lowered = hand_rotations_from_vectors(avatar, side, np.array([[0.0, 1.0, 0.0], [0.0, -1.0, 0.0]]), np.array([up, down]))
                 backward.append(-quat.rotate(quat.slerp(raised, lowered, FRACTIONS), finger[side])[:, 2].min())
     assert sum(b > 0.3 for b in backward) >= 4
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_the_hand_retracts_to_rest_the_way_of_least_cost(avatar, side):
+    """A gesture's hand retraction (:class:`HandRetractionLMP`) runs along
+    :func:`turn_way` on its time profile and ends at rest; where the short arc is the way
+    of least cost it is the plain retraction's slerp."""
+    arm = "left" if side == "l" else "right"
+    rest = np.asarray(avatar.postures["rest"][side].hand_rotation, dtype=float)
+    pegs = TimePegs.movement(1.0, 1.8)
+    times = np.linspace(1.0, 1.8, 41)
+    raised = hand_rotations_from_vectors(avatar, side, np.array([[0.0, 1.0, 0.0]] * len(_PALMS)), np.array(list(_PALMS.values())))
+    befores, _ = _random_pairs(7, 20)
+    # rest turned 170° about horizontal axes: back to rest, one way sweeps the fingers back
+    axes = np.array([[np.cos(a), 0.0, np.sin(a)] for a in np.linspace(0.0, np.pi, 7)])
+    swung = quat.multiply(quat.from_axis_angle(np.concatenate([axes, axes]), np.repeat([np.radians(170.0), -np.radians(170.0)], 7)), rest[None])
+    long_ways = 0
+    for before in [*raised, *befores, *swung]:
+        state = ChannelState(before, np.zeros(3), 1.0)
+        turned = HandRetractionLMP((arm, "hand_rotation"), pegs, rest, avatar=avatar).activate(state).sample(times)
+        expected = turn_way(avatar, side, before, rest, minimum_jerk().fraction((times - 1.0) / 0.8))
+        assert np.max(_angle(turned, expected)) < 1e-6
+        assert _angle(turned[-1], rest) < 1e-6
+        if takes_long_way(avatar, side, before, rest):
+            long_ways += 1
+            continue
+        if _angle(before, rest) > np.pi - 1e-3:
+            continue  # a half turn: either way is the short one
+        plain = RetractionLMP((arm, "hand_rotation"), pegs, rest).activate(state).sample(times)
+        assert np.max(_angle(turned, plain)) < 1e-6
+    assert long_ways >= 1
