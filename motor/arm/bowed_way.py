@@ -7,9 +7,11 @@ swivel keeps the upper arm out of the chest (``41_tanedila_welle``'s left hand, 
 from beside the right cheek: 1.6 cm into the chest, whatever the swivel; taken back up
 there after a stroke that went lower: 1.3 cm). People bow the hand's way out instead.
 
-:func:`find_bow` looks at a way at :data:`SAMPLES` instants, its points kept out of the
-torso as the motor control keeps them (:func:`motor.body.collision.kept_out_of_torso`),
-at how deep the arm's least costly posture goes into the body there
+:func:`find_bow` looks at a way at :data:`SAMPLES` instants (first at every
+:data:`DETECTION_STRIDE`-th; at all of them only where those find it crowded), its points
+kept out of the torso as the motor control keeps them
+(:func:`motor.body.collision.kept_out_of_torso`), at how deep the arm's least costly
+posture goes into the body there
 (:func:`motor.arm.ik.solve_arm`'s ``penetration``, the measure
 :func:`motor.arm.wrist_path.uncrowded` places gesture locations with). Where it goes
 deeper than :data:`CROWDING_TOLERANCE` and than at either end (which no bow moves), the
@@ -47,6 +49,9 @@ CROWDING_TOLERANCE = 0.005
 #: as densely the chosen bow is checked.
 SAMPLES = 65
 CHECK_DENSITY = 4
+#: Every this many of the samples (17 of 65, ends included) are looked at first; the
+#: rest only where those find the way crowding the arm.
+DETECTION_STRIDE = 4
 #: Sizes of bow tried (m), smallest first.
 BOW_STEPS = np.arange(0.01, 0.121, 0.01)
 #: Least fraction of the way's time over which a bow grows to whole before the crowded
@@ -75,6 +80,11 @@ def find_bow(avatar: Avatar, side: str, way: np.ndarray) -> Bow | None:
     does not crowd the arm, is too short to bow, or no bow makes it less deep."""
     chord = way[-1] - way[0]
     if float(np.linalg.norm(chord)) < SHORTEST_WAY:
+        return None
+    # a first look at every DETECTION_STRIDE-th point: most ways do not crowd the arm, and
+    # each is looked at as it is activated, on the live path
+    glance = solve_arm(avatar, side, kept_out_of_torso(avatar, way[::DETECTION_STRIDE])).penetration
+    if not np.any(glance > max(CROWDING_TOLERANCE, float(glance[0]), float(glance[-1]))):
         return None
     depth = solve_arm(avatar, side, kept_out_of_torso(avatar, way)).penetration
     floor = max(CROWDING_TOLERANCE, float(depth[0]), float(depth[-1]))
