@@ -17,12 +17,7 @@ import numpy as np
 
 from motor.arm.bowed_way import SAMPLES, Bow, bow, find_bow
 from motor.body.avatar import AVATAR_SIDE, Avatar
-from motor.program.lmp import (
-    ChannelState,
-    RetractionLMP,
-    VectorKeyframeLMP,
-    VectorKeyframes,
-)
+from motor.program.lmp import ChannelState, RetractionLMP, VectorKeyframes
 
 
 @dataclass(frozen=True, eq=False)
@@ -33,7 +28,7 @@ class WristRetractionLMP(RetractionLMP):
     avatar: Avatar | None = field(default=None, kw_only=True)
 
     def activate(self, state: ChannelState) -> VectorKeyframes | BowedRetraction:
-        straight = VectorKeyframeLMP(self.channel, self.pegs, np.asarray(self.rest, dtype=float)[None], np.array([self.pegs.ready]), self.time_profile).activate(state)
+        straight = super().activate(state)
         if self.avatar is None:
             return straight
         start, rest = straight.values[0], straight.values[-1]

@@ -55,7 +55,6 @@ class WristRotationLMP:
         return rotation_keyframes(self.channel, state, self.keys, self.key_times, self.time_profile)
 
 
-
 @dataclass(frozen=True, eq=False)
 class HandRetractionLMP(RetractionLMP):
     """The hand's orientation (``(arm, "hand_rotation")``) back to rest, turning the way of
@@ -66,8 +65,8 @@ class HandRetractionLMP(RetractionLMP):
     avatar: Avatar | None = field(default=None, kw_only=True)
 
     def activate(self, state: ChannelState) -> RotationKeyframes:
-        rest = np.asarray(self.rest, dtype=float)
         if self.avatar is None:
-            return rotation_keyframes(self.channel, state, rest[None], np.array([self.pegs.ready]), self.time_profile)
+            return super().activate(state)
+        rest = np.asarray(self.rest, dtype=float)
         step = turn_vector(self.avatar, AVATAR_SIDE[self.channel[0]], np.asarray(state.value, dtype=float), rest)
         return rotation_turn(self.channel, state, rest, self.pegs.ready, self.time_profile, step)

@@ -488,8 +488,7 @@ def retraction_lmp(avatar: Avatar, channel: tuple[str, str], pegs: TimePegs, pos
         return WristRetractionLMP(channel, pegs, np.asarray(rest.wrist, dtype=float), avatar=avatar)
     if name == "hand_rotation":
         return HandRetractionLMP(channel, pegs, np.asarray(rest.hand_rotation, dtype=float), avatar=avatar)
-    target = {"wrist_position": rest.wrist, "hand_rotation": rest.hand_rotation}.get(name)
-    return RetractionLMP(channel, pegs, rest_handshape() if target is None else np.asarray(target, dtype=float))
+    return RetractionLMP(channel, pegs, rest_handshape())
 
 
 
