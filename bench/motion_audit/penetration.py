@@ -22,10 +22,12 @@ from scipy.spatial.transform import Rotation
 from bench.motion_audit.distance import Capsule, capsule_depth
 from bench.motion_audit.findings import Worst
 from bench.motion_audit.kinematics import Kinematics
-from bench.motion_audit.volumes import TORSO, Volume
+from bench.motion_audit.volumes import CHEST, TORSO, Volume
 
+#: Each group's pairs (fixed volume, moving capsule); pairs whose fixed volume the avatar
+#: lacks (a chest) are left out.
 PAIRS: dict[str, tuple[tuple[str, str], ...]] = {
-    "torso": tuple((TORSO, f"{side}_{segment}") for side in ("l", "r") for segment in ("upper_arm", "forearm", "hand")),
+    "torso": tuple((trunk, f"{side}_{segment}") for trunk in (TORSO, CHEST) for side in ("l", "r") for segment in ("upper_arm", "forearm", "hand")),
     "forearms": (("l_forearm", "r_forearm"),),
     "hands": (("l_hand", "r_hand"),),
 }
@@ -83,11 +85,10 @@ def group_depths(kinematics: Kinematics, fixed: Volume, moving: list[Volume]) ->
 def penetrations(kinematics: Kinematics, volumes: dict[str, Volume], start: float = 0.0) -> dict[str, Penetration]:
     """Every group of :data:`PAIRS`: frames deeper than the limit and the deepest overlap."""
     results = {}
-    for group, pairs in PAIRS.items():
-        fixed = {a for a, _ in pairs}
-        if len(fixed) != 1:
-            raise ValueError(f"penetration group {group!r} must measure against one volume")
-        depths = group_depths(kinematics, volumes[pairs[0][0]], [volumes[b] for _, b in pairs])
+    for group, listed in PAIRS.items():
+        pairs = [(a, b) for a, b in listed if a in volumes]
+        fixed = dict.fromkeys(a for a, _ in pairs)
+        depths = np.concatenate([group_depths(kinematics, volumes[a], [volumes[b] for f, b in pairs if f == a]) for a in fixed], axis=1)
         deepest = depths.max(axis=1)
         frame, pair = np.unravel_index(int(np.argmax(depths)), depths.shape)
         worst = None

@@ -6,6 +6,8 @@ used as written. Any of the volumes the audit needs — :data:`TORSO` and, per s
 :data:`ARM_SEGMENTS` — that the file does not give is derived here, conservatively (on
 the small side, so that what the audit reports as penetration is penetration):
 
+* ``chest``: only where the file gives one; the trunk is then its ``torso`` (the abdomen)
+  and its ``chest``, each carried by its own joint, and the torso group measures both.
 * ``torso``: the legacy ``torso`` entry (an elliptic cylinder), carried by the joint the
   clavicles hang from (``vt1`` in H-Anim); without one, an elliptic cylinder as wide as
   :data:`TORSO_WIDTH_OF_SHOULDERS` of the shoulders' spread, :data:`TORSO_DEPTH_OF_WIDTH`
@@ -33,6 +35,7 @@ from bench.motion_audit.distance import Capsule, Ellipsoid, EllipticCylinder, Sh
 from bench.motion_audit.kinematics import Kinematics
 
 TORSO = "torso"
+CHEST = "chest"
 ARM_SEGMENTS = ("upper_arm", "forearm", "hand")
 SIDES = ("l", "r")
 UPPER_ARM_START = 0.2
@@ -176,6 +179,8 @@ def audit_volumes(avatar: AvatarFile, kinematics: Kinematics) -> dict[str, Volum
             raise AvatarError(f"{avatar.path}: collision volume {volume.name!r} moves with joint {volume.joint!r}, which the skeleton lacks")
         given[volume.name] = volume
     volumes = {TORSO: given.get(TORSO) or _derived_torso(avatar, kinematics)}
+    if CHEST in given:
+        volumes[CHEST] = given[CHEST]
     for side in SIDES:
         for segment in ARM_SEGMENTS:
             name = f"{side}_{segment}"

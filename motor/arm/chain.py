@@ -239,9 +239,10 @@ class ArmPlacement:
     ``torso_q (n, 4)`` is the clavicles' parent's global rotation (None: upright, at
     rest); ``body_frame`` (rotation
     ``(n, 4)``, translation ``(n, 3)``) carries the body's rest geometry to where it is,
-    None when the torso stands upright at rest; ``hips_frame`` does so for the volumes
-    that stay with the hips when the arm is solved in the frame of a trunk turned toward
-    a reach (:mod:`motor.arm.reach_turn`), None when it is not turned."""
+    None when the torso stands upright at rest; ``carried_frames`` do so for the volumes
+    that stay with the hips or turn with only part of the thoracic spine when the arm is
+    solved in the frame of a trunk turned toward a reach
+    (:meth:`motor.arm.reach_turn.TrunkTurn.carried_frames`), None when it is not turned."""
 
     chain: ArmChain
     torso_q: np.ndarray | None
@@ -251,15 +252,15 @@ class ArmPlacement:
     targets: np.ndarray
     hands: np.ndarray | None
     body_frame: tuple[np.ndarray, np.ndarray] | None
-    hips_frame: tuple[np.ndarray, np.ndarray] | None = None
+    carried_frames: tuple[tuple[np.ndarray, np.ndarray], ...] | None = None
 
     def take(self, rows: np.ndarray) -> ArmPlacement:
         """The placements of the selected frames."""
         frame = None if self.body_frame is None else (self.body_frame[0][rows], self.body_frame[1][rows])
-        hips = None if self.hips_frame is None else (self.hips_frame[0][rows], self.hips_frame[1][rows])
+        carried = None if self.carried_frames is None else tuple((r[rows], t[rows]) for r, t in self.carried_frames)
         return ArmPlacement(
             self.chain, None if self.torso_q is None else self.torso_q[rows], self.clavicle_local[rows], self.sc_global[rows], self.circle.take(rows),
-            self.targets[rows], None if self.hands is None else self.hands[rows], frame, hips,
+            self.targets[rows], None if self.hands is None else self.hands[rows], frame, carried,
         )  # fmt: skip
 
 
@@ -292,16 +293,12 @@ def place_arm(
     sc_global = clavicle_local if torso_q is None else quat.multiply(torso_q, clavicle_local)
     shoulder = sc_position + quat.rotate(sc_global, chain.clavicle)
     circle = ElbowCircle.of(chain, shoulder, targets, torso_q)
-    return ArmPlacement(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame, hips_frame(avatar, trunk_yaw))
+    return ArmPlacement(chain, torso_q, clavicle_local, sc_global, circle, targets, hands, body_frame, carried_frames(avatar, trunk_yaw))
 
 
-def hips_frame(avatar: Avatar, trunk_yaw: np.ndarray | None) -> tuple[np.ndarray, np.ndarray] | None:
-    """Where the volumes that stay with the hips are, seen from a trunk turned by
-    ``trunk_yaw (n,)`` radians: the rotation ``(n, 4)`` and translation ``(n, 3)`` taking
-    their rest geometry into the trunk's frame (:meth:`motor.arm.reach_turn.TrunkTurn.to_trunk`);
+def carried_frames(avatar: Avatar, trunk_yaw: np.ndarray | None) -> tuple[tuple[np.ndarray, np.ndarray], ...] | None:
+    """Where the volumes that do not turn with the whole trunk are, seen from a trunk
+    turned by ``trunk_yaw (n,)`` radians (:meth:`motor.arm.reach_turn.TrunkTurn.carried_frames`);
     None where the trunk is not turned."""
     turn = None if trunk_yaw is None else turned(avatar, np.asarray(trunk_yaw, dtype=float))
-    if turn is None:
-        return None
-    inverse = quat.conjugate(turn.rotation)
-    return inverse, turn.rest - quat.rotate(inverse, turn.position)
+    return None if turn is None else turn.carried_frames()

@@ -5,8 +5,9 @@ their bones (the part of each capsule's axis between its end points, projected o
 bone: the swivel search moves them with the elbow without building rotations). The
 obstacles are the body's volumes (torso, pelvis, neck, head and any others that move
 with neither arm), each carried rigidly by the joint the avatar file names for it — when
-the trunk turns toward a reach, the neck and head turn with the shoulders while the
-torso and pelvis stay with the hips — and optionally the other arm's three capsules at
+the trunk turns toward a reach, the neck and head turn with the shoulders, a chest on the
+thoracic spine turns with the part of it below its joint, and the torso and pelvis stay
+with the hips — and optionally the other arm's three capsules at
 the same instants.
 
 :func:`clearance` gives, for ``(n, K)`` candidate elbow positions (as coordinate arrays),
@@ -28,7 +29,7 @@ from motor import quaternion as quat
 from motor.arm.reach_turn import TURN_JOINTS
 from motor.body.avatar import HAND_JOINTS, Avatar
 from motor.body.collision import Components, capsule_apart, segments_apart
-from motor.body.volumes import Capsule, Ellipsoid, Volume
+from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, Volume
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
 CLEARANCE = 0.01
@@ -60,14 +61,22 @@ class ArmCapsules:
 
 @dataclass(frozen=True, eq=False)
 class Obstacle:
-    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame), and
-    whether it turns with the trunk where a hand reaches across the body
-    (:data:`motor.arm.reach_turn.TURN_JOINTS`: it moves with one of them or a joint
-    beyond) or stays with the hips (the torso, carried by the lowest lumbar joint)."""
+    """A body volume with its axis-aligned bounding box ``(2, 3)`` (rest frame), and how
+    many of the joints that turn the trunk where a hand reaches across the body
+    (:data:`motor.arm.reach_turn.TURN_JOINTS`) carry it: 0 where it stays with the hips
+    (the torso, on the lowest lumbar joint), all of them where it moves with the last or
+    a joint beyond (the neck and head), in between for a chest on the thoracic spine;
+    ``trunk`` for the trunk's volumes (:data:`motor.body.volumes.TRUNK_NAMES`)."""
 
     volume: Volume
     box: np.ndarray
-    turns: bool
+    carriers: int
+    trunk: bool
+
+    @property
+    def turns(self) -> bool:
+        """Whether it turns with the whole trunk."""
+        return self.carriers == len(TURN_JOINTS)
 
 
 @dataclass(frozen=True, eq=False)
@@ -108,7 +117,7 @@ def arm_capsules(avatar: Avatar, side: str) -> ArmCapsules:
 def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
     """The body's volumes with their bounding boxes."""
     limbs = frozenset(f"{side}_{joint}" for side in "lr" for joint in ("sternoclavicular", "shoulder", "elbow", "wrist", *HAND_JOINTS))
-    turning = _turning_joints(avatar)
+    carriers = _turn_carriers(avatar)
     obstacles = []
     for volume in avatar.collision.body(limbs):
         if isinstance(volume, Capsule):
@@ -120,28 +129,28 @@ def body_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
                 [volume.center[0] - volume.half_width, volume.bottom, volume.center[2] - volume.half_depth],
                 [volume.center[0] + volume.half_width, volume.top, volume.center[2] + volume.half_depth],
             ])  # fmt: skip
-        obstacles.append(Obstacle(volume, box, volume.joint in turning))
+        obstacles.append(Obstacle(volume, box, carriers[avatar.joint_index(volume.joint)], volume.name in TRUNK_NAMES))
     return tuple(obstacles)
 
 
 @functools.lru_cache(maxsize=32)
-def _turning_and_staying(avatar: Avatar) -> tuple[tuple[Obstacle, ...], tuple[Obstacle, ...]]:
-    """The body's obstacles that turn with the trunk, and those that stay with the hips."""
+def _by_carriers(avatar: Avatar) -> tuple[tuple[Obstacle, ...], ...]:
+    """The body's obstacles by how many turning joints carry them (0 … all)."""
     obstacles = body_obstacles(avatar)
-    return tuple(o for o in obstacles if o.turns), tuple(o for o in obstacles if not o.turns)
+    return tuple(tuple(o for o in obstacles if o.carriers == count) for count in range(len(TURN_JOINTS) + 1))
 
 
-def _turning_joints(avatar: Avatar) -> frozenset[str]:
-    """The joints the trunk's turn carries: the first turning spine joint and every joint beyond it."""
-    first = avatar.joint_index(TURN_JOINTS[0])
-    turning = set()
-    for index, name in enumerate(avatar.joint_names):
-        joint = index
-        while joint >= 0 and joint != first:
+def _turn_carriers(avatar: Avatar) -> list[int]:
+    """Per joint, how many of the trunk's turning joints are the joint itself or above it."""
+    turning = {avatar.joint_index(name) for name in TURN_JOINTS}
+    counts = []
+    for index in range(len(avatar.joint_names)):
+        count, joint = 0, index
+        while joint >= 0:
+            count += joint in turning
             joint = avatar.parents[joint]
-        if joint == first:
-            turning.add(name)
-    return frozenset(turning)
+        counts.append(count)
+    return counts
 
 
 def arm_segments(capsules: ArmCapsules, shoulder: np.ndarray, elbow: np.ndarray, wrist: np.ndarray, hands: np.ndarray) -> ArmSegments:
@@ -179,27 +188,31 @@ def clearance(
     body_frame: tuple[np.ndarray, np.ndarray] | None = None,
     other: ArmSegments | None = None,
     body: bool = True,
-    hips_frame: tuple[np.ndarray, np.ndarray] | None = None,
+    carried_frames: tuple[tuple[np.ndarray, np.ndarray], ...] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Penalty and body penetration depth (m) ``(n, K)`` of the arm from ``shoulder`` to
     ``wrist`` ``(n, 3)`` with its elbow at the coordinate arrays ``elbow`` ``(n, K)``.
 
     ``body_frame`` (rotation ``(n, 4)``, translation ``(n, 3)``) carries the body's rest
     geometry to where it is when the torso is not upright (None: upright, at rest);
-    ``hips_frame``, if given, does so for the volumes that do not turn with the trunk
-    (:attr:`Obstacle.turns`), which stand still while the arm is solved in the turned
-    trunk's frame. ``other``: the other arm's capsules at the same instants, kept clear
-    of too; ``body``: False to keep clear of the other arm only."""
+    ``carried_frames``, if given, do so for the volumes that do not turn with the whole
+    trunk (by :attr:`Obstacle.carriers`: :meth:`motor.arm.reach_turn.TrunkTurn.carried_frames`),
+    which stand still or turn less while the arm is solved in the turned trunk's frame.
+    ``other``: the other arm's capsules at the same instants, kept clear of too;
+    ``body``: False to keep clear of the other arm only."""
     capsules = arm_capsules(avatar, side)
     shape = elbow[0].shape
     cost = np.zeros(shape)
     depth = np.zeros(shape)
-    if body and hips_frame is None:
-        _body_clearance(capsules, body_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth)
-    elif body:
-        for obstacles, frame in zip(_turning_and_staying(avatar), (body_frame, hips_frame)):
+    if body:
+        groups = ((body_obstacles(avatar), body_frame),) if carried_frames is None else zip(_by_carriers(avatar), (*carried_frames, body_frame))
+        trunk = [np.full(shape, np.inf), np.full(shape, np.inf)]
+        for obstacles, frame in groups:
             if obstacles:
-                _body_clearance(capsules, obstacles, shoulder, wrist, elbow, frame, cost, depth)
+                _body_clearance(capsules, obstacles, shoulder, wrist, elbow, frame, cost, depth, trunk)
+        for distance in trunk:
+            rows = np.isfinite(distance)
+            cost[rows] += overlap_penalty(distance[rows])
     if other is not None:
         boxes = _boxes(capsules, shoulder, wrist, elbow)
         for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
@@ -224,9 +237,13 @@ def _body_clearance(
     frame: tuple[np.ndarray, np.ndarray] | None,
     cost: np.ndarray,
     depth: np.ndarray,
+    trunk: list[np.ndarray],
 ) -> None:
     """:func:`clearance`'s penalty and depth of the arm against ``obstacles`` whose rest
-    geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``."""
+    geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``; the
+    trunk's volumes (a torso and a chest: one body cut in two) are not penalized one by
+    one but give ``trunk``, per segment, the least distance from any of them, so that a
+    segment near the cut pays once."""
     if frame is not None:
         rotation, translation = frame
         inverse = quat.conjugate(rotation)
@@ -234,19 +251,25 @@ def _body_clearance(
         stacked = np.stack(elbow, axis=-1) - translation[:, None]
         elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
     boxes = _boxes(capsules, shoulder, wrist, elbow)
-    for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
+    for (a, b, radius), (low, high), least in zip(_segments(capsules, shoulder, wrist, elbow), boxes, trunk):
         for obstacle in obstacles:
             near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
             if not np.any(near):
                 continue
             if np.all(near):
                 distance = capsule_apart(obstacle.volume, a, b, radius)
-                cost += overlap_penalty(distance)
+                if obstacle.trunk:
+                    np.minimum(least, distance, out=least)
+                else:
+                    cost += overlap_penalty(distance)
                 np.maximum(depth, -distance, out=depth)
                 continue
             rows = np.flatnonzero(near)
             distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
-            cost[rows] += overlap_penalty(distance)
+            if obstacle.trunk:
+                least[rows] = np.minimum(least[rows], distance)
+            else:
+                cost[rows] += overlap_penalty(distance)
             depth[rows] = np.maximum(depth[rows], -distance)
 
 

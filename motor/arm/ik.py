@@ -129,7 +129,7 @@ def solve_arm(
         if swivel_from is not None:
             psi = psi + swivel_of(np.asarray(swivel_from, dtype=float), circle.down, circle.out)
     arm = _arm_at(setup.chain, circle, psi, setup.sc_global, setup.hands, twist_reference)
-    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame, hips_frame=setup.hips_frame)[1][:, 0]
+    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame, carried_frames=setup.carried_frames)[1][:, 0]
     return ArmSolution(
         rotations=np.stack((setup.clavicle_local, arm.shoulder_local, arm.elbow_local, arm.wrist_local), axis=1),
         shoulder=circle.shoulder,

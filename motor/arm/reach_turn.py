@@ -43,12 +43,18 @@ _UP = np.array([0.0, 1.0, 0.0])
 class TrunkTurn:
     """The trunk's turn at ``n`` instants: ``yaw (n,)`` radians about the vertical
     (positive toward the avatar's left), the clavicles' parent's global ``rotation
-    (n, 4)`` and ``position (n, 3)``, and its ``rest`` position."""
+    (n, 4)`` and ``position (n, 3)``, and its ``rest`` position; ``spine_rotations
+    (n, k, 4)`` and ``spine_positions (n, k, 3)`` are those of every turning joint
+    (:data:`TURN_JOINTS`, the last being the clavicles' parent), ``spine_rest (k, 3)``
+    their rest positions."""
 
     yaw: np.ndarray
     rotation: np.ndarray
     position: np.ndarray
     rest: np.ndarray
+    spine_rotations: np.ndarray
+    spine_positions: np.ndarray
+    spine_rest: np.ndarray
 
     def to_trunk(self, points: np.ndarray) -> np.ndarray:
         """Points ``(n, 3)`` in the frame in which the trunk stands upright at rest."""
@@ -61,6 +67,20 @@ class TrunkTurn:
     def hands_to_trunk(self, rotations: np.ndarray) -> np.ndarray:
         """Global rotations ``(n, 4)`` as seen in the trunk's frame."""
         return quat.multiply(quat.conjugate(self.rotation), rotations)
+
+    def carried_frames(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """Where the body's volumes are, seen from the trunk's frame, by how many of the
+        turning joints carry them: one (rotation ``(n, 4)``, translation ``(n, 3)``) pair
+        taking their rest geometry into the trunk's frame for the volumes that stay with
+        the hips (first), then for those carried by each turning joint but the last (whose
+        volumes are at rest in the trunk's frame)."""
+        inverse = quat.conjugate(self.rotation)
+        frames = [(inverse, self.rest - quat.rotate(inverse, self.position))]
+        for joint in range(self.spine_rotations.shape[1] - 1):
+            rotation = quat.multiply(inverse, self.spine_rotations[:, joint])
+            moved = quat.rotate(inverse, self.spine_positions[:, joint] - self.position)
+            frames.append((rotation, self.rest + moved - quat.rotate(rotation, self.spine_rest[joint])))
+        return tuple(frames)
 
     def local_rotations(self) -> np.ndarray:
         """Local rotations ``(n, len(TURN_JOINTS), 4)`` of the turning spine joints."""
@@ -89,10 +109,14 @@ def turned(avatar: Avatar, yaw: np.ndarray) -> TrunkTurn | None:
     share = quat.from_axis_angle(np.broadcast_to(_UP, (len(yaw), 3)), yaw / len(TURN_JOINTS))
     rotation = np.broadcast_to(quat.IDENTITY, share.shape)
     position = np.broadcast_to(parent, (len(yaw), 3))
+    rotations, positions = [], []
     for offset in offsets:
         position = position + quat.rotate(rotation, offset)
         rotation = quat.multiply(rotation, share)
-    return TrunkTurn(yaw, rotation, position, rest)
+        rotations.append(rotation)
+        positions.append(position)
+    spine_rest = avatar.rest_positions[[avatar.joint_index(name) for name in TURN_JOINTS]]
+    return TrunkTurn(yaw, rotation, position, rest, np.stack(rotations, axis=1), np.stack(positions, axis=1), spine_rest)
 
 
 @functools.lru_cache(maxsize=16)

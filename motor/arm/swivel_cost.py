@@ -79,7 +79,7 @@ def candidate_costs(
     psi = CANDIDATES[0] + cells * SWIVEL_STEP
     elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
-    penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other, hips_frame=placement.hips_frame)
+    penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other, carried_frames=placement.carried_frames)
     measured = natural_cost(psi - natural[:, None]) + penalty
     if placement.hands is not None:
         measured += wrist_cost(placement, elbow, radial)

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor.body.avatar import AVATAR_DIR, SIDES
-from motor.body.volumes import FOREARM_SHARE, SHOULDER_SHARE
+from motor.body.volumes import CHEST_FROM, CHEST_JOINT, FOREARM_SHARE, SHOULDER_SHARE
 
 #: The reference avatar whose joint limits, finger calibration, thumb postures and grid
 #: proportions are taken (scaled) when a body cannot give them.
@@ -616,9 +616,11 @@ def _arm_volumes(m: _Measure, s: dict, palm: float) -> dict[str, list[dict]]:
 def _volumes(m: _Measure, s: dict, f: dict, torso: dict, arms: dict[str, list[dict]]) -> list[dict]:
     at = m.at
     volumes = []
-    volumes.append({"name": "torso", "joint": "vl5", "shape": "elliptic_cylinder", "center": torso["center"],
-                    "half_width": torso["half_width"], "half_depth": torso["half_depth"],
-                    "bottom": float(at["vl5"][1]), "top": torso["top"]})  # fmt: skip
+    cylinder = lambda name, joint, bottom, top: {"name": name, "joint": joint, "shape": "elliptic_cylinder", "center": torso["center"],
+                                                 "half_width": torso["half_width"], "half_depth": torso["half_depth"], "bottom": bottom, "top": top}  # fmt: skip
+    cut = float(at[CHEST_FROM][1])
+    volumes.append(cylinder("torso", "vl5", float(at["vl5"][1]), cut))
+    volumes.append(cylinder("chest", CHEST_JOINT, cut, torso["top"]))
     pelvis = _trunk_box(m, float(at["l_hip"][1] - 0.08) if "l_hip" in at else -0.1, float(at["vl5"][1]))
     if pelvis is None:
         pelvis = (np.array([-0.16, -0.1, -0.1]) * s["width_ratio"], np.array([0.16, at["vl5"][1], 0.1]) * s["width_ratio"])

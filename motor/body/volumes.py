@@ -15,7 +15,12 @@ Shapes:
   (z) about ``center``'s x and z, from height ``bottom`` to ``top``.
 
 The standard names are :data:`BODY_NAMES` and :data:`ARM_NAMES` per side; the arm
-segments and hands must be capsules (the arm IK moves them with the bones).
+segments and hands must be capsules (the arm IK moves them with the bones). The trunk may
+be one ``torso`` or a ``torso`` (abdomen, with the lumbar spine) under a ``chest`` (with
+the thoracic spine, :data:`CHEST_JOINT`): a trunk turning toward a reach turns the chest
+with it — on a skinned body the flesh beside the shoulders turns by about two thirds of
+the thoracic spine's turn, the belly not at all — so one volume on the lumbar spine would
+leave the chest behind while the shoulders come forward.
 ``palm_thickness`` is the distance between the two hands' midlines when palm touches
 palm: hands in contact keep it (targets such as ``join_hands`` can use it too).
 """
@@ -29,6 +34,12 @@ import numpy as np
 
 #: Volumes of the trunk and head every avatar has.
 BODY_NAMES: tuple[str, ...] = ("torso", "pelvis", "neck", "head")
+#: The trunk's volumes, lumbar then thoracic: the ``chest`` is optional.
+TRUNK_NAMES: tuple[str, ...] = ("torso", "chest")
+#: The joint that carries the derived chest, and the joint at whose rest height the
+#: derived torso ends and the chest begins (the lowest joint of the thoracic spine).
+CHEST_JOINT = "vt6"
+CHEST_FROM = "vt10"
 #: Volumes of one arm (with an ``l_``/``r_`` prefix), all capsules, and the joint each
 #: moves with.
 ARM_NAMES: dict[str, str] = {"upper_arm": "shoulder", "forearm": "elbow", "hand": "wrist"}
@@ -107,6 +118,10 @@ class CollisionVolumes:
         validation)."""
         return self[f"{side}_{part}"]  # type: ignore[return-value]
 
+    def trunk(self) -> tuple[Volume, ...]:
+        """The trunk's volumes present (:data:`TRUNK_NAMES`), lumbar first."""
+        return tuple(self[name] for name in TRUNK_NAMES if name in self)
+
     def body(self, limb_joints: frozenset[str]) -> tuple[Volume, ...]:
         """Every volume moving with none of ``limb_joints`` (the arms' and hands'
         joints): the obstacles of both arms."""
@@ -130,7 +145,9 @@ def derived_volumes(
     ``center``, ``half_width``, ``half_depth``, ``bottom``, ``top``) and the named body
     locations (name → (bone index, offset in the bone's rest frame)).
 
-    The torso is the legacy cylinder; the pelvis an ellipsoid under it as wide and deep;
+    The torso is the legacy cylinder, cut at the rest height of :data:`CHEST_FROM` into a
+    torso on ``vl5`` and a chest on :data:`CHEST_JOINT` where the skeleton has both
+    joints and the cut lies inside it; the pelvis an ellipsoid under it as wide and deep;
     the neck a capsule from ``vc7`` to ``skullbase`` as thick as the ``neck`` location lies
     in front of its bone; the head an ellipsoid through the ears, the top of the head, the
     chin and the nose; the arms capsules along their bones (the upper arm from a quarter
@@ -144,7 +161,7 @@ def derived_volumes(
     center = np.asarray(torso.center, dtype=float)
     height = torso.top - torso.bottom
     volumes: list[Volume] = [
-        EllipticCylinder("torso", "vl5", center.copy(), torso.half_width, torso.half_depth, torso.bottom, torso.top),
+        *_trunk(at, center, torso),
         Ellipsoid("pelvis", "sacroiliac", np.array([center[0], torso.bottom, center[2]]), np.array([torso.half_width, 0.2 * height, torso.half_depth])),
     ]
     neck_radius = float(site("neck")[2] - at["vc4"][2]) if "neck" in sites else 0.4 * torso.half_depth
@@ -164,6 +181,15 @@ def derived_volumes(
         volumes.append(Capsule(f"{side}_forearm", f"{side}_elbow", elbow.copy(), elbow + FOREARM_SHARE * (wrist - elbow), fore))
         volumes.append(Capsule(f"{side}_hand", f"{side}_wrist", wrist.copy(), knuckle.copy(), 0.5 * palm))
     return CollisionVolumes(tuple(volumes), palm)
+
+
+def _trunk(at: Mapping[str, np.ndarray], center: np.ndarray, torso) -> list[EllipticCylinder]:
+    """The legacy torso cylinder as a torso and, above the thoracic spine's first joint, a chest."""
+    cylinder = lambda name, joint, bottom, top: EllipticCylinder(name, joint, center.copy(), torso.half_width, torso.half_depth, bottom, top)
+    cut = float(at[CHEST_FROM][1]) if CHEST_FROM in at and CHEST_JOINT in at else None
+    if cut is None or not torso.bottom < cut < torso.top:
+        return [cylinder("torso", "vl5", torso.bottom, torso.top)]
+    return [cylinder("torso", "vl5", torso.bottom, cut), cylinder("chest", CHEST_JOINT, cut, torso.top)]
 
 
 def _head(skullbase: np.ndarray, site, sites: Mapping[str, tuple[int, np.ndarray]]) -> Ellipsoid:

@@ -11,8 +11,8 @@ thick as the palm; :mod:`motor.body.volumes`) in front of the torso's elliptic c
 with :data:`HAND_CLEARANCE` to spare. A hand that touches the chest with its palm, as
 the sign says, keeps its place: its capsule lies in front of the surface already.
 
-The torso is the avatar's ``torso`` collision volume at rest (the signs are planned on
-the body at rest). Points of the capsule are checked at :data:`CAPSULE_SAMPLES` along
+The torso is the avatar's trunk at rest — its ``torso`` collision volume and its
+``chest`` where it has one (the signs are planned on the body at rest). Points of the capsule are checked at :data:`CAPSULE_SAMPLES` along
 its axis, each as a sphere of the capsule's radius: a sphere lies clear of the vertical
 cylinder when its centre lies outside the cylinder grown by the radius (and the
 clearance), or above or below it by more than that. Pushing along +z keeps each point's
@@ -36,12 +36,13 @@ CAPSULE_SAMPLES = np.linspace(0.0, 1.0, 5)
 _LANDED = 1e-9
 
 
-def torso_cylinder(avatar: Avatar) -> EllipticCylinder:
-    """The avatar's torso collision volume (an elliptic cylinder, by the avatar's validation)."""
-    torso = avatar.collision["torso"]
-    if not isinstance(torso, EllipticCylinder):
-        raise TypeError(f"avatar {avatar.name!r}: the torso collision volume must be an elliptic cylinder to plan hands against it")
-    return torso
+def trunk_cylinders(avatar: Avatar) -> tuple[EllipticCylinder, ...]:
+    """The avatar's trunk collision volumes (elliptic cylinders: the torso, and the chest where there is one)."""
+    trunk = avatar.collision.trunk()
+    for volume in trunk:
+        if not isinstance(volume, EllipticCylinder):
+            raise TypeError(f"avatar {avatar.name!r}: the {volume.name} collision volume must be an elliptic cylinder to plan hands against it")
+    return trunk  # type: ignore[return-value]
 
 
 def hand_torso_push(avatar: Avatar, side: str, wrists: np.ndarray, rotations: np.ndarray, clearance: float = HAND_CLEARANCE) -> np.ndarray:
@@ -51,25 +52,32 @@ def hand_torso_push(avatar: Avatar, side: str, wrists: np.ndarray, rotations: np
     wrists = np.asarray(wrists, dtype=float).reshape(-1, 3)
     if wrists.shape[0] == 0:
         return np.zeros(0)
-    torso = torso_cylinder(avatar)
     capsule = avatar.collision.arm(side, "hand")
     grow = capsule.radius + clearance
     push = np.zeros(wrists.shape[0])
     # only wrists within the hand's reach of the grown torso can have a hand in it
     rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
     reach = grow + max(float(np.linalg.norm(capsule.a - rest)), float(np.linalg.norm(capsule.b - rest)))
-    near = _within_box(torso, wrists, reach)
+    trunk = trunk_cylinders(avatar)
+    near = np.logical_or.reduce([_within_box(cylinder, wrists, reach) for cylinder in trunk])
     if not np.any(near):
         return push
     start, end = hand_segments(avatar, side, wrists[near], np.asarray(rotations, dtype=float).reshape(-1, 4)[near])
     points = start[:, None, :] + CAPSULE_SAMPLES[None, :, None] * (end - start)[:, None, :]
+    for cylinder in trunk:
+        push[near] = np.maximum(push[near], _push_out(cylinder, points, grow))
+    return push
+
+
+def _push_out(torso: EllipticCylinder, points: np.ndarray, grow: float) -> np.ndarray:
+    """How far (m, ``(n,)``, ≥ 0) points ``(n, k, 3)`` must move forward (+z) for every
+    point of each row to lie ``grow`` in front of the cylinder (or beside, above or below it)."""
     width, depth = torso.half_width + grow, torso.half_depth + grow
     across = (points[..., 0] - torso.center[0]) / width
     front = torso.center[2] + depth * np.sqrt(np.maximum(1.0 - across * across, 0.0))
     level = (points[..., 1] > torso.bottom - grow) & (points[..., 1] < torso.top + grow)
     needed = np.where(level & (np.abs(across) < 1.0), front - points[..., 2], 0.0)
-    push[near] = np.maximum(needed.max(axis=1), 0.0)
-    return push
+    return np.maximum(needed.max(axis=1), 0.0)
 
 
 def _within_box(torso: EllipticCylinder, points: np.ndarray, reach: float) -> np.ndarray:

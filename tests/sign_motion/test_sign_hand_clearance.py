@@ -37,7 +37,7 @@ from motor.signing.hand_clearance import (
     HAND_CLEARANCE,
     hand_torso_push,
     hands_clear_of_torso,
-    torso_cylinder,
+    trunk_cylinders,
 )
 from motor.signing.lmp import SignChannelLMP
 from motor.signing.sequence import realize_signs
@@ -136,8 +136,9 @@ WRIST_PLACES = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 0.03], [-0.08, -0.05, 0.0],
 def posture_table(avatar):
     """Wrist positions ``(n, 3)`` and right-hand rotations ``(n, 4)`` of every posture at
     every place."""
-    torso = torso_cylinder(avatar)
-    front = np.array([torso.center[0], 0.5 * (torso.bottom + torso.top) + 0.1, torso.center[2] + torso.half_depth])
+    trunk = trunk_cylinders(avatar)
+    torso, bottom, top = trunk[0], min(c.bottom for c in trunk), max(c.top for c in trunk)
+    front = np.array([torso.center[0], 0.5 * (bottom + top) + 0.1, torso.center[2] + torso.half_depth])
     wrists, rotations = [], []
     for fingers, palm in POSTURES.values():
         turn = hand_rotations_from_vectors(avatar, "r", np.array([fingers], float), np.array([palm], float))[0]
@@ -150,12 +151,11 @@ def posture_table(avatar):
 def audit_depth(avatar, wrists: np.ndarray, rotations: np.ndarray) -> np.ndarray:
     """Depth (m) of the right hand's capsule in the torso, by the audit's distance."""
     capsule = avatar.collision.arm("r", "hand")
-    torso = torso_cylinder(avatar)
     rest = avatar.rest_positions[avatar.joint_index("r_wrist")]
     start = wrists + quat.rotate(rotations, capsule.a - rest)
     end = wrists + quat.rotate(rotations, capsule.b - rest)
-    shape = AuditCylinder(torso.center, torso.half_width, torso.half_depth, torso.bottom, torso.top)
-    return capsule_depth(start, end, capsule.radius, shape)[0]
+    shapes = [AuditCylinder(c.center, c.half_width, c.half_depth, c.bottom, c.top) for c in trunk_cylinders(avatar)]
+    return np.max([capsule_depth(start, end, capsule.radius, shape)[0] for shape in shapes], axis=0)
 
 
 @pytest.fixture(scope="module")
