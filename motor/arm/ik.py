@@ -33,7 +33,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, candidate_costs, candidate_elbows, parabola_offset, wrist_state
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, body_penalties, candidate_costs, candidate_elbows, parabola_offset, wrist_state
 from motor.body.avatar import Avatar
 from motor.body.collision import components
 
@@ -210,21 +210,78 @@ class TrackCosts:
         return candidate_costs(avatar, self.placement.take(rows), self.natural[rows], other, own=False)
 
 
-def track_costs(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray, trunk_yaw: np.ndarray | None = None) -> TrackCosts:
+def track_costs(
+    avatar: Avatar,
+    side: str,
+    wrist_targets: np.ndarray,
+    hand_rotations: np.ndarray,
+    trunk_yaw: np.ndarray | None = None,
+    midway: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None,
+) -> TrackCosts:
     """Swivel costs at ``m`` consecutive instants for a track, from wrist targets and hand
     rotations ``(m + 1, ...)`` that include the instant before (for the first turn of the
     swivel's zero), given in the frame of the trunk turned by ``trunk_yaw`` ``(m + 1,)``
-    (radians, None: not turned). Runs of identical instants are measured once."""
+    (radians, None: not turned). Runs of identical instants are measured once.
+
+    ``midway``: the wrist targets, hand rotations and trunk yaw half way from each of
+    those instants to the next ``(m + 1, ...)``. A candidate then pays the clearance
+    penalty of the deeper of its instant and the two half-way ones around it, its elbow
+    held there (:func:`midway_penalties`): a fast stroke can take the arm deeper into
+    the body between two instants than at either."""
     placement = place_arm(avatar, side, wrist_targets, hand_rotations, trunk_yaw=trunk_yaw)
     circle = placement.circle
     turns = swivel_of(circle.down[:-1], circle.down[1:], circle.out[1:])
     rows = placement.take(slice(1, None))
     natural = natural_swivel(rows.chain, rows.circle, rows.targets, rows.torso_q)
-    values = np.concatenate([rows.targets, rows.hands] + ([] if trunk_yaw is None else [np.asarray(trunk_yaw, dtype=float)[1:, None]]), axis=1)
+    keys = [rows.targets, rows.hands] + ([] if trunk_yaw is None else [np.asarray(trunk_yaw, dtype=float)[1:, None]])
+    nearby = None
+    if midway is not None:
+        nearby = midway_penalties(avatar, side, placement, *midway, trunk_yaw)
+        half = np.concatenate([midway[0], midway[1]] + ([] if midway[2] is None else [np.asarray(midway[2], dtype=float)[:, None]]), axis=1)
+        keys += [half[:-1], half[1:]]
+    values = np.concatenate(keys, axis=1)
     starts = np.concatenate([[0], np.flatnonzero(np.any(values[1:] != values[:-1], axis=1)) + 1])
-    unique = candidate_costs(avatar, rows.take(starts), natural[starts])
+    unique = candidate_costs(avatar, rows.take(starts), natural[starts], nearby=None if nearby is None else nearby[starts])
     costs = np.repeat(unique, np.diff(np.append(starts, len(values))), axis=0)
     return TrackCosts(costs, turns, circle.down[1:], rows, natural)
+
+
+def midway_penalties(
+    avatar: Avatar,
+    side: str,
+    placement: ArmPlacement,
+    targets: np.ndarray,
+    hands: np.ndarray,
+    trunk_yaw: np.ndarray | None,
+    grid_yaw: np.ndarray | None,
+) -> np.ndarray:
+    """For instants ``1 … m`` of ``placement`` (``m + 1`` instants, the trunk turned by
+    ``grid_yaw`` there), each candidate's clearance penalty from the body ``(m, K)`` at
+    the half-way instants before and after it (wrist targets ``(m + 1, 3)``, hand
+    rotations ``(m + 1, 4)`` and trunk yaw half way after each instant), the deeper of
+    the two. The elbow is held where the candidate puts it: carried to the half-way
+    instant's circle as :func:`swivel_of` carries it, to the nearest candidate there.
+    A half-way instant the same as the instants on either side adds nothing to theirs
+    and is not measured (0)."""
+    grid = np.concatenate([placement.targets, placement.hands] + ([] if grid_yaw is None else [np.asarray(grid_yaw, dtype=float)[:, None]]), axis=1)
+    half = np.concatenate([targets, hands] + ([] if trunk_yaw is None else [np.asarray(trunk_yaw, dtype=float)[:, None]]), axis=1)
+    following = np.concatenate([grid[1:], grid[-1:]])
+    moving = np.flatnonzero(np.any(half != grid, axis=1) | np.any(half != following, axis=1))
+    count = len(CANDIDATES)
+    penalties = np.zeros((len(half), count))
+    down, out = placement.circle.down.copy(), placement.circle.out.copy()
+    if moving.size:
+        between = place_arm(avatar, side, targets[moving], hands[moving], trunk_yaw=None if trunk_yaw is None else np.asarray(trunk_yaw, dtype=float)[moving])
+        penalties[moving] = body_penalties(avatar, between, natural_swivel(between.chain, between.circle, between.targets, between.torso_q))
+        down[moving], out[moving] = between.circle.down, between.circle.out
+    circle = placement.circle
+    # an elbow at swivel ψ of instant i is at ψ + forward half way after it, at ψ − back half way before it
+    forward = swivel_of(circle.down[1:], down[1:], out[1:])
+    back = swivel_of(down[:-1], circle.down[1:], circle.out[1:])
+    cells = np.arange(count)[None, :]
+    after = np.take_along_axis(penalties[1:], (cells + np.rint(forward / SWIVEL_STEP).astype(np.int64)[:, None]) % count, axis=1)
+    before = np.take_along_axis(penalties[:-1], (cells - np.rint(back / SWIVEL_STEP).astype(np.int64)[:, None]) % count, axis=1)
+    return np.maximum(before, after)
 
 
 def swivel_zeros(avatar: Avatar, side: str, wrist_targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -62,14 +62,17 @@ def candidate_costs(
     natural: np.ndarray,
     other: ArmSegments | None = None,
     own: bool = True,
+    nearby: np.ndarray | None = None,
 ) -> np.ndarray:
     """Costs ``(n, K)`` of the candidates (module docstring) for an arm placed at
     ``placement`` with natural swivels ``natural (n,)``, keeping clear of the ``other``
     arm's capsules too; with ``own`` False, only that: the penalty of coming near the
-    other arm (0 outside the window)."""
+    other arm (0 outside the window). ``nearby (n, K)``: each candidate's clearance
+    penalty at instants around each one (:func:`body_penalties`), which it pays where it
+    is more than its own."""
     if len(natural) > CHUNK_FRAMES:
         return np.concatenate([
-            candidate_costs(avatar, placement.take(rows), natural[rows], None if other is None else other.take(rows), own)
+            candidate_costs(avatar, placement.take(rows), natural[rows], None if other is None else other.take(rows), own, None if nearby is None else nearby[rows])
             for rows in (slice(start, start + CHUNK_FRAMES) for start in range(0, len(natural), CHUNK_FRAMES))
         ])  # fmt: skip
     count = len(CANDIDATES)
@@ -80,12 +83,28 @@ def candidate_costs(
     elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
     penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other, carried_frames=placement.carried_frames)
+    if nearby is not None:
+        penalty = np.maximum(penalty, np.take_along_axis(nearby, cells.astype(np.int64) % count, axis=1))
     measured = natural_cost(psi - natural[:, None]) + penalty
     if placement.hands is not None:
         measured += wrist_cost(placement, elbow, radial)
     costs = natural_cost((CANDIDATES[None, :] - natural[:, None] + np.pi) % (2.0 * np.pi) - np.pi) + OUTSIDE
     np.put_along_axis(costs, cells.astype(np.int64) % count, measured, axis=1)
     return costs
+
+
+def body_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray:
+    """The clearance penalty from the body ``(n, K)`` of the candidates within the window
+    about the natural swivels ``natural (n,)`` (0 for the others, which are not measured)."""
+    count = len(CANDIDATES)
+    cells = np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
+    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    elbow, _ = candidate_elbows(placement, np.cos(psi), np.sin(psi))
+    circle = placement.circle
+    penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, carried_frames=placement.carried_frames)
+    penalties = np.zeros((len(natural), count))
+    np.put_along_axis(penalties, cells.astype(np.int64) % count, penalty, axis=1)
+    return penalties
 
 
 def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, other: ArmSegments) -> np.ndarray:

@@ -1,8 +1,9 @@
 """Both arms' swivel tracks on a fixed grid of the utterance clock.
 
 Every :data:`SWIVEL_PERIOD` seconds each candidate swivel of each arm gets the IK's cost
-(natural swivel, wrist comfort, clearance from the body: :func:`motor.arm.ik.track_costs`)
-and a swivel track walks through the candidates, a bounded step from one grid point to
+(natural swivel, wrist comfort, clearance from the body: :func:`motor.arm.ik.track_costs`;
+the clearance is the least the candidate keeps there and half a period before and after,
+for a fast stroke can take the arm into the body between two grid points) and a swivel track walks through the candidates, a bounded step from one grid point to
 the next, toward what costs least now and :data:`motor.arm.swivel.HORIZON` grid points
 ahead (:func:`motor.arm.swivel.smooth_swivels`). The track's steps follow the turn of
 the swivel's zero from grid point to grid point, so that a track that stays put keeps
@@ -38,8 +39,9 @@ from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 SWIVEL_PERIOD = 0.125
 #: How many grid points a batch solves at least: short windows then share one batch.
 SWIVEL_LOOKAHEAD = 20
-#: How many grid points ahead a grid state depends on channel values.
-TRACK_REACH = HORIZON
+#: How many grid points ahead a grid state depends on channel values: the horizon's, and
+#: half a period beyond its last point (the clearance half way, :func:`track_costs`).
+TRACK_REACH = HORIZON + 1
 #: How much less of a twist the hand asks for must be left unachieved before the forearm
 #: turns over to the other side of its range (radians), and how fast it turns over
 #: (radians per grid point).
@@ -103,20 +105,27 @@ class SwivelGrid:
         return start, max(last, start + SWIVEL_LOOKAHEAD - 1), False
 
     def times(self, start: int, end: int) -> np.ndarray:
-        """The grid times whose channel values :meth:`solve` needs for ``start … end``."""
-        return np.arange(start - 1, end + HORIZON + 1) * SWIVEL_PERIOD
+        """The times whose channel values :meth:`solve` needs for ``start … end``: the grid
+        points from the one before ``start`` to :data:`HORIZON` after ``end``, each
+        followed by the instant half way to the next."""
+        return np.arange(2 * (start - 1), 2 * (end + HORIZON) + 2) * (0.5 * SWIVEL_PERIOD)
 
     def solve(self, start: int, end: int, fresh: bool, inputs: dict[str, tuple[np.ndarray, np.ndarray]], trunk_yaw: np.ndarray | None = None) -> None:
         """Grid states ``start … end`` of both arms (module docstring) from the arms' wrist
-        positions and hand rotations at :meth:`times`, given in the frame of the trunk
-        turned by ``trunk_yaw`` there (radians, None: not turned)."""
+        positions and hand rotations at :meth:`times` (grid points and the instants half
+        way between them, alternately), given in the frame of the trunk turned by
+        ``trunk_yaw`` there (radians, None: not turned)."""
         if fresh:
             self.first = start
             for arm in ARMS:
                 self._arms[arm].rows = self._arms[arm].rows[:0]
         count = end - start + 1
         before = {arm: None if fresh else self._arms[arm].state(-1) for arm in ARMS}
-        costs = {arm: track_costs(self.avatar, AVATAR_SIDE[arm], *inputs[arm], trunk_yaw) for arm in ARMS}
+        grid_yaw, half_yaw = (None, None) if trunk_yaw is None else (trunk_yaw[::2], trunk_yaw[1::2])
+        costs = {
+            arm: track_costs(self.avatar, AVATAR_SIDE[arm], wrists[::2], hands[::2], grid_yaw, (wrists[1::2], hands[1::2], half_yaw))
+            for arm, (wrists, hands) in inputs.items()
+        }
         first, first_poses, crowded = self._tracks(costs, {arm: None if state is None else state[2] for arm, state in before.items()}, None)
         again = {arm: None if state is None else state[0] for arm, state in before.items()}
         if crowded or any(state is not None and state[0] != state[2] for state in before.values()):
