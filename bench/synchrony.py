@@ -22,7 +22,9 @@ The timeline is used only to say where to look and what kind of stroke it is:
 * a stroke is *dynamic* if the wrist travels more than :data:`DYNAMIC_PATH` during the
   planned stroke phase, otherwise *static* (a hold, e.g. pointing);
 * the preparation's speed peak is the fastest frame between the behaviour's start and the
-  expected stroke onset. The preparation is one movement unit (one guiding stroke), so
+  expected stroke onset; where the wrist already moves into the behaviour's start (the one
+  before skipped its retraction and flows on), the preparation begins at the first
+  arrival or deep dip after it, where that movement ends. The preparation is one movement unit (one guiding stroke), so
   its end — the **onset** of the stroke — is the first arrival, dip or kink after that
   peak. When the plan holds the hand before the stroke (``ready`` earlier than
   ``stroke_start``), the onset is instead the first departure, dip or kink after it;
@@ -157,9 +159,13 @@ def detect_stroke(positions: np.ndarray, fps: float, start_time: float, phases: 
     stroke = positions[frame(phases["stroke_start"]) : frame(phases["stroke_end"]) + 1]
     dynamic = stroke.shape[0] > 1 and float(np.linalg.norm(np.diff(stroke, axis=0), axis=1).sum()) > DYNAMIC_PATH
     first, expected = frame(phases["start"]), frame(expected_onset)
-    peak = first + int(np.argmax(speed[first : max(expected, first) + 1]))
     step = np.linalg.norm(np.diff(positions, axis=0), axis=1) * fps
     found = boundaries(speed, fps, np.append(step, step[-1]) < STILL_SPEED)
+    if first > 0 and step[min(first, step.size) - 1] >= STILL_SPEED:
+        # still moving from the behaviour before (its retraction skipped): the preparation
+        # begins where that movement ends
+        first = next((b.frame for b in found if first < b.frame < expected and (b.kind == "arrival" or b.deep)), first)
+    peak = first + int(np.argmax(speed[first : max(expected, first) + 1]))
     onset = next((b.frame for b in found if b.frame > peak and b.kind in ("arrival", "dip", "kink")), None)
     if onset is not None and phases["stroke_start"] - phases["ready"] > 1.5 / fps:
         onset = next((b.frame for b in found if b.frame > onset and b.kind in ("departure", "dip", "kink")), None)

@@ -111,3 +111,16 @@ def test_rendered_example_utterance(tmp_path):
     assert [(e.behavior, e.arm) for e in errors] == [("gesture_1", "right"), ("gesture_2", "right"), ("gesture_2", "left")]
     assert all(e.detected_onset is not None for e in errors)
     assert quality.nan_count(performed.motion) == 0
+
+
+@pytest.mark.parametrize("fps", [25.0, 60.0])
+@pytest.mark.parametrize("joined", [0.35, 0.55])
+def test_a_preparation_after_a_movement_flowing_into_it_ends_at_the_stroke(fps, joined):
+    """The behaviour before skipped its retraction: its wider, faster movement is still
+    under way at this behaviour's start (``joined`` s into it) and faster than the
+    preparation that follows it; the onset is the preparation's end, not that movement's."""
+    far = REST + np.array([-0.5, 0.3, 0.3])
+    wrist = piecewise(fps, [(0.0, 0.8, far, REST), (0.8, 1.4, REST, READY), (1.4, 2.0, READY, AFTER), (2.3, 3.1, AFTER, REST)], 3.3)
+    found = synchrony.detect_stroke(wrist, fps, 0.0, phases(joined, 1.4, 2.0, 2.3), 1.4)
+    assert found.dynamic
+    assert abs(found.onset - 1.4) <= 1.0 / fps + 1e-9
