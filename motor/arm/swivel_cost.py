@@ -52,8 +52,9 @@ _TINY = 1e-12
 #: Frames measured in one pass: their ``(frames, candidates)`` arrays stay in the CPU's
 #: cache, which makes the elementwise arithmetic several times faster than one pass over
 #: tens of thousands of frames. Every frame's costs are its own (the arithmetic is the
-#: same whatever the batch), so this changes no number.
-CHUNK_FRAMES = 1024
+#: same whatever the batch), so this changes no number. 384 frames (8,000 candidates, 64 kB
+#: per array) measured about a quarter faster per frame than 1,024 on the bench machine.
+CHUNK_FRAMES = 384
 
 
 def candidate_costs(
