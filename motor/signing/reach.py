@@ -100,13 +100,14 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
         chains = np.repeat(np.arange(len(owners)), [count for _, count in owners])
         cleared, _ = clear_paths(avatar, arm, points, turns, chains=chains)
         pieces = iter(cleared)
-        originals = iter(points)
+        moved = [index for index, (a, b) in enumerate(zip(cleared, points)) if not _same(a, b)]
+        shifts = np.zeros(len(points))
+        shifts[moved] = path_shifts([cleared[index] for index in moved], [points[index] for index in moved])
+        shifts_of = iter(shifts.tolist())
         for plan, count in owners:
             record = fixed[id(plan)]
             parts = [next(pieces) for _ in range(count)]
-            before = [next(originals) for _ in range(count)]
-            shifts = [0.0 if _same(a, b) else path_shift(a, b) for a, b in zip(parts, before)]
-            changed = [shift for shift in shifts if shift > REACH_NOTE_THRESHOLD]
+            changed = [shift for shift in (next(shifts_of) for _ in range(count)) if shift > REACH_NOTE_THRESHOLD]
             if changed:
                 record["notes"].append(
                     f"{plan.gloss}: {len(changed)} path(s) of the {arm} hand moved within reach or out of the body, "
@@ -376,6 +377,31 @@ def _clear_points(
     moved = np.zeros(len(points), dtype=bool)
     moved[mask] = changed
     return points, moved, int(changed.sum())
+
+
+def path_shifts(moved: list[np.ndarray], original: list[np.ndarray]) -> np.ndarray:
+    """:func:`path_shift` of every pair of paths ``(m_k, 3)``, ``(n_k, 3)`` ``(k,)``, m, in
+    a few vectorized passes over all the pairs of a moved point and a chord of its original
+    path (tens of thousands per corpus): each value with :func:`path_shift`'s arithmetic.
+    A one-point original is a chord from the point to itself, whose nearest point is it."""
+    if not moved:
+        return np.zeros(0)
+    chords = [max(len(path) - 1, 1) for path in original]
+    starts = np.concatenate([path if len(path) == 1 else path[:-1] for path in original])
+    ends = np.concatenate([path if len(path) == 1 else path[1:] for path in original])
+    points = np.concatenate(moved)
+    counts = np.array([len(path) for path in moved])
+    # every moved point of a path with every chord of its original, point by point
+    pairs = np.repeat(np.array(chords), counts)
+    point = np.repeat(np.arange(len(points)), pairs)
+    first_chord = np.repeat(np.cumsum(chords) - chords, counts)
+    chord = np.repeat(first_chord - np.cumsum(pairs) + pairs, pairs) + np.arange(pairs.sum())
+    a, along = starts[chord], ends[chord] - starts[chord]
+    lengths = np.maximum(np.einsum("ij,ij->i", along, along), 1e-18)
+    t = np.clip(np.einsum("ij,ij->i", points[point] - a, along) / lengths, 0.0, 1.0)
+    distance = np.linalg.norm(points[point] - (a + t[:, None] * along), axis=1)
+    nearest = np.minimum.reduceat(distance, np.cumsum(pairs) - pairs)
+    return np.maximum.reduceat(nearest, np.cumsum(counts) - counts)
 
 
 def path_shift(moved: np.ndarray, original: np.ndarray) -> float:

@@ -21,7 +21,7 @@ from motor.signing import path_shapes, planning
 from motor.signing.lmp import stopping_length
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
-from motor.signing.reach import _spread, _spread_chains
+from motor.signing.reach import _spread, _spread_chains, path_shift, path_shifts
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
 from mura.hamnosys import hamnosys_string, parse_hamnosys
 from mura.sigml import parse_sigml
@@ -160,3 +160,32 @@ LINE_CASES = {
 def test_a_straight_path_is_numpys_linspace(case):
     start, end = (np.array(point) for point in LINE_CASES[case])
     assert path_shapes.line(start, end).tobytes() == np.linspace(start, end, path_shapes.PATH_POINTS).tobytes()
+
+
+#: Moved paths and the originals they came from (labelled synthetic, seeded): points per
+#: moved path, points per original, and what else the original has.
+SHIFT_CASES = {
+    "one point each": (1, 1, ""),
+    "one-point original": (12, 1, ""),
+    "two-point original": (5, 2, ""),
+    "long paths": (40, 30, ""),
+    "a zero chord": (9, 6, "hold"),
+    "unmoved": (8, 8, "same"),
+}
+
+
+@pytest.mark.parametrize("case", SHIFT_CASES)
+def test_path_shifts_of_many_paths_equal_one_by_one(case):
+    """:func:`motor.signing.reach.path_shifts` of a batch of paths of every case at once
+    equals :func:`path_shift` of each, bit for bit."""
+    moved_points, original_points, extra = SHIFT_CASES[case]
+    rng = np.random.default_rng(len(case))
+    moved, originals = [], []
+    for _ in range(20):
+        original = np.array([0.1, 1.2, 0.3]) + np.cumsum(rng.normal(0.0, 0.02, (original_points, 3)), axis=0)
+        if extra == "hold":
+            original[2] = original[1]
+        shift = 0.0 if extra == "same" else 0.01
+        moved.append(original[rng.integers(0, original_points, moved_points)] + shift * rng.normal(size=(moved_points, 3)))
+        originals.append(original)
+    assert path_shifts(moved, originals).tolist() == [path_shift(a, b) for a, b in zip(moved, originals)]
