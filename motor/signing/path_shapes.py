@@ -43,7 +43,7 @@ def line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
     overhead: a collection of signs draws thousands of straight paths."""
     delta = end - start
     step = delta / (PATH_POINTS - 1)
-    points = (_SAMPLES / (PATH_POINTS - 1)) * delta if np.any(step == 0) else _SAMPLES * step
+    points = (_SAMPLES / (PATH_POINTS - 1)) * delta if (step == 0).any() else _SAMPLES * step
     points += start
     points[-1] = end
     return points
