@@ -27,6 +27,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -129,7 +130,7 @@ def solve_arm(
         if swivel_from is not None:
             psi = psi + swivel_of(np.asarray(swivel_from, dtype=float), circle.down, circle.out)
     arm = _arm_at(setup.chain, circle, psi, setup.sc_global, setup.hands, twist_reference)
-    depth = lambda: clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(arm.elbow)), setup.body_frame, carried_frames=setup.carried_frames)[1][:, 0]
+    depth = lambda: _body_depth(avatar, setup, arm.elbow)
     return ArmSolution(
         rotations=np.stack((setup.clavicle_local, arm.shoulder_local, arm.elbow_local, arm.wrist_local), axis=1),
         shoulder=circle.shoulder,
@@ -144,6 +145,33 @@ def solve_arm(
         twist_certainty=arm.certainty,
         depth=depth,
     )
+
+
+class ArmReach(NamedTuple):
+    """What a reach check reads of :func:`solve_arm`'s solution, for ``n`` frames: the
+    wrist positions reached ``(n, 3)``, how far each falls short of its target and how
+    deep the arm enters the body at the cheapest swivel ``(n,)``, metres."""
+
+    wrist: np.ndarray
+    shortfall: np.ndarray
+    penetration: np.ndarray
+
+
+def arm_reach(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray | None = None) -> ArmReach:
+    """:func:`solve_arm`'s ``wrist``, ``shortfall`` and ``penetration`` (the same numbers)
+    without the joint rotations and the hand's twist, which a reach check does not read:
+    planning checks a quarter of a million wrist positions of a corpus this way."""
+    setup = place_arm(avatar, side, wrist_targets, hand_rotations)
+    circle = setup.circle
+    psi = _cheapest_swivel(avatar, setup, None)
+    return ArmReach(circle.wrist, circle.shortfall, _body_depth(avatar, setup, circle.elbow(psi, circle.direction(psi))))
+
+
+def _body_depth(avatar: Avatar, setup: ArmPlacement, elbow: np.ndarray) -> np.ndarray:
+    """How deep (m) the arm placed at ``setup`` with its elbows at ``elbow (n, 3)`` enters the body ``(n,)``."""
+    circle = setup.circle
+    elbows = tuple(c[:, None] for c in components(elbow))
+    return clearance(avatar, setup.chain.side, circle.shoulder, circle.wrist, elbows, setup.body_frame, carried_frames=setup.carried_frames)[1][:, 0]
 
 
 def swivel_costs(

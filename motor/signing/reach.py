@@ -12,12 +12,11 @@ arm and round.
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import NamedTuple
 
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.ik import solve_arm
+from motor.arm.ik import ArmReach, arm_reach
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.signing.hand_clearance import hands_clear_of_torso
@@ -181,7 +180,7 @@ def _within_reach(
             avatar, side, np.concatenate([here + REACH_MARGIN * away, here - REACH_MARGIN * away]),
             None if turns is None else np.concatenate([turns, turns]),
         )
-        far, near = (_Reached(*(column[rows] for column in both)) for rows in (slice(0, len(here)), slice(len(here), None)))
+        far, near = (ArmReach(*(column[rows] for column in both)) for rows in (slice(0, len(here)), slice(len(here), None)))
         # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
         outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
         short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
@@ -201,25 +200,14 @@ def _within_reach(
     return fixed, moved, max(worst, 0.0)
 
 
-class _Reached(NamedTuple):
-    """What :func:`within_reach` reads of the IK's solution, ``(n, 3)`` and ``(n,)`` m."""
-
-    wrist: np.ndarray
-    shortfall: np.ndarray
-    penetration: np.ndarray
-
-
-def _solve_in_chunks(avatar: Avatar, side: str, targets: np.ndarray, turns: np.ndarray | None) -> _Reached:
-    """The arm IK for many wrist positions, :data:`IK_CHUNK` rows per call (the IK solves
-    every row apart; its cost per row grows for very long calls)."""
-    parts = []
-    for start in range(0, len(targets), IK_CHUNK):
-        rows = slice(start, start + IK_CHUNK)
-        solution = solve_arm(avatar, side, targets[rows], None if turns is None else turns[rows])
-        parts.append((solution.wrist, solution.shortfall, solution.penetration))
+def _solve_in_chunks(avatar: Avatar, side: str, targets: np.ndarray, turns: np.ndarray | None) -> ArmReach:
+    """The arm IK's reach (:func:`motor.arm.ik.arm_reach`) for many wrist positions,
+    :data:`IK_CHUNK` rows per call (the IK solves every row apart; its cost per row grows
+    for very long calls)."""
+    parts = [arm_reach(avatar, side, targets[rows], None if turns is None else turns[rows]) for rows in (slice(start, start + IK_CHUNK) for start in range(0, len(targets), IK_CHUNK))]
     if len(parts) == 1:
-        return _Reached(*parts[0])
-    return _Reached(*(np.concatenate(column) for column in zip(*parts)))
+        return parts[0]
+    return ArmReach(*(np.concatenate(column) for column in zip(*parts)))
 
 
 def clear_paths(
