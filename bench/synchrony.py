@@ -8,7 +8,8 @@ The detector. A movement unit of the wrist is delimited by *boundaries* of its s
 profile (speed by central differences):
 
 * an **arrival** — the first frame of a still run (the wrist moves slower than
-  :data:`STILL_SPEED` from it to the next frame) entered from movement; a **departure** —
+  :data:`STILL_SPEED` from it to the next frame) of two frames or more, entered from
+  movement (a single still frame is a momentary stop, which its dip marks); a **departure** —
   the last frame of a still run left into movement;
 * a **dip** — a local speed minimum that is not still; a *deep* dip is at most
   :data:`DIP_RATIO` of the lower of the speed peaks within :data:`PEAK_REACH` on either
@@ -24,9 +25,9 @@ The timeline is used only to say where to look and what kind of stroke it is:
 * the preparation's speed peak is the fastest frame between the behaviour's start and the
   expected stroke onset; where the wrist already moves into the behaviour's start (the one
   before skipped its retraction and flows on), the preparation begins at the first
-  arrival or deep dip after it, where that movement ends. The preparation is one movement unit (one guiding stroke), so
-  its end — the **onset** of the stroke — is the first arrival, dip or kink after that
-  peak. When the plan holds the hand before the stroke (``ready`` earlier than
+  arrival or deep dip after it, where that movement ends. The preparation is one
+  movement unit (one guiding stroke), so its end — the **onset** of the stroke — is the
+  first arrival, dip or kink after that peak. When the plan holds the hand before the stroke (``ready`` earlier than
   ``stroke_start``), the onset is instead the first departure, dip or kink after it;
 * the **end** of a dynamic stroke is the last arrival or deep dip before the planned
   relax time plus :data:`END_MARGIN`, later than the onset: where the wrist comes to its
@@ -119,6 +120,11 @@ def boundaries(speed: np.ndarray, fps: float, still: np.ndarray | None = None) -
     if not fps > 0:
         raise ValueError(f"fps must be positive, got {fps}")
     still = speed < STILL_SPEED if still is None else np.asarray(still, dtype=bool)
+    # one still frame between movements is a momentary stop, not a hold: its speed minimum marks it
+    lone = still.copy()
+    lone[1:] &= ~still[:-1]
+    lone[:-1] &= ~still[1:]
+    still = still & ~lone
     found = [Boundary(int(i), "arrival") for i in np.flatnonzero(still[1:] & ~still[:-1]) + 1]
     found += [Boundary(int(i), "departure") for i in np.flatnonzero(still[:-1] & ~still[1:])]
     if speed.size >= 3:

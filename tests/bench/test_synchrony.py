@@ -124,3 +124,17 @@ def test_a_preparation_after_a_movement_flowing_into_it_ends_at_the_stroke(fps, 
     found = synchrony.detect_stroke(wrist, fps, 0.0, phases(joined, 1.4, 2.0, 2.3), 1.4)
     assert found.dynamic
     assert abs(found.onset - 1.4) <= 1.0 / fps + 1e-9
+
+
+@pytest.mark.parametrize("fraction", [0.05, 0.1, 0.5])
+def test_a_momentary_stop_is_found_at_its_speed_minimum(fraction):
+    """A short preparation stops and the stroke starts at once, ``fraction`` of a frame
+    after a frame time: over the frame before that one the wrist moves less than the still
+    speed, a single still frame, which is no hold; the onset is the speed minimum's frame,
+    within a frame of the stop (the still frame lies more than a frame before it)."""
+    fps = 60.0
+    onset = 1.0 + fraction / fps
+    near = READY + 0.5 * (REST - READY)
+    wrist = piecewise(fps, [(0.0, onset, near, READY), (onset, onset + 0.6, READY, AFTER), (onset + 0.9, onset + 1.7, AFTER, REST)], onset + 1.9)
+    found = synchrony.detect_stroke(wrist, fps, 0.0, phases(0.0, onset, onset + 0.6, onset + 0.9), onset)
+    assert abs(found.onset - onset) <= 1.0 / fps + 1e-9
