@@ -29,7 +29,7 @@ from motor import quaternion as quat
 from motor.arm.reach_turn import TURN_JOINTS
 from motor.body.avatar import HAND_JOINTS, Avatar
 from motor.body.collision import Components, capsule_apart, segments_apart
-from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, Volume
+from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, EllipticCylinder, Volume
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
 CLEARANCE = 0.01
@@ -205,14 +205,7 @@ def clearance(
     cost = np.zeros(shape)
     depth = np.zeros(shape)
     if body:
-        groups = ((body_obstacles(avatar), body_frame),) if carried_frames is None else zip(_by_carriers(avatar), (*carried_frames, body_frame))
-        trunk = [np.full(shape, np.inf), np.full(shape, np.inf)]
-        for obstacles, frame in groups:
-            if obstacles:
-                _body_clearance(capsules, obstacles, shoulder, wrist, elbow, frame, cost, depth, trunk)
-        for distance in trunk:
-            rows = np.isfinite(distance)
-            cost[rows] += overlap_penalty(distance[rows])
+        _body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carried_frames, cost, depth)
     if other is not None:
         boxes = _boxes(capsules, shoulder, wrist, elbow)
         for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
@@ -226,6 +219,77 @@ def clearance(
                 # hands may touch the other arm (where it is asked): theirs is the plain penalty
                 cost[rows] += (penalty if part == "hand" else overlap_penalty)(distance - radius - r_other)
     return cost, np.maximum(depth, 0.0)
+
+
+def _body_costs(
+    avatar: Avatar,
+    capsules: ArmCapsules,
+    shoulder: np.ndarray,
+    wrist: np.ndarray,
+    elbow: Components,
+    body_frame: tuple[np.ndarray, np.ndarray] | None,
+    carried_frames: tuple[tuple[np.ndarray, np.ndarray], ...] | None,
+    cost: np.ndarray,
+    depth: np.ndarray,
+) -> None:
+    """:func:`clearance`'s penalty and depth from the body, added into ``cost`` and
+    ``depth`` ``(n, K)``: the instants where the trunk does not turn (all of them without
+    ``carried_frames``) against :func:`upright_obstacles`, the others against every volume
+    where the joints above it carry it. Each instant's figures are its own, whatever the
+    others."""
+    upright = np.ones(len(shoulder), dtype=bool) if carried_frames is None else np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
+    for rows, obstacles in ((upright, None), (~upright, _by_carriers(avatar))):
+        if not np.any(rows):
+            continue
+        every = bool(np.all(rows))
+        pick = (lambda value: value) if every else (lambda value: value[rows])
+        frame = lambda f: None if f is None else (pick(f[0]), pick(f[1]))
+        if obstacles is None:
+            groups = ((upright_obstacles(avatar), frame(body_frame)),)
+        else:
+            groups = tuple(zip(obstacles, (*(frame(f) for f in carried_frames), frame(body_frame))))
+        part_cost, part_depth = np.zeros(pick(cost).shape), np.zeros(pick(cost).shape)
+        trunk = [np.full(part_cost.shape, np.inf), np.full(part_cost.shape, np.inf)]
+        for found, where in groups:
+            if found:
+                _body_clearance(capsules, found, pick(shoulder), pick(wrist), tuple(pick(c) for c in elbow), where, part_cost, part_depth, trunk)
+        for distance in trunk:
+            near = np.isfinite(distance)
+            part_cost[near] += overlap_penalty(distance[near])
+        if every:
+            cost += part_cost
+            np.maximum(depth, part_depth, out=depth)
+        else:
+            cost[rows] += part_cost
+            depth[rows] = np.maximum(depth[rows], part_depth)
+
+
+@functools.lru_cache(maxsize=32)
+def upright_obstacles(avatar: Avatar) -> tuple[Obstacle, ...]:
+    """The body's obstacles where no part of the spine turns: the trunk's pieces, where they
+    are elliptic cylinders of one cross-section stacked without a gap, as the one cylinder
+    they make (the same body, one distance to measure instead of two, and no cut)."""
+    obstacles = body_obstacles(avatar)
+    trunk = sorted((o for o in obstacles if o.trunk), key=lambda o: getattr(o.volume, "bottom", 0.0))
+    if len(trunk) < 2 or not _stacked([o.volume for o in trunk]):
+        return obstacles
+    lower, upper = trunk[0].volume, trunk[-1].volume
+    whole = EllipticCylinder(lower.name, lower.joint, lower.center, lower.half_width, lower.half_depth, lower.bottom, upper.top)
+    box = np.stack((np.min([o.box[0] for o in trunk], axis=0), np.max([o.box[1] for o in trunk], axis=0)))
+    return (*(o for o in obstacles if not o.trunk), Obstacle(whole, box, trunk[0].carriers, True))
+
+
+def _stacked(volumes: list[Volume]) -> bool:
+    """Whether the volumes, lowest first, are elliptic cylinders of one cross-section, each
+    starting where the one below ends."""
+    if not all(isinstance(v, EllipticCylinder) for v in volumes):
+        return False
+    first = volumes[0]
+    same = all(
+        np.allclose(v.center[[0, 2]], first.center[[0, 2]]) and np.isclose(v.half_width, first.half_width) and np.isclose(v.half_depth, first.half_depth)
+        for v in volumes
+    )
+    return same and all(np.isclose(low.top, high.bottom) for low, high in zip(volumes, volumes[1:]))
 
 
 def _body_clearance(

@@ -18,7 +18,7 @@ import motor.arm.clearance as clearance_module
 from bench.motion_audit.distance import EllipticCylinder, capsule_depth
 from motor import quaternion as quat
 from motor.arm.chain import place_arm
-from motor.arm.clearance import TOLERATED_DEPTH, arm_capsules, body_obstacles, clearance
+from motor.arm.clearance import TOLERATED_DEPTH, arm_capsules, body_obstacles, clearance, upright_obstacles
 from motor.arm.ik import CANDIDATES, solve_arm
 from motor.arm.reach_turn import TURN_JOINTS, turned
 from motor.body.avatar import load_avatar
@@ -149,31 +149,41 @@ def test_the_cheapest_swivel_keeps_out_of_the_body_where_one_can(avatar, side, s
     )
 
 
+def test_upright_the_trunk_pieces_are_the_cylinder_they_make(avatar):
+    """Where no part of the spine turns, the torso and the chest are measured as the one
+    cylinder they were cut from."""
+    trunk = [o for o in upright_obstacles(avatar) if o.trunk]
+    pieces = [o.volume for o in body_obstacles(avatar) if o.trunk]
+    assert len(trunk) == 1
+    (whole,) = (o.volume for o in trunk)
+    assert isinstance(whole, MotorCylinder)
+    assert whole.bottom == min(v.bottom for v in pieces) and whole.top == max(v.top for v in pieces)
+
+
 @pytest.mark.parametrize("seed", range(4))
 @pytest.mark.parametrize("side", ["l", "r"])
 def test_a_trunk_cut_in_two_costs_what_the_whole_trunk_costs(avatar, side, seed, monkeypatch):
-    """Upright, a torso and a chest stacked one on the other are the one cylinder they
-    were cut from: an arm near the cut pays the clearance penalty once, so the swivel
-    costs and depths of random elbows across the chest are those of the uncut trunk
-    (where shallower than :data:`SHALLOW`: deeper, each piece's depth along the ray from
-    the axis is taken where its own part of the segment comes nearest the axis)."""
+    """With the trunk turned by a hair, the torso and the chest (each measured in its own
+    frame) are the one cylinder they were cut from: an arm near the cut pays the clearance
+    penalty once, so the swivel costs and depths of random elbows across the chest are
+    those of the uncut trunk (where shallower than :data:`SHALLOW`: deeper, each piece's
+    depth along the ray from the axis is taken where its own part of the segment comes
+    nearest the axis)."""
     trunk = [o for o in body_obstacles(avatar) if o.trunk]
     if len(trunk) < 2:
         pytest.skip(f"{avatar.name} has one trunk volume")
-    lower, upper = (o.volume for o in trunk)
-    whole = MotorCylinder("torso", lower.joint, lower.center, lower.half_width, lower.half_depth, lower.bottom, upper.top)
-    others = tuple(o for o in body_obstacles(avatar) if not o.trunk)
     rng = np.random.default_rng(seed)
     targets = _chest_table(avatar, side)
-    placement = place_arm(avatar, side, targets)
+    placement = place_arm(avatar, side, targets, trunk_yaw=np.full(len(targets), 1e-9))
     circle = placement.circle
     swivels = rng.uniform(-np.pi, np.pi, size=(len(targets), 12))
     elbow = tuple(circle.center[:, i : i + 1] + circle.radius[:, None] * (circle.down[:, i : i + 1] * np.cos(swivels) + circle.out[:, i : i + 1] * np.sin(swivels)) for i in range(3))
-    cut = clearance(avatar, side, circle.shoulder, circle.wrist, elbow)
-    box = np.array([[whole.center[0] - whole.half_width, whole.bottom, whole.center[2] - whole.half_depth], [whole.center[0] + whole.half_width, whole.top, whole.center[2] + whole.half_depth]])
-    uncut = (*others, clearance_module.Obstacle(whole, box, 0, True))
-    monkeypatch.setattr(clearance_module, "body_obstacles", lambda _avatar: uncut)
-    joined = clearance(avatar, side, circle.shoulder, circle.wrist, elbow)
+    cut = clearance(avatar, side, circle.shoulder, circle.wrist, elbow, carried_frames=placement.carried_frames)
+    whole = next(o for o in upright_obstacles(avatar) if o.trunk)
+    groups = [[o for o in body_obstacles(avatar) if not o.trunk and o.carriers == count] for count in range(len(TURN_JOINTS) + 1)]
+    groups[whole.carriers].append(whole)
+    monkeypatch.setattr(clearance_module, "_by_carriers", lambda _avatar: tuple(tuple(g) for g in groups))
+    joined = clearance(avatar, side, circle.shoulder, circle.wrist, elbow, carried_frames=placement.carried_frames)
     shallow = joined[1] < SHALLOW
     assert np.any(shallow & (joined[1] > 0.0)), "the table must put some elbows a little into the trunk"
     np.testing.assert_allclose(cut[1][shallow], joined[1][shallow], atol=1e-6)
