@@ -73,11 +73,6 @@ class Obstacle:
     carriers: int
     trunk: bool
 
-    @property
-    def turns(self) -> bool:
-        """Whether it turns with the whole trunk."""
-        return self.carriers == len(TURN_JOINTS)
-
 
 @dataclass(frozen=True, eq=False)
 class ArmSegments:

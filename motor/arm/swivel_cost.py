@@ -79,8 +79,7 @@ def candidate_costs(
     count = len(CANDIDATES)
     if not own:
         return _other_arm_costs(avatar, placement, natural, other)
-    cells = np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
-    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    cells, psi = measured_window(natural)
     elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
     penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other, carried_frames=placement.carried_frames)
@@ -98,8 +97,7 @@ def body_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray)
     """The clearance penalty from the body ``(n, K)`` of the candidates within the window
     about the natural swivels ``natural (n,)`` (0 for the others, which are not measured)."""
     count = len(CANDIDATES)
-    cells = np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
-    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    cells, psi = measured_window(natural)
     elbow, _ = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
     penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, carried_frames=placement.carried_frames)
@@ -124,8 +122,7 @@ def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
     if not np.any(near):
         return costs
     rows = np.flatnonzero(near)
-    cells = np.rint((natural[rows] - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
-    psi = CANDIDATES[0] + cells * SWIVEL_STEP
+    cells, psi = measured_window(natural[rows])
     subset = placement.take(rows)
     elbow, _ = candidate_elbows(subset, np.cos(psi), np.sin(psi))
     penalty, _ = clearance(avatar, placement.chain.side, subset.circle.shoulder, subset.circle.wrist, elbow, subset.body_frame, other.take(rows), body=False)
@@ -139,6 +136,14 @@ def natural_cost(away: np.ndarray) -> np.ndarray:
     """The cost of being ``away`` radians (in [-π, π]) from the natural swivel."""
     beyond = np.maximum(np.abs(away) - SWIVEL_RANGE, 0.0)
     return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
+
+
+def measured_window(natural: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The candidates measured about the natural swivels ``natural (n,)``: their cells
+    ``(n, 2 WINDOW + 1)`` (unwrapped steps from the first candidate, as floats; modulo
+    ``K`` the candidate's index) and swivels (radians)."""
+    cells = np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP)[:, None] + _CELLS
+    return cells, CANDIDATES[0] + cells * SWIVEL_STEP
 
 
 def candidate_elbows(placement: ArmPlacement, cos: np.ndarray, sin: np.ndarray) -> tuple[Components, Components]:

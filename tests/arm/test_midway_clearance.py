@@ -14,7 +14,7 @@ import pytest
 
 from motor.arm.chain import natural_swivel, place_arm
 from motor.arm.ik import midway_penalties, track_costs
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, WINDOW, body_penalties
+from motor.arm.swivel_cost import CANDIDATES, body_penalties, measured_window
 from motor.body.avatar import load_avatar
 
 AVATARS = ("max", "makehuman")
@@ -68,9 +68,8 @@ def test_a_candidate_pays_what_it_would_pay_half_way(avatar, side, step):
     natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)[1:]
     own = body_penalties(avatar, placement.take(slice(1, None)), natural)
     assert np.any(nearby > own + 1.0), "the sweep must pass the chest between grid instants"
-    cells = (np.rint((natural - CANDIDATES[0]) / SWIVEL_STEP).astype(int)[:, None] + np.arange(-WINDOW, WINDOW + 1)) % len(CANDIDATES)
     measured = np.zeros_like(own, dtype=bool)
-    np.put_along_axis(measured, cells, True, axis=1)
+    np.put_along_axis(measured, measured_window(natural)[0].astype(int) % len(CANDIDATES), True, axis=1)
     more = measured & (nearby > own + 1e-6)
     assert np.any(more)
     assert np.all(with_half.costs[more] > plain.costs[more])
