@@ -28,7 +28,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.reach_turn import TURN_JOINTS
 from motor.body.avatar import HAND_JOINTS, Avatar
-from motor.body.collision import Components, capsule_apart, segments_apart
+from motor.body.distance import Components, capsule_apart, segments_apart
 from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, EllipticCylinder, Volume
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.

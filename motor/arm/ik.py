@@ -36,7 +36,7 @@ from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel,
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
 from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, body_penalties, candidate_costs, candidate_elbows, parabola_offset, wrist_state
 from motor.body.avatar import Avatar
-from motor.body.collision import components
+from motor.body.distance import components
 
 #: Swing (radians) between forearm and hand up to which the hand's twist about the
 #: forearm is taken as fully defined (:func:`twist_certainty`).

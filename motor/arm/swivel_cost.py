@@ -25,7 +25,7 @@ import numpy as np
 from motor.arm.chain import ArmPlacement
 from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance
 from motor.body.avatar import Avatar
-from motor.body.collision import Components
+from motor.body.distance import Components
 
 #: Candidate swivels (radians): the whole circle in steps of :data:`SWIVEL_STEP`.
 SWIVEL_STEP = float(np.deg2rad(10.0))

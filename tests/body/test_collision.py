@@ -15,15 +15,14 @@ from motor.body.collision import (
     HAND_BAND,
     SOFT_BAND,
     TORSO_MARGIN,
-    capsule_distance,
     hand_segments,
     hand_push_out_of_torso,
     inside_torso,
     kept_out_of_torso,
     outside_torso,
-    segment_distance,
     separate_hands,
 )
+from motor.body.distance import capsule_distance, segment_distance
 from motor.body.volumes import BODY_NAMES, Capsule, Ellipsoid, EllipticCylinder, derived_volumes, required_volumes
 
 RNG = np.random.default_rng(11)
