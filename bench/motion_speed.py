@@ -10,7 +10,8 @@ it on a fresh :class:`motor.control.MotorControl` and renders it, at 25 and 60 f
   and not per frame, so timed apart;
 * ``bare_*``: the cost of merely composing every joint rotation of every frame with
   numpy — forward kinematics of the rendered rotations (a quaternion product and a
-  rotated offset per joint per frame) and a single quaternion product per joint per
+  rotated offset per joint per frame, numpy arithmetic on whole arrays: the floor is
+  numpy's, not mura's compiled kernels) and a single quaternion product per joint per
   frame — and the ratio of synthesis time to forward-kinematics time;
 * ``bare_compose_and_write_*`` (issue 19's floor): composing the same rotations (forward
   kinematics) and writing them (the local rotations as float32 bytes into a buffer, the
@@ -36,9 +37,8 @@ import numpy as np
 
 import io
 
-from motor import quaternion as quat
 from motor.body.avatar import load_avatar
-from motor.body.kinematics import forward_kinematics
+from motor.compiled import warm_up
 from motor.control import MotorControl
 from motor.program.gesture import MotorProgram
 from motor.program.lmp import TimePegs
@@ -84,10 +84,52 @@ def median_seconds(call: Callable[[], object], repeats: int) -> float:
     return statistics.median(durations)
 
 
+def numpy_product(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Hamilton product of quaternions ``(..., 4)`` (scalar last) in numpy arithmetic."""
+    px, py, pz, pw = p[..., 0], p[..., 1], p[..., 2], p[..., 3]
+    qx, qy, qz, qw = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    out = np.empty(np.broadcast_shapes(p.shape, q.shape))
+    out[..., 0] = pw * qx + px * qw + py * qz - pz * qy
+    out[..., 1] = pw * qy - px * qz + py * qw + pz * qx
+    out[..., 2] = pw * qz + px * qy - py * qx + pz * qw
+    out[..., 3] = pw * qw - px * qx - py * qy - pz * qz
+    return out
+
+
+def numpy_rotated(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Vectors ``(..., 3)`` rotated by unit quaternions ``(..., 4)`` in numpy arithmetic
+    (``v + 2w (u × v) + u × (2 u × v)``)."""
+    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    vx, vy, vz = v[..., 0], v[..., 1], v[..., 2]
+    tx, ty, tz = 2.0 * (y * vz - z * vy), 2.0 * (z * vx - x * vz), 2.0 * (x * vy - y * vx)
+    out = np.empty(np.broadcast_shapes(q.shape[:-1], v.shape[:-1]) + (3,))
+    out[..., 0] = vx + w * tx + y * tz - z * ty
+    out[..., 1] = vy + w * ty + z * tx - x * tz
+    out[..., 2] = vz + w * tz + x * ty - y * tx
+    return out
+
+
+def numpy_forward_kinematics(avatar, rotations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Global joint positions and orientations of local rotations ``(n, J, 4)``, level by
+    level of the skeleton (all joints of a level in one numpy call): the bare floor's
+    composition, sharing no code with mura's."""
+    local = np.ascontiguousarray(rotations.transpose(1, 0, 2))
+    positions = np.empty(local.shape[:2] + (3,))
+    orientations = np.empty_like(local)
+    root = avatar.levels[0]
+    orientations[root] = local[root]
+    positions[root] = avatar.offsets[root][:, None, :]
+    for level in avatar.levels[1:]:
+        parent = avatar.parents[level]
+        orientations[level] = numpy_product(orientations[parent], local[level])
+        positions[level] = positions[parent] + numpy_rotated(orientations[parent], avatar.offsets[level][:, None, :])
+    return positions, orientations
+
+
 def compose_and_write(avatar, rotations: np.ndarray) -> int:
-    """The bare floor of synthesis: compose the joint rotations (forward kinematics) and
-    write them (float32 bytes into a buffer); returns the bytes written."""
-    forward_kinematics(avatar, rotations)
+    """The bare floor of synthesis: compose the joint rotations (forward kinematics, numpy)
+    and write them (float32 bytes into a buffer); returns the bytes written."""
+    numpy_forward_kinematics(avatar, rotations)
     buffer = io.BytesIO()
     buffer.write(rotations.astype(np.float32).tobytes())
     return buffer.tell()
@@ -112,6 +154,7 @@ def _streamed(control: MotorControl, end: float, window: float = 0.1) -> int:
 def run(quick: bool) -> dict:
     """Frames per second of motion synthesis and of the bare rotation composition."""
     avatar = load_avatar("max")
+    kernels_load = warm_up()
     repeats = 3 if quick else 7
     gestures = _gestures()
     if quick:
@@ -126,6 +169,7 @@ def run(quick: bool) -> dict:
         "gestures": len(gestures),
         "utterance_seconds": round(end, 3),
         "planning_ms_per_gesture": 1000.0 * planning / len(gestures),
+        "compiled_kernels_load_ms": 1000.0 * kernels_load,
     }
     for fps in (25.0, 60.0):
         label = f"{int(fps)}fps"
@@ -135,8 +179,8 @@ def run(quick: bool) -> dict:
         streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), repeats)
         activation = median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
         rotations = frames.rotations
-        fk = median_seconds(lambda: forward_kinematics(avatar, rotations), repeats)
-        product = median_seconds(lambda: quat.multiply(rotations, rotations), repeats)
+        fk = median_seconds(lambda: numpy_forward_kinematics(avatar, rotations), repeats)
+        product = median_seconds(lambda: numpy_product(rotations, rotations), repeats)
         bare = median_seconds(lambda: compose_and_write(avatar, rotations), repeats)
         result.update({
             f"frames_{label}": count,

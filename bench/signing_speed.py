@@ -36,6 +36,7 @@ import numpy as np
 from bench.motion_speed import compose_and_write, median_seconds
 from motor.body.avatar import load_avatar
 from motor.signing.plan import SignPlanningError
+from motor.compiled import warm_up
 from motor.signing.planning import plan_signs
 from motor.signing.sequence import frame_faults, realize_signs
 from mura.sigml import parse_sigml
@@ -53,6 +54,7 @@ _SIGN_ELEMENT = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.DOTALL
 
 def run(quick: bool) -> dict:
     avatar = load_avatar("max")
+    kernels_load = warm_up()
     stride = 20 if quick else 1
     failures: list[dict] = []
     signs, sizes, total = [], [], 0
@@ -108,6 +110,7 @@ def run(quick: bool) -> dict:
         "rendered_percent": round(100.0 * rendered / total, 2) if total else None,
         "failures_by_reason": dict(reasons.most_common()),
         "failures": failures,
+        "compiled_kernels_load_ms": round(1e3 * kernels_load, 1),
         "planning_ms_per_sign": round(1e3 * planning / max(len(plans), 1), 2),
         "planning_process_ms_per_sign": round(1e3 * planning_cpu / max(len(plans), 1), 3),
         "planned_signs": len(plans),

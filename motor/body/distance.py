@@ -42,8 +42,9 @@ _ALONG_STEPS = 16
 #: of the swivel search, where contiguous ``(n, K)`` arrays per coordinate are fastest.
 Components = tuple[np.ndarray, np.ndarray, np.ndarray]
 
-_F8 = numba.float64
-_KERNEL = {"nopython": True, "cache": True}
+
+#: Compiled once, cached on disk; division by zero gives inf or nan as in numpy.
+_compiled = numba.njit(cache=True, error_model="numpy")
 
 
 def components(v: np.ndarray) -> Components:
@@ -51,12 +52,12 @@ def components(v: np.ndarray) -> Components:
     return v[..., 0], v[..., 1], v[..., 2]
 
 
-@numba.njit(inline="always", cache=True)
+@_compiled
 def _clip01(value: float) -> float:
     return min(max(value, 0.0), 1.0)
 
 
-@numba.njit(inline="always", cache=True)
+@_compiled
 def _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noqa: ANN001, ANN202
     """Parameters ``s, t`` of the closest points of two segments (Ericson's clamped solution)."""
     d1x, d1y, d1z = p1x - p0x, p1y - p0y, p1z - p0z
@@ -81,7 +82,7 @@ def _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noq
     return s, t
 
 
-@numba.njit(inline="always", cache=True)
+@_compiled
 def _segments_apart(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noqa: ANN001, ANN202
     s, t = _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z)
     gx = (p0x + s * (p1x - p0x)) - (q0x + t * (q1x - q0x))
@@ -90,50 +91,35 @@ def _segments_apart(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):
     return math.sqrt(gx * gx + gy * gy + gz * gz)
 
 
-@numba.guvectorize([(*(_F8,) * 12, _F8[:], _F8[:])], "(),(),(),(),(),(),(),(),(),(),(),()->(),()", **_KERNEL)
-def _closest_kernel(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z, s, t):  # noqa: ANN001, ANN202
-    s[0], t[0] = _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z)
-
-
-@numba.vectorize([_F8(*(_F8,) * 12)], **_KERNEL)
-def _segments_kernel(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noqa: ANN001, ANN202
-    return _segments_apart(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z)
-
-
-@numba.vectorize([_F8(*(_F8,) * 9)], **_KERNEL)
-def _point_segment_kernel(px, py, pz, ax, ay, az, bx, by, bz):  # noqa: ANN001, ANN202
+@_compiled
+def _point_segment(px, py, pz, ax, ay, az, bx, by, bz):  # noqa: ANN001, ANN202
     dx, dy, dz = bx - ax, by - ay, bz - az
     t = _clip01(((px - ax) * dx + (py - ay) * dy + (pz - az) * dz) / max(dx * dx + dy * dy + dz * dz, _TINY))
     gx, gy, gz = px - (ax + t * dx), py - (ay + t * dy), pz - (az + t * dz)
     return math.sqrt(gx * gx + gy * gy + gz * gz)
 
 
-@numba.vectorize([_F8(*(_F8,) * 14)], **_KERNEL)
-def _capsule_kernel(ax, ay, az, bx, by, bz, radius, cax, cay, caz, cbx, cby, cbz, capsule_radius):  # noqa: ANN001, ANN202
-    return _segments_apart(ax, ay, az, bx, by, bz, cax, cay, caz, cbx, cby, cbz) - capsule_radius - radius
-
-
-@numba.vectorize([_F8(*(_F8,) * 13)], **_KERNEL)
-def _ellipsoid_kernel(ax, ay, az, bx, by, bz, radius, cx, cy, cz, rx, ry, rz):  # noqa: ANN001, ANN202
+@_compiled
+def _ellipsoid(ax, ay, az, bx, by, bz, cx, cy, cz, rx, ry, rz):  # noqa: ANN001, ANN202
     """The segment's point nearest the centre in the space where the ellipsoid is a unit
-    sphere, measured along its ray; less the capsule's radius."""
+    sphere, measured along its ray."""
     p0x, p0y, p0z = (ax - cx) / rx, (ay - cy) / ry, (az - cz) / rz
     dx, dy, dz = (bx - ax) / rx, (by - ay) / ry, (bz - az) / rz
     t = _clip01(-(p0x * dx + p0y * dy + p0z * dz) / max(dx * dx + dy * dy + dz * dz, _TINY))
     sx, sy, sz = p0x + t * dx, p0y + t * dy, p0z + t * dz
     rho = math.sqrt(sx * sx + sy * sy + sz * sz)
     ux, uy, uz = sx * rx, sy * ry, sz * rz
-    return math.sqrt(ux * ux + uy * uy + uz * uz) * (1.0 - 1.0 / max(rho, _LEAST_RHO)) - radius
+    return math.sqrt(ux * ux + uy * uy + uz * uz) * (1.0 - 1.0 / max(rho, _LEAST_RHO))
 
 
-@numba.njit(inline="always", cache=True)
+@_compiled
 def _radial(sx, sz, width, depth):  # noqa: ANN001, ANN202
     """Signed radial distance (m) of a point given in the cylinder's unit-circle coordinates."""
     rho = math.sqrt(sx * sx + sz * sz)
     return math.sqrt((sx * width) * (sx * width) + (sz * depth) * (sz * depth)) * (1.0 - 1.0 / max(rho, _LEAST_RHO))
 
 
-@numba.njit(inline="always", cache=True)
+@_compiled
 def _beyond(along, x0, z0, dx, dz, y0, dy, width, depth, bottom, top):  # noqa: ANN001, ANN202
     """Distance (m) from the cylinder of the segment's point at ``along``, a point above or below it."""
     gap = _radial(x0 + along * dx, z0 + along * dz, width, depth)
@@ -142,13 +128,12 @@ def _beyond(along, x0, z0, dx, dz, y0, dy, width, depth, bottom, top):  # noqa: 
     return math.sqrt(vertical * vertical + gap * gap) if gap > 0.0 else vertical
 
 
-@numba.vectorize([_F8(*(_F8,) * 13)], **_KERNEL)
-def _cylinder_kernel(ax, ay, az, bx, by, bz, radius, cx, cz, width, depth, bottom, top):  # noqa: ANN001, ANN202
+@_compiled
+def _cylinder(ax, ay, az, bx, by, bz, cx, cz, width, depth, bottom, top):  # noqa: ANN001, ANN202
     """The least of the radial distance (in the horizontal plane, as the ellipsoid's) of the
     segment's part within the height range, and the distances of its parts above or below
     it, measured at ``k / 16`` of its length, where its horizontal gap is least and where
-    it leaves the height range, by their vertical and radial gaps; less the capsule's
-    radius. An upper arm lying across the top of the chest passes nearest the rim between
+    it leaves the height range, by their vertical and radial gaps. An upper arm lying across the top of the chest passes nearest the rim between
     its ends, with most of it above the top: measuring only the part within the height
     range put such an arm 2 cm into the chest 7 cm clear."""
     x0, z0 = (ax - cx) / width, (az - cz) / depth
@@ -169,20 +154,76 @@ def _cylinder_kernel(ax, ay, az, bx, by, bz, radius, cx, cz, width, depth, botto
     # inside the cylinder, or holds the point nearest the axis
     closest = _clip01(nearest)
     if inside and ((enter <= 0.0 and leave >= 1.0) or radial <= 0.0 or enter <= closest <= leave):
-        return radial - radius
+        return radial
     least = radial
     for k in range(_ALONG_STEPS + 1):
         least = min(least, _beyond(k / _ALONG_STEPS, x0, z0, dx, dz, y0, dy, width, depth, bottom, top))
     for along in (nearest, enter, leave):
         least = min(least, _beyond(_clip01(along), x0, z0, dx, dz, y0, dy, width, depth, bottom, top))
-    return least - radius
+    return least
+
+
+@_compiled
+def _closest_loop(ends, s, t):  # noqa: ANN001, ANN202
+    for i in range(s.size):
+        s[i], t[i] = _closest(*_row12(ends, i))
+
+
+@_compiled
+def _segments_loop(ends, out):  # noqa: ANN001, ANN202
+    for i in range(out.size):
+        out[i] = _segments_apart(*_row12(ends, i))
+
+
+@_compiled
+def _point_segment_loop(ends, out):  # noqa: ANN001, ANN202
+    for i in range(out.size):
+        out[i] = _point_segment(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i], ends[7, i], ends[8, i])
+
+
+@_compiled
+def _capsule_loop(ends, axis, capsule_radius, out):  # noqa: ANN001, ANN202
+    for i in range(out.size):
+        apart = _segments_apart(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *axis)
+        out[i] = apart - capsule_radius - ends[6, i]
+
+
+@_compiled
+def _ellipsoid_loop(ends, center, radii, out):  # noqa: ANN001, ANN202
+    for i in range(out.size):
+        out[i] = _ellipsoid(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *center, *radii) - ends[6, i]
+
+
+@_compiled
+def _cylinder_loop(ends, shape, out):  # noqa: ANN001, ANN202
+    for i in range(out.size):
+        out[i] = _cylinder(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *shape) - ends[6, i]
+
+
+@_compiled
+def _row12(ends, i):  # noqa: ANN001, ANN202
+    return (ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i],
+            ends[6, i], ends[7, i], ends[8, i], ends[9, i], ends[10, i], ends[11, i])  # fmt: skip
+
+
+def _packed(*fields: np.ndarray | float) -> tuple[np.ndarray, tuple[int, ...]]:
+    """The fields broadcast together, one row each of a contiguous ``(fields, size)``
+    array (what the compiled loops read), and their broadcast shape."""
+    shape = np.broadcast_shapes(*(np.shape(field) for field in fields))
+    packed = np.empty((len(fields), *shape))
+    for index, field in enumerate(fields):
+        packed[index] = field
+    return packed.reshape(len(fields), -1), shape
 
 
 def closest_parameters(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Parameters ``s, t`` in [0, 1] of the closest points ``p0 + s (p1 - p0)`` and
     ``q0 + t (q1 - q0)`` of two segments (arrays ``(..., 3)`` broadcast; degenerate
     segments allowed)."""
-    return _closest_kernel(*components(p0), *components(p1), *components(q0), *components(q1))
+    ends, shape = _packed(*components(p0), *components(p1), *components(q0), *components(q1))
+    s, t = np.empty(ends.shape[1]), np.empty(ends.shape[1])
+    _closest_loop(ends, s, t)
+    return s.reshape(shape), t.reshape(shape)
 
 
 def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
@@ -192,12 +233,18 @@ def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndar
 
 def segments_apart(p0: Components, p1: Components, q0: Components, q1: Components) -> np.ndarray:
     """:func:`segment_distance` of segments given by coordinate arrays."""
-    return _segments_kernel(*p0, *p1, *q0, *q1)
+    ends, shape = _packed(*p0, *p1, *q0, *q1)
+    out = np.empty(ends.shape[1])
+    _segments_loop(ends, out)
+    return out.reshape(shape)
 
 
 def point_segment_distance(point: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
     """Distance (m) from points to segments ``q0``–``q1`` (arrays ``(..., 3)`` broadcast)."""
-    return _point_segment_kernel(*components(point), *components(q0), *components(q1))
+    ends, shape = _packed(*components(point), *components(q0), *components(q1))
+    out = np.empty(ends.shape[1])
+    _point_segment_loop(ends, out)
+    return out.reshape(shape)
 
 
 def capsule_distance(volume: Volume, a: np.ndarray, b: np.ndarray, radius: float | np.ndarray) -> np.ndarray:
@@ -208,8 +255,13 @@ def capsule_distance(volume: Volume, a: np.ndarray, b: np.ndarray, radius: float
 
 def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | np.ndarray) -> np.ndarray:
     """:func:`capsule_distance` of a capsule given by coordinate arrays."""
+    ends, shape = _packed(*a, *b, radius)
+    out = np.empty(ends.shape[1])
     if isinstance(volume, Capsule):
-        return _capsule_kernel(*a, *b, radius, *volume.a, *volume.b, volume.radius)
-    if isinstance(volume, Ellipsoid):
-        return _ellipsoid_kernel(*a, *b, radius, *volume.center, *volume.radii)
-    return _cylinder_kernel(*a, *b, radius, volume.center[0], volume.center[2], volume.half_width, volume.half_depth, volume.bottom, volume.top)
+        _capsule_loop(ends, (*map(float, volume.a), *map(float, volume.b)), float(volume.radius), out)
+    elif isinstance(volume, Ellipsoid):
+        _ellipsoid_loop(ends, tuple(map(float, volume.center)), tuple(map(float, volume.radii)), out)
+    else:
+        shape_of = (volume.center[0], volume.center[2], volume.half_width, volume.half_depth, volume.bottom, volume.top)
+        _cylinder_loop(ends, tuple(map(float, shape_of)), out)
+    return out.reshape(shape)
