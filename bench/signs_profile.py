@@ -19,6 +19,7 @@ from bench.machine import machine_info
 from bench.profile_listing import listings
 from bench.signing_speed import CORPORA, FOLDER, FPS
 from motor.body.avatar import load_avatar
+from motor.compiled import warm_up
 from motor.signing.plan import SignPlanningError
 from motor.signing.planning import plan_signs
 from motor.signing.sequence import realize_signs
@@ -30,6 +31,7 @@ TOP = 25
 
 def profile(top: int = TOP) -> str:
     avatar = load_avatar("max")
+    warm_up()
     signs = [sign for name in CORPORA for sign in parse_sigml((FOLDER / name).read_bytes(), file=name).signs]
     plans = [plan for plan in plan_signs(avatar, signs) if not isinstance(plan, SignPlanningError)]
     machine = machine_info()

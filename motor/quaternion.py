@@ -14,6 +14,8 @@ Functions with trigonometry stay numpy's (numba's ``sin`` may differ in the last
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
 
@@ -28,22 +30,31 @@ def _result(*parts: np.ndarray, size: int) -> np.ndarray:
     return np.empty(np.broadcast(*parts).shape + (size,))
 
 
-def _rows(*arrays: np.ndarray, widths: tuple[int, ...]) -> tuple[tuple[np.ndarray, ...], tuple[int, ...]]:
-    """The arrays broadcast over their leading axes, each as contiguous float rows
-    ``(m, width)``, and the broadcast leading shape."""
-    arrays = tuple(np.asarray(a, dtype=float) for a in arrays)
-    for a, width in zip(arrays, widths):
-        if a.shape[-1:] != (width,):
-            raise ValueError(f"expected a last axis of {width}, got shape {a.shape}")
-    lead = np.broadcast_shapes(*(a.shape[:-1] for a in arrays))
-    return tuple(np.ascontiguousarray(np.broadcast_to(a, lead + a.shape[-1:])).reshape(-1, a.shape[-1]) for a in arrays), lead
+def _pair(p: np.ndarray, q: np.ndarray, p_width: int, q_width: int) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Two arrays as contiguous float rows ``(m, width)`` for the compiled loops, and
+    their broadcast leading shape: an array with a single row (one quaternion or vector
+    for all) is passed as that row, which the loops repeat, not copied ``m`` times."""
+    p, q = np.asarray(p, dtype=float), np.asarray(q, dtype=float)
+    if p.shape[-1:] != (p_width,) or q.shape[-1:] != (q_width,):
+        raise ValueError(f"expected last axes of {p_width} and {q_width}, got shapes {p.shape} and {q.shape}")
+    p_lead, q_lead = p.shape[:-1], q.shape[:-1]
+    lead = p_lead if p_lead == q_lead else np.broadcast_shapes(p_lead, q_lead)
+    return _as_rows(p, p_lead, lead), _as_rows(q, q_lead, lead), lead
+
+
+def _as_rows(a: np.ndarray, own: tuple[int, ...], lead: tuple[int, ...]) -> np.ndarray:
+    if own != lead and a.size > a.shape[-1]:
+        a = np.broadcast_to(a, lead + a.shape[-1:])
+    return np.ascontiguousarray(a).reshape(-1, a.shape[-1])
 
 
 @_compiled
 def _multiply_rows(p, q, out):  # noqa: ANN001, ANN202
+    p_step, q_step = p.shape[0] > 1, q.shape[0] > 1
     for i in range(out.shape[0]):
-        px, py, pz, pw = p[i, 0], p[i, 1], p[i, 2], p[i, 3]
-        qx, qy, qz, qw = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        j, k = i * p_step, i * q_step
+        px, py, pz, pw = p[j, 0], p[j, 1], p[j, 2], p[j, 3]
+        qx, qy, qz, qw = q[k, 0], q[k, 1], q[k, 2], q[k, 3]
         out[i, 0] = pw * qx + px * qw + py * qz - pz * qy
         out[i, 1] = pw * qy - px * qz + py * qw + pz * qx
         out[i, 2] = pw * qz + px * qy - py * qx + pz * qw
@@ -52,9 +63,11 @@ def _multiply_rows(p, q, out):  # noqa: ANN001, ANN202
 
 @_compiled
 def _rotate_rows(q, v, out):  # noqa: ANN001, ANN202
+    q_step, v_step = q.shape[0] > 1, v.shape[0] > 1
     for i in range(out.shape[0]):
-        x, y, z, w = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
-        vx, vy, vz = v[i, 0], v[i, 1], v[i, 2]
+        j, k = i * q_step, i * v_step
+        x, y, z, w = q[j, 0], q[j, 1], q[j, 2], q[j, 3]
+        vx, vy, vz = v[k, 0], v[k, 1], v[k, 2]
         tx = 2.0 * (y * vz - z * vy)
         ty = 2.0 * (z * vx - x * vz)
         tz = 2.0 * (x * vy - y * vx)
@@ -65,10 +78,12 @@ def _rotate_rows(q, v, out):  # noqa: ANN001, ANN202
 
 @_compiled
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
+    u_step, v_step = u.shape[0] > 1, v.shape[0] > 1
     for i in range(out.shape[0]):
-        out[i, 0] = u[i, 1] * v[i, 2] - u[i, 2] * v[i, 1]
-        out[i, 1] = u[i, 2] * v[i, 0] - u[i, 0] * v[i, 2]
-        out[i, 2] = u[i, 0] * v[i, 1] - u[i, 1] * v[i, 0]
+        j, k = i * u_step, i * v_step
+        out[i, 0] = u[j, 1] * v[k, 2] - u[j, 2] * v[k, 1]
+        out[i, 1] = u[j, 2] * v[k, 0] - u[j, 0] * v[k, 2]
+        out[i, 2] = u[j, 0] * v[k, 1] - u[j, 1] * v[k, 0]
 
 
 @_compiled
@@ -84,8 +99,8 @@ def _normalize_rows(q, out):  # noqa: ANN001, ANN202
 
 def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Hamilton product ``p * q`` (apply ``q`` first, then ``p``)."""
-    (p, q), lead = _rows(p, q, widths=(4, 4))
-    out = np.empty((p.shape[0], 4))
+    p, q, lead = _pair(p, q, 4, 4)
+    out = np.empty((math.prod(lead), 4))
     _multiply_rows(p, q, out)
     return out.reshape(lead + (4,))
 
@@ -93,8 +108,8 @@ def multiply(p: np.ndarray, q: np.ndarray) -> np.ndarray:
 def cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Cross product of 3-vectors along the last axis (the arithmetic of ``np.cross``
     without its per-call axis handling)."""
-    (u, v), lead = _rows(u, v, widths=(3, 3))
-    out = np.empty((u.shape[0], 3))
+    u, v, lead = _pair(u, v, 3, 3)
+    out = np.empty((math.prod(lead), 3))
     _cross_rows(u, v, out)
     return out.reshape(lead + (3,))
 
@@ -120,8 +135,8 @@ def normalize(q: np.ndarray) -> np.ndarray:
 
 def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Rotate vectors ``v (..., 3)`` by unit quaternions ``q (..., 4)``."""
-    (q, v), lead = _rows(q, v, widths=(4, 3))
-    out = np.empty((q.shape[0], 3))
+    q, v, lead = _pair(q, v, 4, 3)
+    out = np.empty((math.prod(lead), 3))
     _rotate_rows(q, v, out)
     return out.reshape(lead + (3,))
 

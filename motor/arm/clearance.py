@@ -23,12 +23,13 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from motor import quaternion as quat
 from motor.arm.reach_turn import TURN_JOINTS
 from motor.body.avatar import HAND_JOINTS, Avatar
-from motor.body.distance import Components, capsule_apart, segments_apart
+from motor.body.distance import Components, segments_apart, volume_distance, volume_table
 from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, EllipticCylinder, Volume
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
@@ -302,34 +303,113 @@ def _body_clearance(
     geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``; the
     trunk's volumes (a torso and a chest: one body cut in two) are not penalized one by
     one but give ``trunk``, per segment, the least distance from any of them, so that a
-    segment near the cut pays once."""
-    if frame is not None:
-        rotation, translation = frame
-        inverse = quat.conjugate(rotation)
-        shoulder, wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
-        stacked = np.stack(elbow, axis=-1) - translation[:, None]
-        elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
-    boxes = _boxes(capsules, shoulder, wrist, elbow)
-    for (a, b, radius), (low, high), least in zip(_segments(capsules, shoulder, wrist, elbow), boxes, trunk):
-        for obstacle in obstacles:
-            near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
-            if not np.any(near):
-                continue
-            if np.all(near):
-                distance = capsule_apart(obstacle.volume, a, b, radius)
-                if obstacle.trunk:
-                    np.minimum(least, distance, out=least)
-                else:
-                    cost += overlap_penalty(distance)
-                np.maximum(depth, -distance, out=depth)
-                continue
-            rows = np.flatnonzero(near)
-            distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
-            if obstacle.trunk:
-                least[rows] = np.minimum(least[rows], distance)
-            else:
-                cost[rows] += overlap_penalty(distance)
-            depth[rows] = np.maximum(depth[rows], -distance)
+    segment near the cut pays once. Compiled (:func:`_clearance_rows`); the arrays it
+    adds into must be contiguous ``(n, K)``."""
+    kinds, parameters, boxes, in_trunk = _obstacle_table(obstacles)
+    shape = np.broadcast_shapes(*(c.shape for c in elbow))
+    ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float) for c in elbow)
+    rotation, translation = (np.zeros((0, 4)), np.zeros((0, 3))) if frame is None else (np.ascontiguousarray(f, dtype=float) for f in frame)
+    segments = np.array([
+        [*capsules.upper_ends, capsules.upper_radius, 1.0],
+        [*capsules.fore_ends, capsules.fore_radius, 0.0],
+    ])  # fmt: skip
+    for target in (cost, depth, *trunk):
+        if not target.flags.c_contiguous:
+            raise ValueError("clearance adds into contiguous arrays only")
+    _clearance_rows(
+        np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez,
+        rotation, translation, frame is not None, segments, kinds, parameters, boxes, in_trunk,
+        cost, depth, trunk[0], trunk[1],
+    )  # fmt: skip
+
+
+@functools.lru_cache(maxsize=64)
+def _obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The obstacles as the compiled clearance reads them: :func:`volume_table`'s kinds and
+    parameters, the bounding boxes ``(V, 2, 3)`` and which are the trunk's."""
+    kinds, parameters = volume_table(tuple(o.volume for o in obstacles))
+    boxes = np.array([o.box for o in obstacles], dtype=float).reshape(-1, 2, 3)
+    return kinds, parameters, boxes, np.array([o.trunk for o in obstacles], dtype=np.bool_)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _to_rest(qx, qy, qz, qw, tx, ty, tz, px, py, pz):  # noqa: ANN001, ANN202
+    """A point carried back by the placement ``(q, t)``: ``rotate(conjugate(q), p - t)``."""
+    vx, vy, vz = px - tx, py - ty, pz - tz
+    x, y, z, w = -qx, -qy, -qz, qw
+    ux = 2.0 * (y * vz - z * vy)
+    uy = 2.0 * (z * vx - x * vz)
+    uz = 2.0 * (x * vy - y * vx)
+    return vx + w * ux + y * uz - z * uy, vy + w * uy + z * ux - x * uz, vz + w * uz + x * uy - y * ux
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _overlap_penalty(distance):  # noqa: ANN001, ANN202
+    """:func:`overlap_penalty` of one distance, the same operations in the same order."""
+    inside = max(CLEARANCE - distance, 0.0) * (1.0 / CLEARANCE)
+    depth = max(-distance - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
+    return CONTACT_PENALTY * inside * inside + PENETRATION_PENALTY * depth * depth
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, segments, kinds, parameters, boxes, in_trunk, cost, depth, least_upper, least_fore):  # noqa: ANN001, ANN202, E501
+    """Per frame ``i``: the candidate elbows (and shoulder and wrist) carried into the
+    obstacles' rest frame, the box of each segment over all candidates (its ends are
+    affine in the elbow with non-negative weights), and for every obstacle whose box it
+    meets, each candidate segment's distance: into ``cost``, ``depth`` and, for the
+    trunk's volumes, the least distance per segment. The arithmetic of the numpy version
+    (``tests/perf_equivalence/plain_clearance.py``), element by element."""
+    n, k_count = ex.shape
+    local = np.empty((k_count, 3))
+    ends = np.empty((2, 3))
+    for i in range(n):
+        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+        if framed:
+            q = (rotation[i, 0], rotation[i, 1], rotation[i, 2], rotation[i, 3])
+            t = (translation[i, 0], translation[i, 1], translation[i, 2])
+            s = _to_rest(*q, *t, *s)
+            w = _to_rest(*q, *t, *w)
+            for k in range(k_count):
+                local[k, 0], local[k, 1], local[k, 2] = _to_rest(*q, *t, ex[i, k], ey[i, k], ez[i, k])
+        else:
+            for k in range(k_count):
+                local[k, 0], local[k, 1], local[k, 2] = ex[i, k], ey[i, k], ez[i, k]
+        low = (local[:, 0].min(), local[:, 1].min(), local[:, 2].min())
+        high = (local[:, 0].max(), local[:, 1].max(), local[:, 2].max())
+        for g in range(2):
+            f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+            start = s if from_shoulder else w
+            w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
+            grow = radius + CLEARANCE
+            box_low = np.empty(3)
+            box_high = np.empty(3)
+            for c in range(3):
+                box_low[c] = min(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow
+                box_high[c] = max(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow
+            least = least_upper if g == 0 else least_fore
+            for v in range(kinds.size):
+                near = True
+                for c in range(3):
+                    if not (box_low[c] <= boxes[v, 1, c] and box_high[c] >= boxes[v, 0, c]):
+                        near = False
+                if not near:
+                    continue
+                for k in range(k_count):
+                    for c in range(3):
+                        e = local[k, c]
+                        if from_shoulder:
+                            ends[0, c] = s[c] + f0 * (e - s[c])
+                            ends[1, c] = s[c] + f1 * (e - s[c])
+                        else:
+                            ends[0, c] = e + f0 * (w[c] - e)
+                            ends[1, c] = e + f1 * (w[c] - e)
+                    distance = volume_distance(kinds[v], parameters[v], ends[0, 0], ends[0, 1], ends[0, 2], ends[1, 0], ends[1, 1], ends[1, 2], radius)
+                    if in_trunk[v]:
+                        least[i, k] = min(least[i, k], distance)
+                    else:
+                        cost[i, k] += _overlap_penalty(distance)
+                    depth[i, k] = max(depth[i, k], -distance)
 
 
 def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:

@@ -181,23 +181,42 @@ def _point_segment_loop(ends, out):  # noqa: ANN001, ANN202
         out[i] = _point_segment(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i], ends[7, i], ends[8, i])
 
 
-@_compiled
-def _capsule_loop(ends, axis, capsule_radius, out):  # noqa: ANN001, ANN202
-    for i in range(out.size):
-        apart = _segments_apart(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *axis)
-        out[i] = apart - capsule_radius - ends[6, i]
+#: Kinds of volume in a :func:`volume_table`.
+CAPSULE, ELLIPSOID, CYLINDER = 0, 1, 2
+
+
+def volume_table(volumes: tuple[Volume, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """The volumes as the compiled code reads them: kinds ``(V,)`` (:data:`CAPSULE`,
+    :data:`ELLIPSOID`, :data:`CYLINDER`) and parameters ``(V, 7)`` — a capsule's end
+    points and radius; an ellipsoid's centre and semi-axes; a cylinder's centre x and z,
+    half width, half depth, bottom and top."""
+    kinds = np.empty(len(volumes), dtype=np.int64)
+    parameters = np.zeros((len(volumes), 7))
+    for index, volume in enumerate(volumes):
+        if isinstance(volume, Capsule):
+            kinds[index], parameters[index] = CAPSULE, (*volume.a, *volume.b, volume.radius)
+        elif isinstance(volume, Ellipsoid):
+            kinds[index], parameters[index, :6] = ELLIPSOID, (*volume.center, *volume.radii)
+        else:
+            kinds[index], parameters[index, :6] = CYLINDER, (volume.center[0], volume.center[2], volume.half_width, volume.half_depth, volume.bottom, volume.top)
+    return kinds, parameters
 
 
 @_compiled
-def _ellipsoid_loop(ends, center, radii, out):  # noqa: ANN001, ANN202
-    for i in range(out.size):
-        out[i] = _ellipsoid(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *center, *radii) - ends[6, i]
+def volume_distance(kind, p, ax, ay, az, bx, by, bz, radius):  # noqa: ANN001, ANN201
+    """Signed distance (m) of the capsule ``a``–``b`` with ``radius`` from the volume of
+    ``kind`` with parameters ``p`` (a row of :func:`volume_table`); for compiled callers."""
+    if kind == CAPSULE:
+        return _segments_apart(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - p[6] - radius
+    if kind == ELLIPSOID:
+        return _ellipsoid(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius
+    return _cylinder(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius
 
 
 @_compiled
-def _cylinder_loop(ends, shape, out):  # noqa: ANN001, ANN202
+def _volume_loop(ends, kind, p, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
-        out[i] = _cylinder(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], *shape) - ends[6, i]
+        out[i] = volume_distance(kind, p, ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i])
 
 
 @_compiled
@@ -257,11 +276,6 @@ def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | 
     """:func:`capsule_distance` of a capsule given by coordinate arrays."""
     ends, shape = _packed(*a, *b, radius)
     out = np.empty(ends.shape[1])
-    if isinstance(volume, Capsule):
-        _capsule_loop(ends, (*map(float, volume.a), *map(float, volume.b)), float(volume.radius), out)
-    elif isinstance(volume, Ellipsoid):
-        _ellipsoid_loop(ends, tuple(map(float, volume.center)), tuple(map(float, volume.radii)), out)
-    else:
-        shape_of = (volume.center[0], volume.center[2], volume.half_width, volume.half_depth, volume.bottom, volume.top)
-        _cylinder_loop(ends, tuple(map(float, shape_of)), out)
+    kinds, parameters = volume_table((volume,))
+    _volume_loop(ends, kinds[0], parameters[0], out)
     return out.reshape(shape)

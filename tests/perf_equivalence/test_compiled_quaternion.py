@@ -63,5 +63,5 @@ def test_products_agree_with_scipy():
 
 
 def test_a_wrong_last_axis_is_refused():
-    with pytest.raises(ValueError, match="last axis of 4"):
+    with pytest.raises(ValueError, match="last axes of 4 and 4"):
         quat.multiply(np.zeros(3), np.zeros(4))

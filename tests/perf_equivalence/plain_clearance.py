@@ -1,0 +1,87 @@
+"""The numpy arm-against-body clearance as it stood before it was compiled
+(:func:`motor.arm.clearance._body_clearance`, issue 19): the plain path the compiled
+kernel is held to, bit for bit, by ``test_compiled_clearance.py``. Not used by mura itself."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.arm.clearance import CLEARANCE, ArmCapsules, Obstacle, overlap_penalty
+from tests.perf_equivalence.plain_distance import Components, capsule_apart
+
+
+def _body_clearance(
+    capsules: ArmCapsules,
+    obstacles: tuple[Obstacle, ...],
+    shoulder: np.ndarray,
+    wrist: np.ndarray,
+    elbow: Components,
+    frame: tuple[np.ndarray, np.ndarray] | None,
+    cost: np.ndarray,
+    depth: np.ndarray,
+    trunk: list[np.ndarray],
+) -> None:
+    """:func:`clearance`'s penalty and depth of the arm against ``obstacles`` whose rest
+    geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``; the
+    trunk's volumes (a torso and a chest: one body cut in two) are not penalized one by
+    one but give ``trunk``, per segment, the least distance from any of them, so that a
+    segment near the cut pays once."""
+    if frame is not None:
+        rotation, translation = frame
+        inverse = quat.conjugate(rotation)
+        shoulder, wrist = (quat.rotate(inverse, p - translation) for p in (shoulder, wrist))
+        stacked = np.stack(elbow, axis=-1) - translation[:, None]
+        elbow = tuple(np.moveaxis(quat.rotate(inverse[:, None], stacked), -1, 0))
+    boxes = _boxes(capsules, shoulder, wrist, elbow)
+    for (a, b, radius), (low, high), least in zip(_segments(capsules, shoulder, wrist, elbow), boxes, trunk):
+        for obstacle in obstacles:
+            near = np.all((low <= obstacle.box[1]) & (high >= obstacle.box[0]), axis=1)
+            if not np.any(near):
+                continue
+            if np.all(near):
+                distance = capsule_apart(obstacle.volume, a, b, radius)
+                if obstacle.trunk:
+                    np.minimum(least, distance, out=least)
+                else:
+                    cost += overlap_penalty(distance)
+                np.maximum(depth, -distance, out=depth)
+                continue
+            rows = np.flatnonzero(near)
+            distance = capsule_apart(obstacle.volume, tuple(c[rows] for c in a), tuple(c[rows] for c in b), radius)
+            if obstacle.trunk:
+                least[rows] = np.minimum(least[rows], distance)
+            else:
+                cost[rows] += overlap_penalty(distance)
+            depth[rows] = np.maximum(depth[rows], -distance)
+
+
+def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
+    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
+    capsules' ends are affine in the elbow with non-negative weights, so the box of the
+    candidate elbows bounds them."""
+    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
+    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
+    boxes = []
+    for (u0, u1), start, from_start, radius in (
+        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
+        (capsules.fore_ends, wrist, False, capsules.fore_radius),
+    ):
+        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
+        weight = lambda f: f if from_start else 1.0 - f
+        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
+        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
+        grow = radius + CLEARANCE
+        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
+    return boxes
+
+
+def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
+    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
+    do not move with the elbow ``(n, 1)``) and radii."""
+    s = tuple(shoulder[:, i : i + 1] for i in range(3))
+    w = tuple(wrist[:, i : i + 1] for i in range(3))
+    (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
+    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
+    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius
