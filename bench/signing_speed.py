@@ -54,7 +54,7 @@ _SIGN_ELEMENT = re.compile(rb"<(hns_sign|hamgestural_sign)\b.*?</\1>", re.DOTALL
 
 def run(quick: bool) -> dict:
     avatar = load_avatar("max")
-    kernels_load = warm_up()
+    warm_up()
     stride = 20 if quick else 1
     failures: list[dict] = []
     signs, sizes, total = [], [], 0
@@ -110,7 +110,6 @@ def run(quick: bool) -> dict:
         "rendered_percent": round(100.0 * rendered / total, 2) if total else None,
         "failures_by_reason": dict(reasons.most_common()),
         "failures": failures,
-        "compiled_kernels_load_ms": round(1e3 * kernels_load, 1),
         "planning_ms_per_sign": round(1e3 * planning / max(len(plans), 1), 2),
         "planning_process_ms_per_sign": round(1e3 * planning_cpu / max(len(plans), 1), 3),
         "planned_signs": len(plans),

@@ -21,8 +21,12 @@ import numpy as np
 
 IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
 
-#: Compiled once, cached on disk; division by zero gives inf or nan as in numpy.
-_compiled = numba.njit(cache=True, error_model="numpy")
+#: Compiled once, cached on disk; division by zero gives inf or nan as in numpy. The
+#: loops' signatures are stated (rows read-only, so that read-only views need no second
+#: compilation), which compiles or loads them when this module is imported.
+_ROWS = numba.types.Array(numba.float64, 2, "C", readonly=True)
+_OUT = numba.float64[:, ::1]
+_products = numba.njit([numba.void(_ROWS, _ROWS, _OUT)], cache=True, error_model="numpy")
 
 
 def _result(*parts: np.ndarray, size: int) -> np.ndarray:
@@ -48,7 +52,7 @@ def _as_rows(a: np.ndarray, own: tuple[int, ...], lead: tuple[int, ...]) -> np.n
     return np.ascontiguousarray(a).reshape(-1, a.shape[-1])
 
 
-@_compiled
+@_products
 def _multiply_rows(p, q, out):  # noqa: ANN001, ANN202
     p_step, q_step = p.shape[0] > 1, q.shape[0] > 1
     for i in range(out.shape[0]):
@@ -61,7 +65,7 @@ def _multiply_rows(p, q, out):  # noqa: ANN001, ANN202
         out[i, 3] = pw * qw - px * qx - py * qy - pz * qz
 
 
-@_compiled
+@_products
 def _rotate_rows(q, v, out):  # noqa: ANN001, ANN202
     q_step, v_step = q.shape[0] > 1, v.shape[0] > 1
     for i in range(out.shape[0]):
@@ -76,7 +80,7 @@ def _rotate_rows(q, v, out):  # noqa: ANN001, ANN202
         out[i, 2] = vz + w * tz + x * ty - y * tx
 
 
-@_compiled
+@_products
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
     u_step, v_step = u.shape[0] > 1, v.shape[0] > 1
     for i in range(out.shape[0]):
@@ -86,7 +90,7 @@ def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
         out[i, 2] = u[j, 0] * v[k, 1] - u[j, 1] * v[k, 0]
 
 
-@_compiled
+@numba.njit([numba.void(_ROWS, _OUT)], cache=True, error_model="numpy")
 def _normalize_rows(q, out):  # noqa: ANN001, ANN202
     for i in range(out.shape[0]):
         square = 0.0
@@ -258,3 +262,12 @@ def continuous(quaternions: np.ndarray) -> np.ndarray:
         if q[i] @ q[i - 1] < 0.0:
             q[i] = -q[i]
     return q
+
+
+def load_kernels() -> None:
+    """Load this module's compiled loops (compiling them where no cache holds them):
+    :func:`motor.compiled.warm_up`."""
+    rotation = normalize(np.ones((1, 4)))
+    multiply(rotation, rotation)
+    rotate(rotation, np.zeros((1, 3)))
+    cross(np.zeros((1, 3)), np.zeros((1, 3)))

@@ -351,7 +351,17 @@ def _overlap_penalty(distance):  # noqa: ANN001, ANN202
     return CONTACT_PENALTY * inside * inside + PENETRATION_PENALTY * depth * depth
 
 
-@numba.njit(cache=True, error_model="numpy")
+_IN1, _IN2, _IN3 = (numba.types.Array(numba.float64, d, "C", readonly=True) for d in (1, 2, 3))
+_FLAGS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
+_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
+_SUMS = numba.float64[:, ::1]
+
+
+@numba.njit(
+    [numba.void(_IN2, _IN2, _IN2, _IN2, _IN2, _IN2, _IN2, numba.boolean, _IN2, _KINDS, _IN2, _IN3, _FLAGS, _SUMS, _SUMS, _SUMS, _SUMS)],
+    cache=True,
+    error_model="numpy",
+)
 def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, segments, kinds, parameters, boxes, in_trunk, cost, depth, least_upper, least_fore):  # noqa: ANN001, ANN202, E501
     """Per frame ``i``: the candidate elbows (and shoulder and wrist) carried into the
     obstacles' rest frame, the box of each segment over all candidates (its ends are
@@ -441,3 +451,13 @@ def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, el
     (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
     yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
     yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius
+
+
+def load_kernels() -> None:
+    """Load this module's compiled loop (compiling it where no cache holds it):
+    :func:`motor.compiled.warm_up`."""
+    capsules = ArmCapsules((0.0, 1.0), 0.05, (0.0, 1.0), 0.04, np.zeros((2, 3)), 0.03)
+    point, elbow = np.zeros((1, 3)), tuple(np.ones((1, 1)) for _ in range(3))
+    cell = lambda: np.zeros((1, 1))
+    for frame in (None, (np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)))):
+        _body_clearance(capsules, (), point, point, elbow, frame, cell(), cell(), [cell(), cell()])

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from motor.arm.swivel_cost import parabola_offset
@@ -92,10 +93,7 @@ def smooth_swivels(
     shifts = np.arange(-MAX_STEP, MAX_STEP + 1)
     # the cost of moving from candidate i to i + base + d at each grid point
     change = SMOOTHNESS * ((base[:, None] + shifts - turn[:, None]) * step) ** 2
-    value = costs
-    for _ in range(horizon):
-        rows = value.shape[0] - 1
-        value = costs[:rows] + DISCOUNT * _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
+    value = _cost_to_go(np.ascontiguousarray(costs, dtype=float), base, change, horizon)
     if now is not None:
         value = value + now
     rows = value.shape[0]
@@ -134,11 +132,36 @@ def _wrapped(value: np.ndarray) -> np.ndarray:
     return np.concatenate([value[:, -MAX_STEP:], value, value[:, :MAX_STEP]], axis=1)
 
 
-def _banded_minimum(value: np.ndarray, base: np.ndarray, change: np.ndarray) -> np.ndarray:
-    """``min_d change[:, d] + value[:, (i + base + d) mod K]`` over ``|d|`` ≤ :data:`MAX_STEP`."""
-    count = value.shape[1]
-    wrapped = _wrapped(_aligned(value, base))
-    best = wrapped[:, :count] + change[:, :1]
-    for k in range(1, 2 * MAX_STEP + 1):
-        best = np.minimum(best, wrapped[:, k : k + count] + change[:, k : k + 1])
-    return best
+@numba.njit(
+    [numba.float64[:, ::1](numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
+                           numba.types.Array(numba.float64, 2, "C", readonly=True), numba.int64)],
+    cache=True,
+    error_model="numpy",
+)  # fmt: skip
+def _cost_to_go(costs, base, change, horizon):  # noqa: ANN001, ANN202
+    """The value tables of the fixed-lag programme, ``horizon`` times over: each grid point's
+    cost plus :data:`DISCOUNT` times the least, over moves ``d`` of at most
+    :data:`MAX_STEP` candidates (beyond the zero's turn ``base``), of the move's ``change``
+    plus the next grid point's value — ``(m, K)`` for ``costs (m + horizon, K)``.
+    Compiled; the arithmetic of the numpy version, element by element
+    (``tests/perf_equivalence/test_compiled_swivel.py``)."""
+    count = costs.shape[1]
+    value = costs.copy()
+    for _ in range(horizon):
+        rows = value.shape[0] - 1
+        table = np.empty((rows, count))
+        for r in range(rows):
+            turn = base[r + 1]
+            for i in range(count):
+                best = value[r + 1, (i + turn - MAX_STEP) % count] + change[r + 1, 0]
+                for d in range(1, 2 * MAX_STEP + 1):
+                    best = min(best, value[r + 1, (i + turn + d - MAX_STEP) % count] + change[r + 1, d])
+                table[r, i] = costs[r, i] + DISCOUNT * best
+        value = table
+    return value
+
+
+def load_kernels() -> None:
+    """Load this module's compiled loop (compiling it where no cache holds it):
+    :func:`motor.compiled.warm_up`."""
+    _cost_to_go(np.zeros((2, 4)), np.zeros(2, dtype=np.int64), np.zeros((2, 2 * MAX_STEP + 1)), 1)

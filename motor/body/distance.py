@@ -43,8 +43,13 @@ _ALONG_STEPS = 16
 Components = tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
-#: Compiled once, cached on disk; division by zero gives inf or nan as in numpy.
+#: Compiled once, cached on disk; division by zero gives inf or nan as in numpy. The
+#: loops' signatures are stated (inputs read-only), which compiles or loads them when
+#: this module is imported; the scalar kernels they call are compiled with them.
 _compiled = numba.njit(cache=True, error_model="numpy")
+_ENDS = numba.types.Array(numba.float64, 2, "C", readonly=True)
+_ROW = numba.types.Array(numba.float64, 1, "C", readonly=True)
+_OUT = numba.float64[::1]
 
 
 def components(v: np.ndarray) -> Components:
@@ -164,18 +169,24 @@ def _cylinder(ax, ay, az, bx, by, bz, cx, cz, width, depth, bottom, top):  # noq
 
 
 @_compiled
+def _row12(ends, i):  # noqa: ANN001, ANN202
+    return (ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i],
+            ends[6, i], ends[7, i], ends[8, i], ends[9, i], ends[10, i], ends[11, i])  # fmt: skip
+
+
+@numba.njit([numba.void(_ENDS, _OUT, _OUT)], cache=True, error_model="numpy")
 def _closest_loop(ends, s, t):  # noqa: ANN001, ANN202
     for i in range(s.size):
         s[i], t[i] = _closest(*_row12(ends, i))
 
 
-@_compiled
+@numba.njit([numba.void(_ENDS, _OUT)], cache=True, error_model="numpy")
 def _segments_loop(ends, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = _segments_apart(*_row12(ends, i))
 
 
-@_compiled
+@numba.njit([numba.void(_ENDS, _OUT)], cache=True, error_model="numpy")
 def _point_segment_loop(ends, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = _point_segment(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i], ends[7, i], ends[8, i])
@@ -213,16 +224,10 @@ def volume_distance(kind, p, ax, ay, az, bx, by, bz, radius):  # noqa: ANN001, A
     return _cylinder(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius
 
 
-@_compiled
+@numba.njit([numba.void(_ENDS, numba.int64, _ROW, _OUT)], cache=True, error_model="numpy")
 def _volume_loop(ends, kind, p, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = volume_distance(kind, p, ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i])
-
-
-@_compiled
-def _row12(ends, i):  # noqa: ANN001, ANN202
-    return (ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i],
-            ends[6, i], ends[7, i], ends[8, i], ends[9, i], ends[10, i], ends[11, i])  # fmt: skip
 
 
 def _packed(*fields: np.ndarray | float) -> tuple[np.ndarray, tuple[int, ...]]:
@@ -279,3 +284,13 @@ def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | 
     kinds, parameters = volume_table((volume,))
     _volume_loop(ends, kinds[0], parameters[0], out)
     return out.reshape(shape)
+
+
+def load_kernels() -> None:
+    """Load this module's compiled loops (compiling them where no cache holds them):
+    :func:`motor.compiled.warm_up`."""
+    points = np.zeros((1, 3))
+    closest_parameters(points, points, points, points)
+    segment_distance(points, points, points, points)
+    point_segment_distance(points, points, points)
+    capsule_distance(Capsule("capsule", "root", points[0], points[0] + 1.0, 0.1), points, points, 0.0)
