@@ -302,8 +302,9 @@ def _body_clearance(
     """:func:`clearance`'s penalty and depth of the arm against ``obstacles`` whose rest
     geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``; the
     trunk's volumes (a torso and a chest: one body cut in two) are not penalized one by
-    one but give ``trunk``, per segment, the least distance from any of them, so that a
-    segment near the cut pays once. Compiled (:func:`_clearance_rows`); the arrays it
+    one but give ``trunk``, per segment, the least distance from any of them (left as it
+    was where the segment is farther than the clearance from all), so that a segment near
+    the cut pays once. Compiled (:func:`_clearance_rows`); the arrays it
     adds into must be contiguous ``(n, K)``."""
     kinds, parameters, boxes, in_trunk = _obstacle_table(obstacles)
     shape = np.broadcast_shapes(*(c.shape for c in elbow))
@@ -351,6 +352,12 @@ def _overlap_penalty(distance):  # noqa: ANN001, ANN202
     return CONTACT_PENALTY * inside * inside + PENETRATION_PENALTY * depth * depth
 
 
+@numba.njit(cache=True, error_model="numpy")
+def _boxes_meet(low, high, box):  # noqa: ANN001, ANN202
+    """Whether the box from ``low`` to ``high`` meets ``box (2, 3)`` (touching counts)."""
+    return low[0] <= box[1, 0] and high[0] >= box[0, 0] and low[1] <= box[1, 1] and high[1] >= box[0, 1] and low[2] <= box[1, 2] and high[2] >= box[0, 2]
+
+
 _IN1, _IN2, _IN3 = (numba.types.Array(numba.float64, d, "C", readonly=True) for d in (1, 2, 3))
 _FLAGS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
 _KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
@@ -366,12 +373,14 @@ def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, 
     """Per frame ``i``: the candidate elbows (and shoulder and wrist) carried into the
     obstacles' rest frame, the box of each segment over all candidates (its ends are
     affine in the elbow with non-negative weights), and for every obstacle whose box it
-    meets, each candidate segment's distance: into ``cost``, ``depth`` and, for the
-    trunk's volumes, the least distance per segment. The arithmetic of the numpy version
-    (``tests/perf_equivalence/plain_clearance.py``), element by element."""
+    meets, the distance of each candidate segment whose own box meets it too: into
+    ``cost``, ``depth`` and, for the trunk's volumes, the least distance per segment.
+    The arithmetic of the numpy version (``tests/perf_equivalence/plain_clearance.py``),
+    element by element, which measured every candidate of such a frame: the candidates
+    not measured here added nothing there."""
     n, k_count = ex.shape
     local = np.empty((k_count, 3))
-    ends = np.empty((2, 3))
+    box_low, box_high = np.empty(3), np.empty(3)
     for i in range(n):
         s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
         w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
@@ -392,29 +401,32 @@ def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, 
             start = s if from_shoulder else w
             w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
             grow = radius + CLEARANCE
-            box_low = np.empty(3)
-            box_high = np.empty(3)
             for c in range(3):
                 box_low[c] = min(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow
                 box_high[c] = max(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow
             least = least_upper if g == 0 else least_fore
             for v in range(kinds.size):
-                near = True
-                for c in range(3):
-                    if not (box_low[c] <= boxes[v, 1, c] and box_high[c] >= boxes[v, 0, c]):
-                        near = False
-                if not near:
+                if not _boxes_meet(box_low, box_high, boxes[v]):
                     continue
+                box = boxes[v]
                 for k in range(k_count):
-                    for c in range(3):
-                        e = local[k, c]
-                        if from_shoulder:
-                            ends[0, c] = s[c] + f0 * (e - s[c])
-                            ends[1, c] = s[c] + f1 * (e - s[c])
-                        else:
-                            ends[0, c] = e + f0 * (w[c] - e)
-                            ends[1, c] = e + f1 * (w[c] - e)
-                    distance = volume_distance(kinds[v], parameters[v], ends[0, 0], ends[0, 1], ends[0, 2], ends[1, 0], ends[1, 1], ends[1, 2], radius)
+                    ex_, ey_, ez_ = local[k, 0], local[k, 1], local[k, 2]
+                    if from_shoulder:
+                        ax, ay, az = s[0] + f0 * (ex_ - s[0]), s[1] + f0 * (ey_ - s[1]), s[2] + f0 * (ez_ - s[2])
+                        bx, by, bz = s[0] + f1 * (ex_ - s[0]), s[1] + f1 * (ey_ - s[1]), s[2] + f1 * (ez_ - s[2])
+                    else:
+                        ax, ay, az = ex_ + f0 * (w[0] - ex_), ey_ + f0 * (w[1] - ey_), ez_ + f0 * (w[2] - ez_)
+                        bx, by, bz = ex_ + f1 * (w[0] - ex_), ey_ + f1 * (w[1] - ey_), ez_ + f1 * (w[2] - ez_)
+                    # a candidate whose own segment's box misses the volume's is more than
+                    # the clearance away (every distance here is at least the Euclidean
+                    # one): it adds nothing, and is not measured
+                    if (
+                        min(ax, bx) - grow > box[1, 0] or max(ax, bx) + grow < box[0, 0]
+                        or min(ay, by) - grow > box[1, 1] or max(ay, by) + grow < box[0, 1]
+                        or min(az, bz) - grow > box[1, 2] or max(az, bz) + grow < box[0, 2]
+                    ):  # fmt: skip
+                        continue
+                    distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
                     if in_trunk[v]:
                         least[i, k] = min(least[i, k], distance)
                     else:

@@ -17,6 +17,8 @@ weight can pay for); near a half turn the fingers decide.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from motor import quaternion as quat
@@ -54,6 +56,17 @@ def takes_long_way(avatar: Avatar, side: str, before: np.ndarray, after: np.ndar
 
 def _arc(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray) -> tuple[np.ndarray, float]:
     """The axis ``(3,)`` and signed angle (radians) of the arc of least cost."""
+    before, after = np.asarray(before, dtype=float), np.asarray(after, dtype=float)
+    axis, turn = _remembered_arc(avatar, side, before.tobytes(), after.tobytes())
+    return axis.copy(), turn
+
+
+@functools.lru_cache(maxsize=8192)
+def _remembered_arc(avatar: Avatar, side: str, before_bytes: bytes, after_bytes: bytes) -> tuple[np.ndarray, float]:
+    """:func:`_arc` of rotations given by their bytes: signs turn the hand between the same
+    few orientations over and over (a corpus: about five times per pair), and the arc
+    depends on the two rotations and the avatar's hand only."""
+    before, after = np.frombuffer(before_bytes), np.frombuffer(after_bytes)
     axis, angle = _relative_axis_angle(before, after)
     if angle == 0.0:
         return axis, 0.0

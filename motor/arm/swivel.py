@@ -147,15 +147,20 @@ def _cost_to_go(costs, base, change, horizon):  # noqa: ANN001, ANN202
     (``tests/perf_equivalence/test_compiled_swivel.py``)."""
     count = costs.shape[1]
     value = costs.copy()
+    around = np.empty(count + 2 * MAX_STEP)
     for _ in range(horizon):
         rows = value.shape[0] - 1
         table = np.empty((rows, count))
         for r in range(rows):
+            # the next row's values turned by the zero's turn and wrapped round the circle:
+            # around[i + d] is the value of moving d - MAX_STEP steps from candidate i
             turn = base[r + 1]
+            for j in range(count + 2 * MAX_STEP):
+                around[j] = value[r + 1, (j - MAX_STEP + turn) % count]
             for i in range(count):
-                best = value[r + 1, (i + turn - MAX_STEP) % count] + change[r + 1, 0]
+                best = around[i] + change[r + 1, 0]
                 for d in range(1, 2 * MAX_STEP + 1):
-                    best = min(best, value[r + 1, (i + turn + d - MAX_STEP) % count] + change[r + 1, d])
+                    best = min(best, around[i + d] + change[r + 1, d])
                 table[r, i] = costs[r, i] + DISCOUNT * best
         value = table
     return value

@@ -1,6 +1,8 @@
 """The compiled arm-against-body clearance (:func:`motor.arm.clearance._body_clearance`)
-adds into its cost, depth and trunk arrays the numbers the numpy version
-(``plain_clearance.py``) adds, bit for bit: on both avatars, both arms, every group of
+adds into its cost and depth arrays the numbers the numpy version
+(``plain_clearance.py``) adds, bit for bit, and leaves in its trunk arrays distances of
+the same penalty (it does not measure candidates beyond the clearance, which the numpy
+version measured and which cost nothing): on both avatars, both arms, every group of
 obstacles the swivel search measures (all, upright, carried by 0 … 3 turning joints),
 with the trunk upright and carried by a turned frame, for arms at rest height, across the
 chest and deep in the body."""
@@ -11,7 +13,7 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm.clearance import _body_clearance, _by_carriers, arm_capsules, body_obstacles, upright_obstacles
+from motor.arm.clearance import _body_clearance, _by_carriers, arm_capsules, body_obstacles, overlap_penalty, upright_obstacles
 from motor.body.avatar import load_avatar
 from tests.perf_equivalence import plain_clearance as plain
 
@@ -60,8 +62,14 @@ def test_clearance_adds_what_the_numpy_version_adds(avatar_name, side, turned, s
         expected = (cost.copy(), depth.copy(), [t.copy() for t in trunk])
         plain._body_clearance(capsules, obstacles, shoulders, wrists, elbows, frame, *expected)
         _body_clearance(capsules, obstacles, shoulders, wrists, elbows, frame, cost, depth, trunk)
-        for got, want in zip((cost, depth, *trunk), (expected[0], expected[1], *expected[2])):
+        for got, want in zip((cost, depth, *map(_trunk_penalty, trunk)), (expected[0], expected[1], *map(_trunk_penalty, expected[2]))):
             assert np.array_equal(got, want), (name, np.nanmax(np.abs(got - want)))
+
+
+def _trunk_penalty(least: np.ndarray) -> np.ndarray:
+    """What :func:`motor.arm.clearance._body_costs` charges for the trunk's least distances."""
+    finite = np.isfinite(least)
+    return np.where(finite, overlap_penalty(np.where(finite, least, 1.0)), 0.0)
 
 
 def test_the_tables_reach_the_body():
