@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
+from motor.arm import hand_turn
 from motor.arm.hand_orientation import hand_rotations_from_vectors
 from motor.arm.hand_turn import takes_long_way, turn_way
 from motor.arm.wrist_rotation import HandRetractionLMP
@@ -132,3 +133,21 @@ def test_the_hand_retracts_to_rest_the_way_of_least_cost(avatar, side):
         plain = RetractionLMP((arm, "hand_rotation"), pegs, rest).activate(state).sample(times)
         assert np.max(_angle(turned, plain)) < 1e-6
     assert long_ways >= 1
+
+
+@pytest.mark.parametrize("avatar_name", AVATARS)
+def test_remembered_arcs_are_the_arcs_and_cannot_be_spoiled(avatar_name):
+    """The arc per pair of rotations is remembered (a corpus turns the hand between the same
+    pairs over and over): what it gives is what computing it again gives, and changing a
+    returned axis changes nothing remembered."""
+    avatar = load_avatar(avatar_name)
+    rng = np.random.default_rng(37)
+    pairs = quat.normalize(rng.normal(size=(12, 2, 4)))
+    for side in "lr":
+        for before, after in pairs:
+            axis, turn = hand_turn._arc(avatar, side, before, after)
+            axis[:] = 0.0
+            again, turn_again = hand_turn._arc(avatar, side, before.copy(), after.copy())
+            fresh, turn_fresh = hand_turn._remembered_arc.__wrapped__(avatar, side, before.tobytes(), after.tobytes())
+            assert turn == turn_again == turn_fresh
+            assert np.array_equal(again, fresh) and np.any(again != 0.0)
