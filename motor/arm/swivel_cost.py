@@ -20,6 +20,9 @@ fastest for these many small vectors.
 
 from __future__ import annotations
 
+import math
+
+import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
@@ -170,58 +173,85 @@ def wrist_cost(placement: ArmPlacement, elbow: Components, radial: Components) -
 def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Wrist flexion and deviation, forearm twist (all radians, unclamped) and the swing
     between forearm and hand (radians) that the hand rotation ``placement.hands`` asks for
-    with elbows at ``elbow`` (directions ``radial`` from the circle's centre).
+    with elbows at ``elbow`` (directions ``radial`` from the circle's centre), each of the
+    broadcast shape of ``elbow`` and ``radial`` (``(n, K)``).
 
     The same quantities :func:`motor.arm.ik.solve_arm` computes, from vectors alone: the
     wrist's swing is the rotation taking the forearm's axis, seen from the hand, onto the
     hand's long axis (its rotation vector gives flexion and deviation); the forearm twist
     is what turns the elbow's hinge onto where the hand, swung back, wants it (Rodrigues'
-    formula for the swing of a fixed vector)."""
+    formula for the swing of a fixed vector). Compiled (:func:`_wrist_rows`)."""
     chain, circle = placement.chain, placement.circle
-    matrix = _matrices(placement.hands)
-    column = lambda i, j: matrix[:, i, j][:, None]
-    forearm = tuple((circle.wrist[:, i : i + 1] - elbow[i]) * (1.0 / chain.fore) for i in range(3))
-    seen = tuple(column(0, i) * forearm[0] + column(1, i) * forearm[1] + column(2, i) * forearm[2] for i in range(3))
-    a = chain.fore_rest
-    axis = (seen[1] * a[2] - seen[2] * a[1], seen[2] * a[0] - seen[0] * a[2], seen[0] * a[1] - seen[1] * a[0])
-    sine = np.sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2])
-    cosine = seen[0] * a[0] + seen[1] * a[1] + seen[2] * a[2]
-    angle = np.arctan2(sine, cosine)
-    scale = angle / np.maximum(sine, _TINY)
-    flex_across, dev_across = _cross(a, chain.flexion_axis), _cross(a, chain.deviation_axis)
-    flexion = scale * (seen[0] * flex_across[0] + seen[1] * flex_across[1] + seen[2] * flex_across[2])
-    deviation = scale * (seen[0] * dev_across[0] + seen[1] * dev_across[1] + seen[2] * dev_across[2])
-    h = chain.hinge_rest
-    along = (axis[0] * h[0] + axis[1] * h[1] + axis[2] * h[2]) / np.maximum(1.0 + cosine, _TINY)
-    swung = (
-        h[0] * cosine - (axis[1] * h[2] - axis[2] * h[1]) + axis[0] * along,
-        h[1] * cosine - (axis[2] * h[0] - axis[0] * h[2]) + axis[1] * along,
-        h[2] * cosine - (axis[0] * h[1] - axis[1] * h[0]) + axis[2] * along,
-    )
-    wanted = tuple(column(i, 0) * swung[0] + column(i, 1) * swung[1] + column(i, 2) * swung[2] for i in range(3))
-    c = tuple(circle.axis[:, i : i + 1] for i in range(3))
-    hinge = (radial[1] * c[2] - radial[2] * c[1], radial[2] * c[0] - radial[0] * c[2], radial[0] * c[1] - radial[1] * c[0])
-    across = (hinge[1] * wanted[2] - hinge[2] * wanted[1], hinge[2] * wanted[0] - hinge[0] * wanted[2], hinge[0] * wanted[1] - hinge[1] * wanted[0])
-    sign = float(chain.pronation_axis @ chain.fore_rest)
-    twist = np.arctan2(sign * (across[0] * forearm[0] + across[1] * forearm[1] + across[2] * forearm[2]), hinge[0] * wanted[0] + hinge[1] * wanted[1] + hinge[2] * wanted[2])
-    return flexion, deviation, twist, angle
+    shape = np.broadcast_shapes(*(c.shape for c in (*elbow, *radial)))
+    rows = lambda c: np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float)
+    a = np.asarray(chain.fore_rest, dtype=float)
+    constants = np.array([
+        1.0 / chain.fore, *a, *_cross(a, chain.flexion_axis), *_cross(a, chain.deviation_axis),
+        *np.asarray(chain.hinge_rest, dtype=float), float(chain.pronation_axis @ chain.fore_rest),
+    ], dtype=float)  # fmt: skip
+    out = tuple(np.empty(shape) for _ in range(4))
+    _wrist_rows(
+        np.ascontiguousarray(placement.hands, dtype=float), np.ascontiguousarray(circle.wrist, dtype=float),
+        np.ascontiguousarray(circle.axis, dtype=float), *map(rows, elbow), *map(rows, radial), constants, *out,
+    )  # fmt: skip
+    return out
 
 
 def _cross(u: np.ndarray, v: np.ndarray) -> tuple[float, float, float]:
     return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
 
 
-def _matrices(q: np.ndarray) -> np.ndarray:
-    """Rotation matrices ``(n, 3, 3)`` of unit quaternions ``(n, 4)`` (scalar last)."""
-    x, y, z, w = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
-    return np.stack(
-        (
-            np.stack((1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)), axis=-1),
-            np.stack((2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)), axis=-1),
-            np.stack((2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)), axis=-1),
-        ),
-        axis=-2,
-    )
+_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
+_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
+_OUT2 = numba.float64[:, ::1]
+
+
+@numba.njit([numba.void(*(_IN2,) * 9, _IN1, *(_OUT2,) * 4)], cache=True, error_model="numpy")
+def _wrist_rows(hands, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, flexion, deviation, twist, swing):  # noqa: ANN001, ANN202
+    """:func:`wrist_state` per frame ``i`` and candidate ``k``: the hand's rotation matrix,
+    the forearm seen from the hand, its swing onto the rest forearm ``a`` (flexion and
+    deviation along ``a`` × the wrist's axes), the hinge swung back and the twist that
+    turns the elbow's hinge onto it. ``constants``: 1 / forearm length, ``a``, ``a`` ×
+    flexion axis, ``a`` × deviation axis, the rest hinge, the pronation sign."""
+    inverse_fore = constants[0]
+    a0, a1, a2 = constants[1], constants[2], constants[3]
+    fa0, fa1, fa2 = constants[4], constants[5], constants[6]
+    da0, da1, da2 = constants[7], constants[8], constants[9]
+    h0, h1, h2 = constants[10], constants[11], constants[12]
+    sign = constants[13]
+    for i in range(ex.shape[0]):
+        x, y, z, w = hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3]
+        m00, m01, m02 = 1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)
+        m10, m11, m12 = 2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)
+        m20, m21, m22 = 2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)
+        c0, c1, c2 = circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2]
+        for k in range(ex.shape[1]):
+            f0 = (wrist[i, 0] - ex[i, k]) * inverse_fore
+            f1 = (wrist[i, 1] - ey[i, k]) * inverse_fore
+            f2 = (wrist[i, 2] - ez[i, k]) * inverse_fore
+            s0 = m00 * f0 + m10 * f1 + m20 * f2
+            s1 = m01 * f0 + m11 * f1 + m21 * f2
+            s2 = m02 * f0 + m12 * f1 + m22 * f2
+            x0, x1, x2 = s1 * a2 - s2 * a1, s2 * a0 - s0 * a2, s0 * a1 - s1 * a0
+            sine = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
+            cosine = s0 * a0 + s1 * a1 + s2 * a2
+            angle = math.atan2(sine, cosine)
+            scale = angle / max(sine, _TINY)
+            flexion[i, k] = scale * (s0 * fa0 + s1 * fa1 + s2 * fa2)
+            deviation[i, k] = scale * (s0 * da0 + s1 * da1 + s2 * da2)
+            along = (x0 * h0 + x1 * h1 + x2 * h2) / max(1.0 + cosine, _TINY)
+            w0 = h0 * cosine - (x1 * h2 - x2 * h1) + x0 * along
+            w1 = h1 * cosine - (x2 * h0 - x0 * h2) + x1 * along
+            w2 = h2 * cosine - (x0 * h1 - x1 * h0) + x2 * along
+            t0 = m00 * w0 + m01 * w1 + m02 * w2
+            t1 = m10 * w0 + m11 * w1 + m12 * w2
+            t2 = m20 * w0 + m21 * w1 + m22 * w2
+            g0 = ry[i, k] * c2 - rz[i, k] * c1
+            g1 = rz[i, k] * c0 - rx[i, k] * c2
+            g2 = rx[i, k] * c1 - ry[i, k] * c0
+            u0, u1, u2 = g1 * t2 - g2 * t1, g2 * t0 - g0 * t2, g0 * t1 - g1 * t0
+            twist[i, k] = math.atan2(sign * (u0 * f0 + u1 * f1 + u2 * f2), g0 * t0 + g1 * t1 + g2 * t2)
+            swing[i, k] = angle
 
 
 def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
