@@ -1,12 +1,14 @@
-"""Loading the motor core's compiled kernels before the first frame is due.
+"""The motor core's compiled kernels, loaded before the first frame is due.
 
 numba compiles each kernel (:mod:`motor.quaternion`'s products, :mod:`motor.body.distance`'s
 signed distances, :mod:`motor.arm.clearance`'s arm-against-body loop,
-:mod:`motor.arm.swivel`'s value tables) once per checkout and caches it on disk (``__pycache__``); a process
-then loads each on its first call: about 0.2 s for the first (numba's own start), a few
-milliseconds for each further one, and several seconds the very first time, while they
-compile. A live realizer calls :func:`warm_up` when it starts, so that no utterance's
-first frame waits for it; the benches call it before they time anything.
+:mod:`motor.arm.swivel_cost`'s wrist state, :mod:`motor.arm.swivel`'s value tables) once
+per checkout and caches it on disk (``__pycache__``): several seconds the very first time.
+Each kernel states its signature, so a process loads it from the cache when it imports
+the kernel's module — about 0.7 s in all, most of it numba's own start — never in the
+middle of an utterance. :func:`warm_up` imports them all and runs each once (a realizer
+or a bench calls it before it times or performs anything); the seconds it returns are
+what that cost in this process, near zero when the motor was imported already.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from __future__ import annotations
 import time
 
 from motor import quaternion
-from motor.arm import clearance, swivel
+from motor.arm import clearance, swivel, swivel_cost
 from motor.body import distance
 
 
@@ -22,6 +24,6 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost):
         module.load_kernels()
     return time.perf_counter() - started

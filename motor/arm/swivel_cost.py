@@ -259,3 +259,10 @@ def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> 
     curvature = left - 2.0 * middle + right
     step = 0.5 * (left - right) / np.where(curvature > 1e-12, curvature, 1.0)
     return np.where(curvature > 1e-12, np.minimum(np.maximum(step, -0.5), 0.5), 0.0)
+
+
+def load_kernels() -> None:
+    """Load this module's compiled loop (compiling it where no cache holds it):
+    :func:`motor.compiled.warm_up`."""
+    hands, points, cells = np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.zeros((1, 1))
+    _wrist_rows(hands, points, points, *(cells,) * 6, np.zeros(14), *(np.empty((1, 1)) for _ in range(4)))
