@@ -1,12 +1,13 @@
 """Signed distances between a capsule and the body's volumes, compiled.
 
 The swivel search measures every candidate elbow of every frame against every volume
-near it (:mod:`motor.arm.clearance`): millions of distances per second of signing. Each
-distance here is a scalar kernel compiled by numba into a numpy ufunc, so that it
-broadcasts over any leading axes (frames, candidates) like the numpy arithmetic it
-replaces, without the temporary arrays of a chain of ``np.where`` — and gives the same
-numbers bit for bit (the same operations in the same order; no fast-math):
-``tests/perf_equivalence/test_compiled_distance.py`` holds them to the numpy definitions.
+near it (:mod:`motor.arm.clearance`): hundreds of distances per frame. Each distance here
+is a scalar kernel compiled by numba; the public functions broadcast their arguments
+(any leading axes: frames, candidates) into the rows of one array and run a compiled loop
+over them — without the temporary arrays of a chain of ``np.where`` — and give the numbers
+of the numpy arithmetic they replaced bit for bit (the same operations in the same order;
+no fast-math): ``tests/perf_equivalence/test_compiled_distance.py`` holds them to the
+numpy definitions. :func:`volume_distance` serves compiled callers.
 
 * :func:`closest_parameters`, :func:`segment_distance`, :func:`point_segment_distance`:
   segments (degenerate ones allowed);

@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from motor.arm.chain import ArmPlacement
+from motor.body.distance import Components
+
 _TINY = 1e-12
 
 
