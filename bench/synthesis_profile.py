@@ -14,11 +14,9 @@ from __future__ import annotations
 
 import cProfile
 import io
-import statistics
-import time
 
 from bench.machine import machine_info
-from bench.motion_speed import _fresh, _gestures, _programs, _streamed
+from bench.motion_speed import _fresh, _gestures, _programs, _streamed, _timed_frames
 from bench.profile_listing import listings
 from motor.body.avatar import load_avatar
 from motor.compiled import warm_up
@@ -43,19 +41,13 @@ def profile(top: int = TOP) -> str:
     )
     for label, render in (("one frames call", lambda control: control.frames(0.0, end)), ("streamed 0.1 s windows", lambda control: _streamed(control, end))):
         frames = _fresh(avatar, FPS, programs).frames(0.0, end).frame_count
-        spent = []
-        for _ in range(RENDERS):
-            control = _fresh(avatar, FPS, programs)
-            started = time.process_time()
-            render(control)
-            spent.append(time.process_time() - started)
+        median = _timed_frames(avatar, FPS, programs, render, RENDERS)
         controls = [_fresh(avatar, FPS, programs) for _ in range(RENDERS)]
         profiler = cProfile.Profile()
         profiler.enable()
         for control in controls:
             render(control)
         profiler.disable()
-        median = statistics.median(spent)
         out.write(f"=== {label}, {len(programs)} gestures, {frames} frames at {FPS:g} fps: process time without profiler {median * 1e3:.1f} ms = {frames / median:,.0f} frames/s (median of {RENDERS}); profile of {RENDERS} renders\n")
         out.write(listings(profiler, top))
     return out.getvalue()

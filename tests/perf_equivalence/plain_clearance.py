@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.clearance import CLEARANCE, ArmCapsules, Obstacle, overlap_penalty
+from motor.arm.clearance import ArmCapsules, Obstacle, _boxes, _segments, overlap_penalty
 from tests.perf_equivalence.plain_distance import Components, capsule_apart
 
 
@@ -54,34 +54,3 @@ def _body_clearance(
             else:
                 cost[rows] += overlap_penalty(distance)
             depth[rows] = np.maximum(depth[rows], -distance)
-
-
-def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
-    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
-    capsules' ends are affine in the elbow with non-negative weights, so the box of the
-    candidate elbows bounds them."""
-    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
-    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
-    boxes = []
-    for (u0, u1), start, from_start, radius in (
-        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
-        (capsules.fore_ends, wrist, False, capsules.fore_radius),
-    ):
-        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
-        weight = lambda f: f if from_start else 1.0 - f
-        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
-        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
-        grow = radius + CLEARANCE
-        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
-    return boxes
-
-
-def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
-    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
-    do not move with the elbow ``(n, 1)``) and radii."""
-    s = tuple(shoulder[:, i : i + 1] for i in range(3))
-    w = tuple(wrist[:, i : i + 1] for i in range(3))
-    (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
-    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
-    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from motor.arm.swivel import DISCOUNT, MAX_STEP
+from motor.arm.swivel import DISCOUNT, MAX_STEP, _aligned, _wrapped
 
 
 def cost_to_go(costs: np.ndarray, base: np.ndarray, change: np.ndarray, horizon: int) -> np.ndarray:
@@ -15,24 +15,6 @@ def cost_to_go(costs: np.ndarray, base: np.ndarray, change: np.ndarray, horizon:
         rows = value.shape[0] - 1
         value = costs[:rows] + DISCOUNT * _banded_minimum(value[1:], base[1 : rows + 1], change[1 : rows + 1])
     return value
-
-
-def _aligned(value: np.ndarray, base: np.ndarray) -> np.ndarray:
-    """``value (m, K)`` with row ``r`` turned so that column ``i`` holds candidate
-    ``i + base[r]`` (mod K); rows that need no turn — most — are left as they are."""
-    turned = np.flatnonzero(base)
-    if turned.size == 0:
-        return value
-    count = value.shape[1]
-    aligned = value.copy()
-    aligned[turned] = np.take_along_axis(value[turned], (np.arange(count) + base[turned, None]) % count, axis=1)
-    return aligned
-
-
-def _wrapped(value: np.ndarray) -> np.ndarray:
-    """``value (m, K)`` with :data:`MAX_STEP` columns of the other end on either side (the
-    candidates go round the circle)."""
-    return np.concatenate([value[:, -MAX_STEP:], value, value[:, :MAX_STEP]], axis=1)
 
 
 def _banded_minimum(value: np.ndarray, base: np.ndarray, change: np.ndarray) -> np.ndarray:
