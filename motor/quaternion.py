@@ -265,7 +265,7 @@ def continuous(quaternions: np.ndarray) -> np.ndarray:
 
 
 def load_kernels() -> None:
-    """Load this module's compiled loops (compiling them where no cache holds them):
+    """Run this module's compiled loops once (they load when it is imported):
     :func:`motor.compiled.warm_up`."""
     rotation = normalize(np.ones((1, 4)))
     multiply(rotation, rotation)

@@ -466,7 +466,7 @@ def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, el
 
 
 def load_kernels() -> None:
-    """Load this module's compiled loop (compiling it where no cache holds it):
+    """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
     capsules = ArmCapsules((0.0, 1.0), 0.05, (0.0, 1.0), 0.04, np.zeros((2, 3)), 0.03)
     point, elbow = np.zeros((1, 3)), tuple(np.ones((1, 1)) for _ in range(3))

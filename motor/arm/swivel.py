@@ -167,6 +167,6 @@ def _cost_to_go(costs, base, change, horizon):  # noqa: ANN001, ANN202
 
 
 def load_kernels() -> None:
-    """Load this module's compiled loop (compiling it where no cache holds it):
+    """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
     _cost_to_go(np.zeros((2, 4)), np.zeros(2, dtype=np.int64), np.zeros((2, 2 * MAX_STEP + 1)), 1)

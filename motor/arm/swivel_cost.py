@@ -14,8 +14,9 @@ Candidate swivels are the whole circle in steps of :data:`SWIVEL_STEP`
 
 Only the candidates within :data:`WINDOW` steps of the natural swivel are measured; the
 others cost their distance from it plus :data:`OUTSIDE`. Everything is computed on
-coordinate arrays ``(n, K)`` (contiguous per coordinate), the layout in which numpy is
-fastest for these many small vectors.
+coordinate arrays ``(n, K)`` (contiguous per coordinate); the wrist state and the costs
+of each frame's candidates are compiled loops (:func:`_wrist_rows`, :func:`_cost_rows`),
+held to the numpy arithmetic they replaced by ``tests/perf_equivalence``.
 """
 
 from __future__ import annotations
@@ -86,14 +87,7 @@ def candidate_costs(
     elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
     penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, other, carried_frames=placement.carried_frames)
-    if nearby is not None:
-        penalty = np.maximum(penalty, np.take_along_axis(nearby, cells.astype(np.int64) % count, axis=1))
-    measured = natural_cost(psi - natural[:, None]) + penalty
-    if placement.hands is not None:
-        measured += wrist_cost(placement, elbow, radial)
-    costs = natural_cost((CANDIDATES[None, :] - natural[:, None] + np.pi) % (2.0 * np.pi) - np.pi) + OUTSIDE
-    np.put_along_axis(costs, cells.astype(np.int64) % count, measured, axis=1)
-    return costs
+    return _window_costs(placement, natural, cells, psi, penalty, elbow, radial, nearby)
 
 
 def body_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray:
@@ -158,16 +152,33 @@ def candidate_elbows(placement: ArmPlacement, cos: np.ndarray, sin: np.ndarray) 
     return tuple(circle.center[:, i : i + 1] + radius * radial[i] for i in range(3)), radial
 
 
-def wrist_cost(placement: ArmPlacement, elbow: Components, radial: Components) -> np.ndarray:
-    """The wrist's load for elbows at ``elbow`` (directions ``radial`` from the circle's
-    centre), the hand rotated as ``placement.hands``."""
-    chain = placement.chain
-    flexion, deviation, twist, _ = wrist_state(placement, elbow, radial)
-    excess = lambda value, limits: value - np.minimum(np.maximum(value, limits[0]), limits[1])
-    unreached = excess(flexion, chain.wrist_flexion) ** 2 + excess(deviation, chain.wrist_deviation) ** 2 + excess(twist, chain.twist_range) ** 2
-    deviation = deviation / np.where(deviation >= 0, chain.wrist_deviation[1], -chain.wrist_deviation[0])
-    flexion = flexion / np.where(flexion >= 0, chain.wrist_flexion[1], -chain.wrist_flexion[0])
-    return DEVIATION_WEIGHT * deviation * deviation + FLEXION_WEIGHT * flexion * flexion + RESIDUAL_WEIGHT * unreached / (1.0 + unreached / RESIDUAL_SATURATION**2)
+def _window_costs(
+    placement: ArmPlacement,
+    natural: np.ndarray,
+    cells: np.ndarray,
+    psi: np.ndarray,
+    penalty: np.ndarray,
+    elbow: Components,
+    radial: Components,
+    nearby: np.ndarray | None,
+) -> np.ndarray:
+    """Every candidate's cost ``(n, K)`` (module docstring) from the measured window's
+    cells and swivels ``(n, W)`` (:func:`measured_window`), its clearance ``penalty``, the
+    ``nearby`` penalties (:func:`body_penalties`) it pays where they are more, and — where
+    the hand's rotation is given — the wrist's load: its flexion and deviation as
+    fractions of their limits, and the rotation the limits leave unachieved, saturating.
+    Compiled (:func:`_cost_rows`)."""
+    chain, circle = placement.chain, placement.circle
+    rows = lambda value: np.ascontiguousarray(value, dtype=float)
+    hands = np.zeros((0, 4)) if placement.hands is None else rows(placement.hands)
+    limits = np.array([*chain.wrist_flexion, *chain.wrist_deviation, *chain.twist_range], dtype=float)
+    costs = np.empty((len(natural), len(CANDIDATES)))
+    _cost_rows(
+        rows(natural), rows(cells), rows(psi), rows(penalty), np.zeros((0, 0)) if nearby is None else rows(nearby),
+        hands, rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
+        _wrist_constant_row(chain), limits, CANDIDATES, costs,
+    )  # fmt: skip
+    return costs
 
 
 def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -184,17 +195,22 @@ def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) 
     chain, circle = placement.chain, placement.circle
     shape = np.broadcast_shapes(*(c.shape for c in (*elbow, *radial)))
     rows = lambda c: np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float)
-    a = np.asarray(chain.fore_rest, dtype=float)
-    constants = np.array([
-        1.0 / chain.fore, *a, *_cross(a, chain.flexion_axis), *_cross(a, chain.deviation_axis),
-        *np.asarray(chain.hinge_rest, dtype=float), float(chain.pronation_axis @ chain.fore_rest),
-    ], dtype=float)  # fmt: skip
+    constants = _wrist_constant_row(chain)
     out = tuple(np.empty(shape) for _ in range(4))
     _wrist_rows(
         np.ascontiguousarray(placement.hands, dtype=float), np.ascontiguousarray(circle.wrist, dtype=float),
         np.ascontiguousarray(circle.axis, dtype=float), *map(rows, elbow), *map(rows, radial), constants, *out,
     )  # fmt: skip
     return out
+
+
+def _wrist_constant_row(chain) -> np.ndarray:  # noqa: ANN001
+    """The constants of :func:`_wrist_angles` for an arm (:class:`motor.arm.chain.ArmChain`)."""
+    a = np.asarray(chain.fore_rest, dtype=float)
+    return np.array([
+        1.0 / chain.fore, *a, *_cross(a, chain.flexion_axis), *_cross(a, chain.deviation_axis),
+        *np.asarray(chain.hinge_rest, dtype=float), float(chain.pronation_axis @ chain.fore_rest),
+    ], dtype=float)  # fmt: skip
 
 
 def _cross(u: np.ndarray, v: np.ndarray) -> tuple[float, float, float]:
@@ -206,52 +222,150 @@ _IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
 _OUT2 = numba.float64[:, ::1]
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _hand_matrix(hands, i):  # noqa: ANN001, ANN202
+    """The rotation matrix of the hand quaternion ``hands[i]``, row by row."""
+    x, y, z, w = hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3]
+    return (
+        1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+        2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+        2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y),
+    )  # fmt: skip
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _wrist_angles(m, c, wrist, elbow, radial, constants):  # noqa: ANN001, ANN202
+    """:func:`wrist_state` of one candidate: flexion, deviation, twist and swing (radians),
+    from the hand's matrix ``m``, the circle's axis ``c``, the wrist, the candidate's elbow
+    and its direction from the circle's centre ``radial`` (3-tuples). The forearm seen
+    from the hand, its swing onto the rest forearm ``a`` (flexion and deviation along
+    ``a`` × the wrist's axes), the hinge swung back and the twist that turns the elbow's
+    hinge onto it. ``constants``: 1 / forearm length, ``a``, ``a`` × flexion axis, ``a`` ×
+    deviation axis, the rest hinge, the pronation sign."""
+    m00, m01, m02, m10, m11, m12, m20, m21, m22 = m
+    inverse_fore, a0, a1, a2, fa0, fa1, fa2, da0, da1, da2, h0, h1, h2, sign = constants
+    f0 = (wrist[0] - elbow[0]) * inverse_fore
+    f1 = (wrist[1] - elbow[1]) * inverse_fore
+    f2 = (wrist[2] - elbow[2]) * inverse_fore
+    s0 = m00 * f0 + m10 * f1 + m20 * f2
+    s1 = m01 * f0 + m11 * f1 + m21 * f2
+    s2 = m02 * f0 + m12 * f1 + m22 * f2
+    x0, x1, x2 = s1 * a2 - s2 * a1, s2 * a0 - s0 * a2, s0 * a1 - s1 * a0
+    sine = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
+    cosine = s0 * a0 + s1 * a1 + s2 * a2
+    angle = math.atan2(sine, cosine)
+    scale = angle / max(sine, _TINY)
+    flexion = scale * (s0 * fa0 + s1 * fa1 + s2 * fa2)
+    deviation = scale * (s0 * da0 + s1 * da1 + s2 * da2)
+    along = (x0 * h0 + x1 * h1 + x2 * h2) / max(1.0 + cosine, _TINY)
+    w0 = h0 * cosine - (x1 * h2 - x2 * h1) + x0 * along
+    w1 = h1 * cosine - (x2 * h0 - x0 * h2) + x1 * along
+    w2 = h2 * cosine - (x0 * h1 - x1 * h0) + x2 * along
+    t0 = m00 * w0 + m01 * w1 + m02 * w2
+    t1 = m10 * w0 + m11 * w1 + m12 * w2
+    t2 = m20 * w0 + m21 * w1 + m22 * w2
+    g0 = radial[1] * c[2] - radial[2] * c[1]
+    g1 = radial[2] * c[0] - radial[0] * c[2]
+    g2 = radial[0] * c[1] - radial[1] * c[0]
+    u0, u1, u2 = g1 * t2 - g2 * t1, g2 * t0 - g0 * t2, g0 * t1 - g1 * t0
+    twist = math.atan2(sign * (u0 * f0 + u1 * f1 + u2 * f2), g0 * t0 + g1 * t1 + g2 * t2)
+    return flexion, deviation, twist, angle
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _wrist_constants(constants):  # noqa: ANN001, ANN202
+    """The 14 constants of :func:`_wrist_angles` as a tuple (held in registers in the loops)."""
+    return (constants[0], constants[1], constants[2], constants[3], constants[4], constants[5], constants[6],
+            constants[7], constants[8], constants[9], constants[10], constants[11], constants[12], constants[13])  # fmt: skip
+
+
 @numba.njit([numba.void(*(_IN2,) * 9, _IN1, *(_OUT2,) * 4)], cache=True, error_model="numpy")
 def _wrist_rows(hands, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, flexion, deviation, twist, swing):  # noqa: ANN001, ANN202
-    """:func:`wrist_state` per frame ``i`` and candidate ``k``: the hand's rotation matrix,
-    the forearm seen from the hand, its swing onto the rest forearm ``a`` (flexion and
-    deviation along ``a`` × the wrist's axes), the hinge swung back and the twist that
-    turns the elbow's hinge onto it. ``constants``: 1 / forearm length, ``a``, ``a`` ×
-    flexion axis, ``a`` × deviation axis, the rest hinge, the pronation sign."""
-    inverse_fore = constants[0]
-    a0, a1, a2 = constants[1], constants[2], constants[3]
-    fa0, fa1, fa2 = constants[4], constants[5], constants[6]
-    da0, da1, da2 = constants[7], constants[8], constants[9]
-    h0, h1, h2 = constants[10], constants[11], constants[12]
-    sign = constants[13]
+    """:func:`wrist_state` per frame ``i`` and candidate ``k`` (:func:`_wrist_angles`)."""
+    fixed = _wrist_constants(constants)
     for i in range(ex.shape[0]):
-        x, y, z, w = hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3]
-        m00, m01, m02 = 1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)
-        m10, m11, m12 = 2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)
-        m20, m21, m22 = 2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)
-        c0, c1, c2 = circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2]
+        m = _hand_matrix(hands, i)
+        c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
         for k in range(ex.shape[1]):
-            f0 = (wrist[i, 0] - ex[i, k]) * inverse_fore
-            f1 = (wrist[i, 1] - ey[i, k]) * inverse_fore
-            f2 = (wrist[i, 2] - ez[i, k]) * inverse_fore
-            s0 = m00 * f0 + m10 * f1 + m20 * f2
-            s1 = m01 * f0 + m11 * f1 + m21 * f2
-            s2 = m02 * f0 + m12 * f1 + m22 * f2
-            x0, x1, x2 = s1 * a2 - s2 * a1, s2 * a0 - s0 * a2, s0 * a1 - s1 * a0
-            sine = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
-            cosine = s0 * a0 + s1 * a1 + s2 * a2
-            angle = math.atan2(sine, cosine)
-            scale = angle / max(sine, _TINY)
-            flexion[i, k] = scale * (s0 * fa0 + s1 * fa1 + s2 * fa2)
-            deviation[i, k] = scale * (s0 * da0 + s1 * da1 + s2 * da2)
-            along = (x0 * h0 + x1 * h1 + x2 * h2) / max(1.0 + cosine, _TINY)
-            w0 = h0 * cosine - (x1 * h2 - x2 * h1) + x0 * along
-            w1 = h1 * cosine - (x2 * h0 - x0 * h2) + x1 * along
-            w2 = h2 * cosine - (x0 * h1 - x1 * h0) + x2 * along
-            t0 = m00 * w0 + m01 * w1 + m02 * w2
-            t1 = m10 * w0 + m11 * w1 + m12 * w2
-            t2 = m20 * w0 + m21 * w1 + m22 * w2
-            g0 = ry[i, k] * c2 - rz[i, k] * c1
-            g1 = rz[i, k] * c0 - rx[i, k] * c2
-            g2 = rx[i, k] * c1 - ry[i, k] * c0
-            u0, u1, u2 = g1 * t2 - g2 * t1, g2 * t0 - g0 * t2, g0 * t1 - g1 * t0
-            twist[i, k] = math.atan2(sign * (u0 * f0 + u1 * f1 + u2 * f2), g0 * t0 + g1 * t1 + g2 * t2)
-            swing[i, k] = angle
+            flexion[i, k], deviation[i, k], twist[i, k], swing[i, k] = _wrist_angles(
+                m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed
+            )
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _turn_remainder(x):  # noqa: ANN001, ANN202
+    """``x % 2π`` as numpy computes it (the floored remainder), without its ``fmod`` where
+    ``x`` lies within one turn of [0, 2π): there the remainder is ``x``, ``x − 2π`` (exact,
+    as ``fmod``'s is) or ``x + 2π`` (the addition numpy makes too)."""
+    turn = 2.0 * np.pi
+    if 0.0 <= x < turn:
+        return x + 0.0  # numpy's remainder of -0.0 is +0.0
+    if turn <= x < 2.0 * turn:
+        return x - turn
+    if -turn < x < 0.0:
+        return x + turn
+    return x % turn
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _natural(away):  # noqa: ANN001, ANN202
+    """:func:`natural_cost` of one swivel, the same operations in the same order."""
+    beyond = max(abs(away) - SWIVEL_RANGE, 0.0)
+    return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _wrist_load(flexion, deviation, twist, limits):  # noqa: ANN001, ANN202
+    """The wrist's load (module docstring) of one candidate's wrist state; ``limits``:
+    flexion, deviation and twist limits, low and high (radians)."""
+    excess_flexion = flexion - min(max(flexion, limits[0]), limits[1])
+    excess_deviation = deviation - min(max(deviation, limits[2]), limits[3])
+    excess_twist = twist - min(max(twist, limits[4]), limits[5])
+    unreached = excess_flexion * excess_flexion + excess_deviation * excess_deviation + excess_twist * excess_twist
+    deviation = deviation / (limits[3] if deviation >= 0 else -limits[2])
+    flexion = flexion / (limits[1] if flexion >= 0 else -limits[0])
+    return DEVIATION_WEIGHT * deviation * deviation + FLEXION_WEIGHT * flexion * flexion + RESIDUAL_WEIGHT * unreached / (1.0 + unreached / RESIDUAL_SATURATION**2)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _paid(penalty, nearby, i, k, cell):  # noqa: ANN001, ANN202
+    """The clearance penalty candidate ``k`` of frame ``i`` pays: its own, or the nearby one
+    of its ``cell`` where that is more."""
+    return penalty[i, k] if nearby.shape[0] == 0 else max(penalty[i, k], nearby[i, cell])
+
+
+@numba.njit(
+    [numba.void(_IN1, *(_IN2,) * 5, *(_IN2,) * 2, *(_IN2,) * 6, _IN1, _IN1, _IN1, _OUT2)],
+    cache=True,
+    error_model="numpy",
+)
+def _cost_rows(natural, cells, psi, penalty, nearby, hands, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, limits, candidates, costs):  # noqa: ANN001, ANN202, E501
+    """:func:`_window_costs` per frame ``i``: every candidate at its distance from the
+    natural swivel plus :data:`OUTSIDE`, then the measured window's candidates at their
+    distance, clearance penalty (or the nearby one, where more) and wrist load — the
+    arithmetic of the numpy version (``tests/perf_equivalence/plain_costs.py``), element
+    by element, the wrist state within numba's ``atan2``."""
+    count = candidates.size
+    fixed = _wrist_constants(constants)
+    for i in range(cells.shape[0]):
+        for j in range(count):
+            costs[i, j] = _natural(_turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
+        cell = int(cells[i, 0]) % count - 1
+        if hands.shape[0] == 0:
+            for k in range(cells.shape[1]):
+                # the window's cells are consecutive: the next candidate round the circle
+                cell = cell + 1 if cell + 1 < count else 0
+                costs[i, cell] = _natural(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
+            continue
+        m = _hand_matrix(hands, i)
+        c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+        for k in range(cells.shape[1]):
+            cell = cell + 1 if cell + 1 < count else 0
+            flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+            measured = _natural(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
+            costs[i, cell] = measured + _wrist_load(flexion, deviation, twist, limits)
 
 
 def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
@@ -262,7 +376,9 @@ def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> 
 
 
 def load_kernels() -> None:
-    """Load this module's compiled loop (compiling it where no cache holds it):
+    """Run this module's compiled loops once (they load when it is imported):
     :func:`motor.compiled.warm_up`."""
     hands, points, cells = np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.zeros((1, 1))
-    _wrist_rows(hands, points, points, *(cells,) * 6, np.zeros(14), *(np.empty((1, 1)) for _ in range(4)))
+    constants, limits = np.ones(14), np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
+    _wrist_rows(hands, points, points, *(cells,) * 6, constants, *(np.empty((1, 1)) for _ in range(4)))
+    _cost_rows(np.zeros(1), *(cells,) * 3, np.zeros((0, 0)), hands, points, points, *(cells,) * 6, constants, limits, CANDIDATES, np.empty((1, CANDIDATES.size)))

@@ -288,7 +288,7 @@ def capsule_apart(volume: Volume, a: Components, b: Components, radius: float | 
 
 
 def load_kernels() -> None:
-    """Load this module's compiled loops (compiling them where no cache holds them):
+    """Run this module's compiled loops once (they load when it is imported):
     :func:`motor.compiled.warm_up`."""
     points = np.zeros((1, 3))
     closest_parameters(points, points, points, points)
