@@ -21,6 +21,7 @@ near an obstacle's bounding box are measured against it.
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numba
@@ -232,7 +233,14 @@ def _body_costs(
     ``depth`` ``(n, K)``: the instants where the trunk does not turn (all of them without
     ``carried_frames``) against :func:`upright_obstacles`, the others against every volume
     where the joints above it carry it. Each instant's figures are its own, whatever the
-    others."""
+    others. Where the trunk turns nowhere and nothing was added before, straight into
+    ``cost`` and ``depth``: the same sums in the same order as through the arrays of the
+    turned case."""
+    if carried_frames is None and not cost.any() and not depth.any():
+        trunk = [np.full(cost.shape, np.inf), np.full(cost.shape, np.inf)]
+        _body_clearance(capsules, upright_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth, trunk)
+        _charge_trunk(cost, *trunk)
+        return
     upright = np.ones(len(shoulder), dtype=bool) if carried_frames is None else np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
     for rows, obstacles in ((upright, None), (~upright, _by_carriers(avatar))):
         if not np.any(rows):
@@ -356,6 +364,21 @@ def _overlap_penalty(distance):  # noqa: ANN001, ANN202
 def _boxes_meet(low, high, box):  # noqa: ANN001, ANN202
     """Whether the box from ``low`` to ``high`` meets ``box (2, 3)`` (touching counts)."""
     return low[0] <= box[1, 0] and high[0] >= box[0, 0] and low[1] <= box[1, 1] and high[1] >= box[0, 1] and low[2] <= box[1, 2] and high[2] >= box[0, 2]
+
+
+@numba.njit(
+    [numba.void(numba.float64[:, ::1], numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.float64, 2, "C", readonly=True))],
+    cache=True,
+    error_model="numpy",
+)
+def _charge_trunk(cost, least_upper, least_fore):  # noqa: ANN001, ANN202
+    """Add into ``cost`` the penalty of the trunk's least distances, upper arm then forearm,
+    where there is one (as :func:`_body_costs` does through its arrays)."""
+    for i in range(cost.shape[0]):
+        for k in range(cost.shape[1]):
+            for least in (least_upper[i, k], least_fore[i, k]):
+                if least < math.inf:
+                    cost[i, k] += _overlap_penalty(least)
 
 
 _IN1, _IN2, _IN3 = (numba.types.Array(numba.float64, d, "C", readonly=True) for d in (1, 2, 3))

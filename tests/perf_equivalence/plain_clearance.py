@@ -54,3 +54,19 @@ def _body_clearance(
             else:
                 cost[rows] += overlap_penalty(distance)
             depth[rows] = np.maximum(depth[rows], -distance)
+
+
+def body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, cost, depth) -> None:
+    """The numpy ``_body_costs`` where the trunk turns nowhere (no carried frames): the
+    upright obstacles into arrays of their own, the trunk's least distances charged
+    after, then added into ``cost`` and ``depth``."""
+    from motor.arm.clearance import upright_obstacles
+
+    part_cost, part_depth = np.zeros(cost.shape), np.zeros(cost.shape)
+    trunk = [np.full(part_cost.shape, np.inf), np.full(part_cost.shape, np.inf)]
+    _body_clearance(capsules, upright_obstacles(avatar), shoulder, wrist, elbow, body_frame, part_cost, part_depth, trunk)
+    for distance in trunk:
+        near = np.isfinite(distance)
+        part_cost[near] += overlap_penalty(distance[near])
+    cost += part_cost
+    np.maximum(depth, part_depth, out=depth)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm.clearance import _body_clearance, _by_carriers, arm_capsules, body_obstacles, overlap_penalty, upright_obstacles
+from motor.arm.clearance import _body_clearance, _body_costs, _by_carriers, arm_capsules, body_obstacles, overlap_penalty, upright_obstacles
 from motor.body.avatar import load_avatar
 from tests.perf_equivalence import plain_clearance as plain
 
@@ -90,3 +90,25 @@ def test_arrays_that_are_not_contiguous_are_refused():
     cost = np.zeros((K, N)).T
     with pytest.raises(ValueError, match="contiguous"):
         _body_clearance(arm_capsules(avatar, "r"), body_obstacles(avatar), shoulders, wrists, elbows, None, cost, np.zeros((N, K)), [np.zeros((N, K))] * 2)
+
+
+@pytest.mark.parametrize("avatar_name", ["max", "kim"])
+@pytest.mark.parametrize("side", ["l", "r"])
+@pytest.mark.parametrize("moved", [False, True], ids=["at rest", "body moved"])
+@pytest.mark.parametrize("spread", [0.04, 0.12, 0.3])
+@pytest.mark.parametrize("start", ["fresh", "added before"])
+def test_upright_body_costs_charge_what_the_numpy_ones_charge(avatar_name, side, moved, spread, start):
+    """Where the trunk turns nowhere, the costs go straight into fresh arrays and the
+    trunk's least distances are charged by a compiled loop: the costs and depths of the
+    numpy composition, bit for bit — and into arrays that hold figures already, through
+    arrays of their own as before."""
+    avatar = load_avatar(avatar_name)
+    capsules = arm_capsules(avatar, side)
+    shoulders, wrists, elbows = _arm(avatar, side, spread)
+    frame = _frame(moved)
+    cost, depth = (np.zeros((N, K)), np.zeros((N, K))) if start == "fresh" else _start()[:2]
+    expected = (cost.copy(), depth.copy())
+    plain.body_costs(avatar, capsules, shoulders, wrists, elbows, frame, *expected)
+    _body_costs(avatar, capsules, shoulders, wrists, elbows, frame, None, cost, depth)
+    assert np.array_equal(cost, expected[0]) and np.array_equal(depth, expected[1])
+    assert np.count_nonzero(cost) > 0
