@@ -1,14 +1,16 @@
 """The motor core's compiled kernels, loaded before the first frame is due.
 
-numba compiles each kernel (:mod:`motor.quaternion`'s products, :mod:`motor.body.distance`'s
-signed distances, :mod:`motor.arm.clearance`'s arm-against-body loop,
-:mod:`motor.arm.swivel_cost`'s wrist state, :mod:`motor.arm.swivel`'s value tables) once
-per checkout and caches it on disk (``__pycache__``): several seconds the very first time.
+numba compiles each kernel (:mod:`motor.quaternion`'s products,
+:mod:`motor.body.distance`'s signed distances, :mod:`motor.arm.clearance`'s
+arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
+:mod:`motor.arm.swivel`'s value tables) once per checkout and caches it on disk
+(``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
 the kernel's module — about 0.7 s in all, most of it numba's own start — never in the
-middle of an utterance. :func:`warm_up` imports them all and runs each once (a realizer
-or a bench calls it before it times or performs anything); the seconds it returns are
-what that cost in this process, near zero when the motor was imported already.
+middle of an utterance: a realizer has them once it has imported the motor.
+:func:`warm_up` imports them all and runs each once (the speed benches call it before
+they time anything); the seconds it returns are what that cost in this process, near
+zero when the motor was imported already.
 """
 
 from __future__ import annotations

@@ -1,0 +1,38 @@
+"""The compiled kernels load when their modules are imported, each with the one signature
+it states, and take what callers pass them — read-only views (broadcasts), strided and
+non-float inputs — without another compilation, which an utterance would wait for."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from motor import quaternion as quat
+from motor.arm import clearance, swivel, swivel_cost
+from motor.body import distance
+from motor.compiled import warm_up
+
+LOOPS = [
+    (quat, "_multiply_rows"), (quat, "_rotate_rows"), (quat, "_cross_rows"), (quat, "_normalize_rows"),
+    (distance, "_closest_loop"), (distance, "_segments_loop"), (distance, "_point_segment_loop"), (distance, "_volume_loop"),
+    (clearance, "_clearance_rows"), (clearance, "_charge_trunk"), (swivel, "_cost_to_go"),
+    (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("module", "name"), LOOPS, ids=[name for _, name in LOOPS])
+def test_every_loop_is_compiled_once_with_its_stated_signature(module, name):
+    assert warm_up() >= 0.0
+    assert len(getattr(module, name).signatures) == 1
+
+
+def test_read_only_strided_and_integer_inputs_need_no_other_compilation():
+    rows = np.broadcast_to(np.array([0.0, 0.0, 0.6, 0.8]), (5, 4))
+    assert not rows.flags.writeable
+    points = np.arange(30, dtype=np.int64).reshape(10, 3)[::2]
+    assert np.allclose(quat.rotate(rows, points), quat.rotate(np.repeat(rows[:1], 5, axis=0), points.astype(float)))
+    assert quat.multiply(rows, rows[::-1]).shape == (5, 4)
+    assert quat.normalize(points).shape == (5, 3)
+    ends = np.broadcast_to(np.ones(3), (5, 3))
+    assert distance.segment_distance(ends, points, ends, points).shape == (5,)
+    assert all(len(getattr(module, name).signatures) == 1 for module, name in LOOPS)
