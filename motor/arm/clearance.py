@@ -199,10 +199,7 @@ def clearance(
     ``body``: False to keep clear of the other arm only."""
     capsules = arm_capsules(avatar, side)
     shape = elbow[0].shape
-    cost = np.zeros(shape)
-    depth = np.zeros(shape)
-    if body:
-        _body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carried_frames, cost, depth)
+    cost, depth = _body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carried_frames) if body else (np.zeros(shape), np.zeros(shape))
     if other is not None:
         boxes = _boxes(capsules, shoulder, wrist, elbow)
         for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
@@ -226,22 +223,19 @@ def _body_costs(
     elbow: Components,
     body_frame: tuple[np.ndarray, np.ndarray] | None,
     carried_frames: tuple[tuple[np.ndarray, np.ndarray], ...] | None,
-    cost: np.ndarray,
-    depth: np.ndarray,
-) -> None:
-    """:func:`clearance`'s penalty and depth from the body, added into ``cost`` and
-    ``depth`` ``(n, K)``: the instants where the trunk does not turn (all of them without
-    ``carried_frames``) against :func:`upright_obstacles`, the others against every volume
-    where the joints above it carry it. Each instant's figures are its own, whatever the
-    others. Where the trunk turns nowhere and nothing was added before, straight into
-    ``cost`` and ``depth``: the same sums in the same order as through the arrays of the
-    turned case."""
-    if carried_frames is None and not cost.any() and not depth.any():
-        trunk = [np.full(cost.shape, np.inf), np.full(cost.shape, np.inf)]
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`clearance`'s penalty and depth from the body ``(n, K)``: the instants where
+    the trunk does not turn (all of them without ``carried_frames``) against
+    :func:`upright_obstacles`, the others against every volume where the joints above it
+    carry it. Each instant's figures are its own, whatever the others."""
+    shape = elbow[0].shape
+    cost, depth = np.zeros(shape), np.zeros(shape)
+    if carried_frames is None:
+        trunk = [np.full(shape, np.inf), np.full(shape, np.inf)]
         _body_clearance(capsules, upright_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth, trunk)
         _charge_trunk(cost, *trunk)
-        return
-    upright = np.ones(len(shoulder), dtype=bool) if carried_frames is None else np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
+        return cost, depth
+    upright = np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
     for rows, obstacles in ((upright, None), (~upright, _by_carriers(avatar))):
         if not np.any(rows):
             continue
@@ -257,15 +251,11 @@ def _body_costs(
         for found, where in groups:
             if found:
                 _body_clearance(capsules, found, pick(shoulder), pick(wrist), tuple(pick(c) for c in elbow), where, part_cost, part_depth, trunk)
-        for distance in trunk:
-            near = np.isfinite(distance)
-            part_cost[near] += overlap_penalty(distance[near])
+        _charge_trunk(part_cost, *trunk)
         if every:
-            cost += part_cost
-            np.maximum(depth, part_depth, out=depth)
-        else:
-            cost[rows] += part_cost
-            depth[rows] = np.maximum(depth[rows], part_depth)
+            return part_cost, part_depth
+        cost[rows], depth[rows] = part_cost, part_depth
+    return cost, depth
 
 
 @functools.lru_cache(maxsize=32)
@@ -344,12 +334,7 @@ def _obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.nda
 @numba.njit(cache=True, error_model="numpy")
 def _to_rest(qx, qy, qz, qw, tx, ty, tz, px, py, pz):  # noqa: ANN001, ANN202
     """A point carried back by the placement ``(q, t)``: ``rotate(conjugate(q), p - t)``."""
-    vx, vy, vz = px - tx, py - ty, pz - tz
-    x, y, z, w = -qx, -qy, -qz, qw
-    ux = 2.0 * (y * vz - z * vy)
-    uy = 2.0 * (z * vx - x * vz)
-    uz = 2.0 * (x * vy - y * vx)
-    return vx + w * ux + y * uz - z * uy, vy + w * uy + z * ux - x * uz, vz + w * uz + x * uy - y * ux
+    return quat.rotated(-qx, -qy, -qz, qw, px - tx, py - ty, pz - tz)
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -372,8 +357,8 @@ def _boxes_meet(low, high, box):  # noqa: ANN001, ANN202
     error_model="numpy",
 )
 def _charge_trunk(cost, least_upper, least_fore):  # noqa: ANN001, ANN202
-    """Add into ``cost`` the penalty of the trunk's least distances, upper arm then forearm,
-    where there is one (as :func:`_body_costs` does through its arrays)."""
+    """Add into ``cost`` the penalty of the trunk's least distances (:func:`overlap_penalty`),
+    upper arm then forearm, where there is one."""
     for i in range(cost.shape[0]):
         for k in range(cost.shape[1]):
             for least in (least_upper[i, k], least_fore[i, k]):

@@ -80,7 +80,6 @@ def candidate_costs(
             candidate_costs(avatar, placement.take(rows), natural[rows], None if other is None else other.take(rows), own, None if nearby is None else nearby[rows])
             for rows in (slice(start, start + CHUNK_FRAMES) for start in range(0, len(natural), CHUNK_FRAMES))
         ])  # fmt: skip
-    count = len(CANDIDATES)
     if not own:
         return _other_arm_costs(avatar, placement, natural, other)
     cells, psi = measured_window(natural)
@@ -127,12 +126,6 @@ def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
     np.put_along_axis(window, cells.astype(np.int64) % count, penalty, axis=1)
     costs[rows] = window
     return costs
-
-
-def natural_cost(away: np.ndarray) -> np.ndarray:
-    """The cost of being ``away`` radians (in [-π, π]) from the natural swivel."""
-    beyond = np.maximum(np.abs(away) - SWIVEL_RANGE, 0.0)
-    return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
 
 
 def measured_window(natural: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -310,7 +303,8 @@ def _turn_remainder(x):  # noqa: ANN001, ANN202
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def _natural(away):  # noqa: ANN001, ANN202
-    """:func:`natural_cost` of one swivel, the same operations in the same order."""
+    """The cost of being ``away`` radians (in [-π, π]) from the natural swivel: quadratic,
+    and steeply beyond :data:`SWIVEL_RANGE`."""
     beyond = max(abs(away) - SWIVEL_RANGE, 0.0)
     return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
 

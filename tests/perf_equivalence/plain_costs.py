@@ -15,15 +15,23 @@ from motor.arm.swivel_cost import (
     DEVIATION_WEIGHT,
     FLEXION_WEIGHT,
     OUTSIDE,
+    RANGE_WEIGHT,
     RESIDUAL_SATURATION,
     RESIDUAL_WEIGHT,
+    SWIVEL_RANGE,
+    SWIVEL_SCALE,
     candidate_elbows,
     measured_window,
-    natural_cost,
 )
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
 from tests.perf_equivalence.plain_wrist import wrist_state
+
+
+def natural_cost(away: np.ndarray) -> np.ndarray:
+    """The cost of being ``away`` radians (in [-π, π]) from the natural swivel."""
+    beyond = np.maximum(np.abs(away) - SWIVEL_RANGE, 0.0)
+    return away * away * (1.0 / SWIVEL_SCALE**2) + RANGE_WEIGHT * beyond * beyond
 
 
 def candidate_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, nearby: np.ndarray | None = None) -> np.ndarray:
