@@ -304,14 +304,11 @@ def _body_clearance(
     was where the segment is farther than the clearance from all), so that a segment near
     the cut pays once. Compiled (:func:`_clearance_rows`); the arrays it
     adds into must be contiguous ``(n, K)``."""
-    kinds, parameters, boxes, in_trunk = _obstacle_table(obstacles)
+    kinds, parameters, boxes, in_trunk = obstacle_table(obstacles)
     shape = np.broadcast_shapes(*(c.shape for c in elbow))
     ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float) for c in elbow)
     rotation, translation = (np.zeros((0, 4)), np.zeros((0, 3))) if frame is None else (np.ascontiguousarray(f, dtype=float) for f in frame)
-    segments = np.array([
-        [*capsules.upper_ends, capsules.upper_radius, 1.0],
-        [*capsules.fore_ends, capsules.fore_radius, 0.0],
-    ])  # fmt: skip
+    segments = segment_table(capsules)
     for target in (cost, depth, *trunk):
         if not target.flags.c_contiguous:
             raise ValueError("clearance adds into contiguous arrays only")
@@ -322,8 +319,21 @@ def _body_clearance(
     )  # fmt: skip
 
 
+@functools.lru_cache(maxsize=32)
+def segment_table(capsules: ArmCapsules) -> np.ndarray:
+    """The arm's segments as the compiled clearance reads them ``(2, 4)``: the upper arm's
+    and the forearm's end fractions, radius, and 1 where the fractions count from the
+    shoulder toward the elbow (0: from the elbow toward the wrist)."""
+    table = np.array([
+        [*capsules.upper_ends, capsules.upper_radius, 1.0],
+        [*capsules.fore_ends, capsules.fore_radius, 0.0],
+    ])  # fmt: skip
+    table.setflags(write=False)
+    return table
+
+
 @functools.lru_cache(maxsize=64)
-def _obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The obstacles as the compiled clearance reads them: :func:`volume_table`'s kinds and
     parameters, the bounding boxes ``(V, 2, 3)`` and which are the trunk's."""
     kinds, parameters = volume_table(tuple(o.volume for o in obstacles))
@@ -366,6 +376,55 @@ def _charge_trunk(cost, least_upper, least_fore):  # noqa: ANN001, ANN202
                     cost[i, k] += _overlap_penalty(least)
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _segment_box(start, w0, w1, low, high, grow):  # noqa: ANN001, ANN202
+    """The low and high corners (3-tuples) of the box of a segment whose ends lie at
+    fractions ``w0``, ``w1`` of the way from ``start`` to any point of the box
+    ``low``–``high`` (the candidate elbows'), grown by ``grow``: its ends are affine in
+    that point with non-negative weights."""
+    lower = lambda c: min(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow
+    upper = lambda c: max(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow
+    return (lower(0), lower(1), lower(2)), (upper(0), upper(1), upper(2))
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def row_meets(s, w, low, high, segments, boxes, meets):  # noqa: ANN001, ANN201
+    """Into ``meets (2, V)``: whether the box of the upper arm (row 0) and of the forearm
+    (row 1) of an arm from shoulder ``s`` to wrist ``w`` (3-tuples), over all candidate
+    elbows in the box ``low``–``high``, meets each obstacle's box ``boxes (V, 2, 3)``:
+    the obstacles a frame's candidates are measured against."""
+    for g in range(2):
+        f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+        start = s if from_shoulder else w
+        w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
+        box_low, box_high = _segment_box(start, w0, w1, low, high, radius + CLEARANCE)
+        for v in range(boxes.shape[0]):
+            meets[g, v] = _boxes_meet(box_low, box_high, boxes[v])
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder):  # noqa: ANN001, ANN202
+    """The ends of a segment at fractions ``f0``, ``f1`` of the way shoulder → elbow (the
+    upper arm) or elbow → wrist (the forearm), for the elbow at ``ex_, ey_, ez_``."""
+    if from_shoulder:
+        return (s[0] + f0 * (ex_ - s[0]), s[1] + f0 * (ey_ - s[1]), s[2] + f0 * (ez_ - s[2]),
+                s[0] + f1 * (ex_ - s[0]), s[1] + f1 * (ey_ - s[1]), s[2] + f1 * (ez_ - s[2]))  # fmt: skip
+    return (ex_ + f0 * (w[0] - ex_), ey_ + f0 * (w[1] - ey_), ez_ + f0 * (w[2] - ez_),
+            ex_ + f1 * (w[0] - ex_), ey_ + f1 * (w[1] - ey_), ez_ + f1 * (w[2] - ez_))  # fmt: skip
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _misses(box, grow, ax, ay, az, bx, by, bz):  # noqa: ANN001, ANN202
+    """Whether the segment's box grown by ``grow`` misses ``box (2, 3)``: the segment is then
+    more than ``grow`` less its radius from the volume (every distance here is at least
+    the Euclidean one) and is not measured."""
+    return (
+        min(ax, bx) - grow > box[1, 0] or max(ax, bx) + grow < box[0, 0]
+        or min(ay, by) - grow > box[1, 1] or max(ay, by) + grow < box[0, 1]
+        or min(az, bz) - grow > box[1, 2] or max(az, bz) + grow < box[0, 2]
+    )  # fmt: skip
+
+
 _IN1, _IN2, _IN3 = (numba.types.Array(numba.float64, d, "C", readonly=True) for d in (1, 2, 3))
 _FLAGS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
 _KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
@@ -388,7 +447,7 @@ def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, 
     not measured here added nothing there."""
     n, k_count = ex.shape
     local = np.empty((k_count, 3))
-    box_low, box_high = np.empty(3), np.empty(3)
+    meets = np.empty((2, kinds.size), dtype=np.bool_)
     for i in range(n):
         s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
         w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
@@ -404,35 +463,19 @@ def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, 
                 local[k, 0], local[k, 1], local[k, 2] = ex[i, k], ey[i, k], ez[i, k]
         low = (local[:, 0].min(), local[:, 1].min(), local[:, 2].min())
         high = (local[:, 0].max(), local[:, 1].max(), local[:, 2].max())
+        row_meets(s, w, low, high, segments, boxes, meets)
         for g in range(2):
             f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
-            start = s if from_shoulder else w
-            w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
             grow = radius + CLEARANCE
-            for c in range(3):
-                box_low[c] = min(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow
-                box_high[c] = max(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow
             least = least_upper if g == 0 else least_fore
             for v in range(kinds.size):
-                if not _boxes_meet(box_low, box_high, boxes[v]):
+                if not meets[g, v]:
                     continue
                 box = boxes[v]
                 for k in range(k_count):
-                    ex_, ey_, ez_ = local[k, 0], local[k, 1], local[k, 2]
-                    if from_shoulder:
-                        ax, ay, az = s[0] + f0 * (ex_ - s[0]), s[1] + f0 * (ey_ - s[1]), s[2] + f0 * (ez_ - s[2])
-                        bx, by, bz = s[0] + f1 * (ex_ - s[0]), s[1] + f1 * (ey_ - s[1]), s[2] + f1 * (ez_ - s[2])
-                    else:
-                        ax, ay, az = ex_ + f0 * (w[0] - ex_), ey_ + f0 * (w[1] - ey_), ez_ + f0 * (w[2] - ez_)
-                        bx, by, bz = ex_ + f1 * (w[0] - ex_), ey_ + f1 * (w[1] - ey_), ez_ + f1 * (w[2] - ez_)
-                    # a candidate whose own segment's box misses the volume's is more than
-                    # the clearance away (every distance here is at least the Euclidean
-                    # one): it adds nothing, and is not measured
-                    if (
-                        min(ax, bx) - grow > box[1, 0] or max(ax, bx) + grow < box[0, 0]
-                        or min(ay, by) - grow > box[1, 1] or max(ay, by) + grow < box[0, 1]
-                        or min(az, bz) - grow > box[1, 2] or max(az, bz) + grow < box[0, 2]
-                    ):  # fmt: skip
+                    ax, ay, az, bx, by, bz = _segment_ends(s, w, local[k, 0], local[k, 1], local[k, 2], f0, f1, from_shoulder)
+                    # a candidate whose own segment's box misses the volume's adds nothing
+                    if _misses(box, grow, ax, ay, az, bx, by, bz):
                         continue
                     distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
                     if in_trunk[v]:
@@ -440,6 +483,36 @@ def _clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, 
                     else:
                         cost[i, k] += _overlap_penalty(distance)
                     depth[i, k] = max(depth[i, k], -distance)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def candidate_penalty(s, w, ex_, ey_, ez_, segments, kinds, parameters, boxes, in_trunk, meets):  # noqa: ANN001, ANN201
+    """:func:`clearance`'s penalty of one candidate elbow ``ex_, ey_, ez_`` of an arm from
+    shoulder ``s`` to wrist ``w`` (3-tuples) against the obstacles of an
+    :func:`obstacle_table` at rest that its frame's candidates meet (:func:`row_meets`),
+    with the arm's :func:`segment_table`: the sums :func:`_clearance_rows` and
+    :func:`_charge_trunk` make for it, in their order (the other obstacles by segment,
+    then the trunk's least distances); for compiled callers that measure candidates one
+    by one."""
+    cost, least_upper, least_fore = 0.0, math.inf, math.inf
+    for g in range(2):
+        f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+        grow = radius + CLEARANCE
+        ax, ay, az, bx, by, bz = _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
+        for v in range(kinds.size):
+            if not meets[g, v] or _misses(boxes[v], grow, ax, ay, az, bx, by, bz):
+                continue
+            distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
+            if not in_trunk[v]:
+                cost += _overlap_penalty(distance)
+            elif g == 0:
+                least_upper = min(least_upper, distance)
+            else:
+                least_fore = min(least_fore, distance)
+    for least in (least_upper, least_fore):
+        if least < math.inf:
+            cost += _overlap_penalty(least)
+    return cost
 
 
 def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:

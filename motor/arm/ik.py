@@ -34,7 +34,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, body_penalties, candidate_costs, candidate_elbows, parabola_offset, wrist_state
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, body_penalties, candidate_costs, cheapest_swivels, candidate_elbows, parabola_offset, wrist_state
 from motor.body.avatar import Avatar
 from motor.body.distance import components
 
@@ -403,6 +403,9 @@ def _cheapest_swivel(avatar: Avatar, setup: ArmPlacement, other: ArmSegments | N
     """The cheapest swivel of each frame on its own: the best candidate refined by a
     parabola through it and its neighbours."""
     natural = natural_swivel(setup.chain, setup.circle, setup.targets, setup.torso_q)
+    swivels = None if other is not None else cheapest_swivels(avatar, setup, natural)
+    if swivels is not None:
+        return swivels
     cost = candidate_costs(avatar, setup, natural, other)
     best = np.argmin(cost, axis=1)
     rows = np.arange(len(best))

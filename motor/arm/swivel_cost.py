@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
-from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, candidate_penalty, clearance, obstacle_table, row_meets, segment_table, upright_obstacles
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
 
@@ -362,6 +362,166 @@ def _cost_rows(natural, cells, psi, penalty, nearby, hands, wrist, circle_axis, 
             costs[i, cell] = measured + _wrist_load(flexion, deviation, twist, limits)
 
 
+def cheapest_swivels(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray | None:
+    """The cheapest swivel (radians) of each frame on its own, by :func:`candidate_costs`
+    with no other arm: the cheapest candidate, refined by a parabola through it and its
+    neighbours (:func:`parabola_offset`) — the very numbers of that composition — or None
+    where the body does not stand upright at rest (the composition then carries it).
+
+    Compiled (:func:`_cheapest_rows`), and cheaper than measuring every candidate: a
+    candidate costs at least its distance from the natural swivel plus the wrist's load,
+    so the window's candidates are measured against the body cheapest bound first, and
+    those whose bound exceeds the best cost found (and are no neighbour of the best) are
+    never measured: they cannot be the least, nor tie with it."""
+    if placement.body_frame is not None or placement.carried_frames is not None:
+        return None
+    chain, circle = placement.chain, placement.circle
+    cells, psi = measured_window(natural)
+    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
+    rows = lambda value: np.ascontiguousarray(value, dtype=float)
+    kinds, parameters, boxes, in_trunk = obstacle_table(upright_obstacles(avatar))
+    limits = np.array([*chain.wrist_flexion, *chain.wrist_deviation, *chain.twist_range], dtype=float)
+    swivels = np.empty(len(natural))
+    _cheapest_rows(
+        rows(natural), rows(cells), rows(psi), np.zeros((0, 4)) if placement.hands is None else rows(placement.hands),
+        rows(circle.shoulder), rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
+        _wrist_constant_row(chain), limits, CANDIDATES, segment_table(arm_capsules(avatar, chain.side)),
+        kinds, parameters, boxes, in_trunk, swivels,
+    )  # fmt: skip
+    return swivels
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _parabola(left, middle, right):  # noqa: ANN001, ANN202
+    """:func:`parabola_offset` of one frame, the same operations (NaN passes through the clip)."""
+    curvature = left - 2.0 * middle + right
+    if not curvature > 1e-12:
+        return 0.0
+    step = 0.5 * (left - right) / curvature
+    return step if step != step else min(max(step, -0.5), 0.5)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _by_natural_cost(natural_cost, order):  # noqa: ANN001, ANN202
+    """Into ``order``: the window's candidates by increasing cost of their distance from
+    the natural swivel, ties in window order (an insertion sort of ~21 numbers that the
+    window, centred on the natural swivel, nearly sorts already once walked outward)."""
+    width = order.size
+    middle = width // 2
+    for k in range(width):
+        order[k] = middle + (k + 1) // 2 if k % 2 else middle - k // 2
+    for k in range(1, width):
+        held, j = order[k], k
+        while j > 0 and (natural_cost[order[j - 1]] > natural_cost[held] or (natural_cost[order[j - 1]] == natural_cost[held] and order[j - 1] > held)):
+            order[j] = order[j - 1]
+            j -= 1
+        order[j] = held
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _first_known_least(costs, known):  # noqa: ANN001, ANN202
+    """``np.argmin`` among the measured ``costs`` (the first NaN, else the first least):
+    every other candidate costs more than the least."""
+    best = -1
+    for j in range(costs.size):
+        if not known[j]:
+            continue
+        if costs[j] != costs[j]:
+            return j
+        if best < 0 or costs[j] < costs[best]:
+            best = j
+    return best
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _finite(values):  # noqa: ANN001, ANN202
+    """Whether every value of the tuple is finite."""
+    for value in values:
+        if not math.isfinite(value):
+            return False
+    return True
+
+
+_BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
+_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
+_IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
+
+
+@numba.njit(
+    [numba.void(_IN1, *(_IN2,) * 2, *(_IN2,) * 4, *(_IN2,) * 6, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1])],
+    cache=True,
+    error_model="numpy",
+)
+def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels):  # noqa: ANN001, ANN202, E501
+    """:func:`cheapest_swivels` per frame ``i``: every candidate's cost as :func:`_cost_rows`
+    sums it, with the body's clearance penalty
+    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates, measured
+    lazily — by increasing distance cost from the natural swivel, until that alone exceeds
+    the least cost found; the wrist's load only for those, and the penalty only where the
+    two do not exceed it (each sum with the penalty and the load, both ≥ 0, rounds to at
+    least the sum without them) — and the least one's neighbours too, then the parabola
+    through the three. A frame with a NaN input has every candidate measured: ``np.argmin``
+    then picks the first NaN."""
+    count, width = candidates.size, cells.shape[1]
+    loaded = hands.shape[0] != 0
+    fixed = _wrist_constants(constants)
+    costs, known = np.empty(count), np.empty(count, dtype=np.bool_)
+    natural_cost, load, order = np.empty(width), np.empty(width), np.empty(width, dtype=np.int64)
+    cell_of, window = np.empty(width, dtype=np.int64), np.empty(count, dtype=np.int64)
+    meets = np.empty((2, kinds.size), dtype=np.bool_)
+    m = (0.0,) * 9
+    c = (0.0, 0.0, 0.0)
+    for i in range(cells.shape[0]):
+        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+        if loaded:
+            m = _hand_matrix(hands, i)
+            c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
+        low, high = (ex[i].min(), ey[i].min(), ez[i].min()), (ex[i].max(), ey[i].max(), ez[i].max())
+        whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
+        least = math.inf
+        for j in range(count):
+            costs[j] = _natural(_turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
+            known[j] = True
+        cell = int(cells[i, 0]) % count - 1
+        for k in range(width):
+            cell = cell + 1 if cell + 1 < count else 0
+            cell_of[k], window[cell], known[cell] = cell, k, False
+            natural_cost[k], load[k] = _natural(psi[i, k] - natural[i]), -1.0
+            whole |= natural_cost[k] != natural_cost[k]
+        for j in range(count):
+            if known[j]:
+                least = min(least, costs[j])
+        row_meets(s, w, low, high, segments, boxes, meets)
+        _by_natural_cost(natural_cost, order)
+        for k in order:
+            if not whole and natural_cost[k] > least:
+                break
+            if loaded:
+                flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+                load[k] = _wrist_load(flexion, deviation, twist, limits)
+                if not whole and natural_cost[k] + load[k] > least:
+                    continue
+            cost = natural_cost[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+            if loaded:
+                cost = cost + load[k]
+            costs[cell_of[k]], known[cell_of[k]] = cost, True
+            least = min(least, cost)
+        best = _first_known_least(costs, known)
+        for j in ((best - 1) % count, (best + 1) % count):
+            if known[j]:
+                continue
+            k = window[j]
+            if loaded and load[k] < 0.0:
+                flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+                load[k] = _wrist_load(flexion, deviation, twist, limits)
+            costs[j] = natural_cost[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+            if loaded:
+                costs[j] = costs[j] + load[k]
+            known[j] = True
+        swivels[i] = candidates[best] + _parabola(costs[(best - 1) % count], costs[best], costs[(best + 1) % count]) * SWIVEL_STEP
+
+
 def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
     """Where (in steps, within ±½) the parabola through three evenly spaced costs is lowest."""
     curvature = left - 2.0 * middle + right
@@ -376,3 +536,5 @@ def load_kernels() -> None:
     constants, limits = np.ones(14), np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
     _wrist_rows(hands, points, points, *(cells,) * 6, constants, *(np.empty((1, 1)) for _ in range(4)))
     _cost_rows(np.zeros(1), *(cells,) * 3, np.zeros((0, 0)), hands, points, points, *(cells,) * 6, constants, limits, CANDIDATES, np.empty((1, CANDIDATES.size)))
+    tables = np.zeros((2, 4)), np.zeros(0, dtype=np.int64), np.zeros((0, 7)), np.zeros((0, 2, 3)), np.zeros(0, dtype=np.bool_)
+    _cheapest_rows(np.zeros(1), *(cells,) * 2, hands, *(points,) * 3, *(cells,) * 6, constants, limits, CANDIDATES, *tables, np.empty(1))
