@@ -1,5 +1,6 @@
-"""Subcommands of the ``mura`` command line, in the order ``mura --help`` lists them."""
+"""Subcommands of the ``mura`` command line, one module each, named as the command.
 
-from agent.commands import avatar, batch, bench, check, demo, play, plot, render, say, serve, sign, verbs
-
-COMMANDS = (check, say, render, play, plot, demo, bench, sign, batch, avatar, serve, verbs)
+Each module exposes ``register(subparsers)``, which adds its subparser (with its line
+from :data:`agent.commands.table.SUMMARIES`) and sets ``func`` to a callable
+``(args) -> int`` returning the exit status. :mod:`agent.cli` imports only the module of
+the command that runs."""

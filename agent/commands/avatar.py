@@ -12,6 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from agent.commands.table import SUMMARIES
 from agent.export.gltf import write_avatar_glb
 from agent.export.staging import staged_text
 from motor.body.avatar import BUILT_AVATAR_DIR, AvatarError, load_avatar
@@ -22,7 +23,7 @@ CACHE_DIR = BUILT_AVATAR_DIR.parent / "cache"
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    parser = subparsers.add_parser("avatar", help="build the default skinned avatar, or check a VRM/glTF avatar",
+    parser = subparsers.add_parser("avatar", help=SUMMARIES["avatar"],
                                    description="Build the default skinned avatar from open data, or check a user's avatar.")  # fmt: skip
     verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
     build = verbs.add_parser("build", help="build build/avatars/makehuman.{glb,json} from the MakeHuman CC0 assets")

@@ -16,6 +16,7 @@ import sys
 from agent.batch.items import read_corpus
 from agent.batch.render import DEFAULT_TIME_LIMIT, RenderOptions
 from agent.commands.options import add_lexicon_option, add_limit_option, limits_from
+from agent.commands.table import SUMMARIES
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError, load_avatar
 from mura.lexicon import load_lexicons
 from mura.limits import LimitError
@@ -24,7 +25,7 @@ from mura.limits import LimitError
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "batch",
-        help="render a corpus (SiGML collections, folders of utterances) on Dask, resumably",
+        help=SUMMARIES["batch"],
         description="Render every sign of SiGML collections and every MURML utterance of the files and folders given, "
         "in parallel on Dask, into DIR: per item BVH and a motion file for DIR/index.html (the corpus viewer), "
         "DIR/manifest.json (resumable: a rerun skips completed items) and DIR/report.json (failures and warnings by kind).",

@@ -7,6 +7,7 @@ import json
 import sys
 from pathlib import Path
 
+from agent.commands.table import SUMMARIES
 from bench.machine import REPO_ROOT
 from bench.motion_audit.report import format_summary
 from bench.runner import MODULES, format_table, readme_section, run_bench, update_readme
@@ -15,7 +16,7 @@ from bench.runner import MODULES, format_table, readme_section, run_bench, updat
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "bench",
-        help="measure speed, synchrony and naturalness",
+        help=SUMMARIES["bench"],
         description="Run every benchmark module (median of several runs each), print the figures with the "
         "design's targets, optionally write them as JSON or into README.md. Figures, not pass/fail.",
     )

@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from agent.commands.options import add_lexicon_option, add_limit_option, describe_failure, lexicon_of, limits_from, refuse
+from agent.commands.table import SUMMARIES
 from mura.check import check_file
 from mura.errors import SpecError
 from mura.limits import LimitError
@@ -14,7 +15,7 @@ from mura.limits import LimitError
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "check",
-        help="parse and validate spec files",
+        help=SUMMARIES["check"],
         description="Parse and validate MURML utterances, BML 1.0 blocks, gesture lexicons and SiGML signs, "
         "against the input limits too. Prints 'FILE: OK' (then each warning as 'FILE:LINE:COL: warning: message') "
         "or each error as 'FILE:LINE:COL: message'; exits 0 only if every file is valid.",

@@ -10,6 +10,7 @@ from pathlib import Path
 from agent.agent import Agent
 from agent.commands.options import add_limit_option, limits_from, refuse
 from agent.commands.render import render_one
+from agent.commands.table import SUMMARIES
 from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError
 from mura.limits import LimitError
@@ -22,7 +23,7 @@ DEMO_UTTERANCE = SPECS_DIR / "utterances" / "fig2_take_this_bar.xml"
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "demo",
-        help="render the demo utterance (seed 004, Fig. 2) and print the page's address",
+        help=SUMMARIES["demo"],
         description="Render 'And now take this bar and make it this big.' with espeak-ng speech (the fake "
         "speech if espeak-ng cannot load) into the output folder, and print the address of the avatar page.",
     )

@@ -17,6 +17,7 @@ import webbrowser
 from agent.agent import LiveUtterance
 from agent.commands.options import add_lexicon_option, describe_failure, refuse
 from agent.commands.render import add_agent_options, make_agent
+from agent.commands.table import SUMMARIES
 from agent.live_server import LiveServer
 from agent.performance import PerformanceError, rest_motion
 from agent.signals import signals_deferred
@@ -30,7 +31,7 @@ from tts import SpeechError
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "play",
-        help="perform an utterance live with audio and the avatar in a browser page",
+        help=SUMMARIES["play"],
         description="Perform the utterance on the wall clock: speech plays on the audio device, and a page "
         "served on 127.0.0.1 shows the avatar following the frames as they are produced. Ctrl-C interrupts it.",
     )

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from agent.commands.options import describe_failure, limits_from, refuse
 from agent.commands.render import add_agent_options
+from agent.commands.table import SUMMARIES
 from agent.export.names import OutputNameError, OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
 from agent.plots import plot_timeline, plot_wrist_paths
@@ -40,7 +41,7 @@ class _RecordingMotorControl(MotorControl):
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "plot",
-        help="draw the wrist paths and speed profiles (Fig. 5) and the chunk timeline (Fig. 6) as PNG",
+        help=SUMMARIES["plot"],
         description="Perform the utterance offline and write NAME.wrist.png (per gesture and arm: the wrist path "
         "in 3D and its speed with the breakpoints, seed 004 Fig. 5) and NAME.timeline.png (chunks, their states, "
         "speech and gesture phases on one time axis, Fig. 6).",

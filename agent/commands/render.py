@@ -18,6 +18,7 @@ from tqdm import tqdm
 from agent.agent import Agent, PerformanceError
 from agent.batch.report import summarize_warnings
 from agent.commands.options import add_lexicon_option, add_limit_option, describe_failure, lexicon_of, limits_from, refuse
+from agent.commands.table import SUMMARIES
 from agent.export.names import OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
 from motor.body.avatar import DEFAULT_AVATAR, AvatarError
@@ -56,7 +57,7 @@ def make_agent(args: argparse.Namespace) -> Agent:
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "render",
-        help="perform utterances offline and save WAV, BVH, timeline JSON and the avatar page",
+        help=SUMMARIES["render"],
         description="Perform each utterance offline and write NAME.wav, NAME.bvh, NAME.timeline.json, "
         "NAME.html and NAME.glb (the avatar with its animation) into the output folder. Files appear only when "
         "the run ends; an interrupted run leaves the folder as it was. A file that fails is reported and the others go on.",

@@ -9,6 +9,7 @@ import warnings
 from pathlib import Path
 
 from agent.commands.options import add_limit_option, limits_from, refuse
+from agent.commands.table import SUMMARIES
 from agent.export.staging import staged_file
 from mura.limits import LimitError
 from tts import (
@@ -56,7 +57,7 @@ def parse_marked_text(text: str) -> tuple[str, tuple[TextMark, ...], tuple[tuple
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "say",
-        help="speak a sentence and show its timings",
+        help=SUMMARIES["say"],
         description="Synthesize TEXT, print its phoneme/word/mark timings, and write or play the audio.",
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,

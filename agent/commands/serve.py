@@ -15,6 +15,7 @@ import sys
 
 from agent.commands.render import add_agent_options
 from agent.agent import Agent
+from agent.commands.table import SUMMARIES
 from agent.serve.server import RealizerServer
 from motor.body.avatar import AvatarError
 from tts import SpeechError
@@ -23,7 +24,7 @@ from tts import SpeechError
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "serve",
-        help="realizer server: perform BML blocks sent over a WebSocket and send BML feedback back",
+        help=SUMMARIES["serve"],
         description="Listen on ws://HOST:PORT (printed on the first line) for JSON messages carrying BML 1.0 blocks or "
         "MURML utterances, perform them live (speech on the audio device, the avatar page at http://HOST:PORT/), and "
         "send predictions, block and sync-point progress and warnings back.",

@@ -35,6 +35,7 @@ from agent.batch.outputs import report_of, write_corpus_pages
 from agent.batch.report import summarize_warnings
 from agent.batch.render import RenderOptions, planning_reason, render_chunk, timeline_of
 from agent.commands.options import add_limit_option, describe_failure, limits_from, refuse
+from agent.commands.table import SUMMARIES
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.face import face_json, page_face_json
 from agent.export.gltf import motion_model, write_motion_glb
@@ -78,7 +79,7 @@ class SignRecord:
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "sign",
-        help="render SiGML/HamNoSys signs to BVH and the corpus viewer",
+        help=SUMMARIES["sign"],
         description="Render every sign of SiGML files (or a HamNoSys string) to BVH and DIR/index.html, the viewer "
         "of all the signs; each sign fails alone with its reason.",
     )

@@ -22,6 +22,7 @@ import sys
 from pathlib import Path
 
 from agent.commands.sign import safe_stem, timeline_of
+from agent.commands.table import SUMMARIES
 from agent.export.bvh import bvh_text, write_bvh
 from agent.export.html import write_html
 from agent.export.staging import staged_text
@@ -50,7 +51,7 @@ RECORDING_SUFFIXES = (".csv", ".json", ".bvh")
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "verbs",
-        help="indicating verbs: fit models from recordings, render an inflected verb, evaluate the models",
+        help=SUMMARIES["verbs"],
         description="Indicating verbs (seed 001): point, vector and uninflected models of eight ASL verbs.",
     )
     commands = parser.add_subparsers(dest="verbs_command", required=True, metavar="VERBS_COMMAND")
