@@ -32,6 +32,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.hand_turn import takes_long_way, turn_way
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.distance import capsule_distance
 from motor.body.kinematics import forward_kinematics
 from motor.control import MotorControl
 from motor.motion import Motion
@@ -302,8 +303,8 @@ class MotionCheck:
         non_finite: frames with a NaN or infinite rotation.
         max_shortfall: largest distance (m) between a wrist reached (forward kinematics)
             and the wrist position the sign asked for.
-        max_upper_arm_depth: deepest point (m) of either upper arm (shoulder → elbow)
-            inside the torso's elliptic cylinder.
+        max_upper_arm_depth: deepest overlap (m) of either upper arm's capsule with the
+            trunk's volumes as posed (:func:`upper_arm_depths`).
     """
 
     frames: int
@@ -312,29 +313,27 @@ class MotionCheck:
     max_upper_arm_depth: float
 
 
-#: Points along the upper arm (fractions from shoulder to elbow) checked against the torso,
-#: those the IK's torso avoidance checks (the shoulder joint itself sits at the torso's
-#: edge, below its top).
-_UPPER_ARM_SAMPLES = np.array([0.3, 0.45, 0.6, 0.75, 0.9, 1.0])
-
-
 def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
-    """Per arm, per frame: how deep (m, along the torso's radial direction) the upper arm's
-    axis (shoulder → elbow) is inside the torso's elliptic cylinder; 0 outside."""
+    """Per arm, per frame: how deep (m) the upper arm's capsule (the avatar's collision
+    volume, posed) is inside the trunk's volumes (a torso, and a chest where the avatar has
+    one), each where its joint carries it — the trunk turns toward a hand reaching across
+    the body, and the volumes with it; 0 outside. The depth is the signed distance's
+    (:func:`motor.body.distance.capsule_distance`), which the swivel search keeps within
+    a few millimetres where arms merely touch."""
     pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
-    torso = avatar.torso
+    rest = avatar.rest_positions
     depths = {}
     for arm in ARMS:
-        _, shoulder, elbow, _ = avatar.arm_joints(AVATAR_SIDE[arm])
-        s = pose.positions[:, shoulder][:, None, :]
-        e = pose.positions[:, elbow][:, None, :]
-        points = s + _UPPER_ARM_SAMPLES[None, :, None] * (e - s)
-        offsets = points - torso.center
-        radius = np.sqrt((offsets[..., 0] / torso.half_width) ** 2 + (offsets[..., 2] / torso.half_depth) ** 2)
-        within = (points[..., 1] > torso.bottom) & (points[..., 1] < torso.top) & (radius < 1.0)
-        distance = np.hypot(offsets[..., 0], offsets[..., 2])
-        gap = distance * (1.0 / np.maximum(radius, 1e-9) - 1.0)
-        depths[arm] = np.max(np.where(within, gap, 0.0), axis=1)
+        upper = avatar.collision.arm(AVATAR_SIDE[arm], "upper_arm")
+        carrier = avatar.joint_index(upper.joint)
+        ends = [pose.point(carrier, end - rest[carrier]) for end in (upper.a, upper.b)]
+        depth = np.zeros(motion.frame_count)
+        for volume in avatar.collision.trunk():
+            holder = avatar.joint_index(volume.joint)
+            back = quat.conjugate(pose.orientations[:, holder])
+            a, b = (rest[holder] + quat.rotate(back, end - pose.positions[:, holder]) for end in ends)
+            depth = np.maximum(depth, -capsule_distance(volume, a, b, upper.radius))
+        depths[arm] = depth
     return depths
 
 
