@@ -176,6 +176,14 @@ def overlap_penalty(distance: np.ndarray) -> np.ndarray:
     return penalty(distance) + PENETRATION_PENALTY * depth * depth
 
 
+def penetration_penalty(depth: np.ndarray) -> np.ndarray:
+    """The part of :func:`overlap_penalty` a depth ``depth`` (m, ≥ 0) into the body pays
+    beyond :data:`TOLERATED_DEPTH`: what a candidate swivel beyond the measured window
+    pays (:mod:`motor.arm.swivel_cost`)."""
+    beyond = np.maximum(depth - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
+    return PENETRATION_PENALTY * beyond * beyond
+
+
 def clearance(
     avatar: Avatar,
     side: str,

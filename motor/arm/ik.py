@@ -34,7 +34,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, body_penalties, candidate_costs, cheapest_swivels, candidate_elbows, parabola_offset, wrist_state
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, beyond_penalties, body_penalties, candidate_costs, cheapest_swivels, candidate_elbows, parabola_offset, wrist_state
 from motor.body.avatar import Avatar
 from motor.body.distance import components
 
@@ -249,7 +249,9 @@ def track_costs(
     """Swivel costs at ``m`` consecutive instants for a track, from wrist targets and hand
     rotations ``(m + 1, ...)`` that include the instant before (for the first turn of the
     swivel's zero), given in the frame of the trunk turned by ``trunk_yaw`` ``(m + 1,)``
-    (radians, None: not turned). Runs of identical instants are measured once.
+    (radians, None: not turned). Runs of identical instants are measured once. The
+    candidates beyond the window pay for going into the body too
+    (:func:`motor.arm.swivel_cost.beyond_penalties`): the track may be carried there.
 
     ``midway``: the wrist targets, hand rotations and trunk yaw half way from each of
     those instants to the next ``(m + 1, ...)``. A candidate then pays the clearance
@@ -269,7 +271,9 @@ def track_costs(
         keys += [half[:-1], half[1:]]
     values = np.concatenate(keys, axis=1)
     starts = np.concatenate([[0], np.flatnonzero(np.any(values[1:] != values[:-1], axis=1)) + 1])
-    unique = candidate_costs(avatar, rows.take(starts), natural[starts], nearby=None if nearby is None else nearby[starts])
+    distinct = rows.take(starts)
+    unique = candidate_costs(avatar, distinct, natural[starts], nearby=None if nearby is None else nearby[starts])
+    unique = unique + beyond_penalties(avatar, distinct, natural[starts])
     costs = np.repeat(unique, np.diff(np.append(starts, len(values))), axis=0)
     return TrackCosts(costs, turns, circle.down[1:], rows, natural)
 

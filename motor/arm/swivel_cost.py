@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
-from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, candidate_penalty, clearance, obstacle_table, row_meets, segment_table, upright_obstacles
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, candidate_penalty, clearance, obstacle_table, penetration_penalty, row_meets, segment_table, upright_obstacles
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
 
@@ -52,6 +52,8 @@ RANGE_WEIGHT = 300.0
 WINDOW = int(round(SWIVEL_RANGE / SWIVEL_STEP))
 OUTSIDE = 1000.0
 _CELLS = np.arange(-WINDOW, WINDOW + 1, dtype=float)
+#: The cells beyond the window, as steps from its first cell.
+_BEYOND = np.arange(2 * WINDOW + 1, len(CANDIDATES), dtype=float)
 _TINY = 1e-12
 #: Frames measured in one pass: their ``(frames, candidates)`` arrays stay in the CPU's
 #: cache, which makes the elementwise arithmetic several times faster than one pass over
@@ -99,6 +101,29 @@ def body_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray)
     penalty, _ = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, carried_frames=placement.carried_frames)
     penalties = np.zeros((len(natural), count))
     np.put_along_axis(penalties, cells.astype(np.int64) % count, penalty, axis=1)
+    return penalties
+
+
+def beyond_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray:
+    """What the candidates beyond the window about the natural swivels ``natural (n,)``
+    pay for going into the body ``(n, K)``, which :func:`candidate_costs` does not measure:
+    the penetration's penalty beyond :data:`motor.arm.clearance.TOLERATED_DEPTH`
+    (:func:`motor.arm.clearance.penetration_penalty`; 0 for the window's candidates and
+    wherever the arm goes no deeper). A swivel track adds them
+    (:func:`motor.arm.ik.track_costs`): carried beyond the window by its continuity, it
+    took those candidates for clear, and an upper arm stayed 12 cm inside the chest for
+    seconds, paying :data:`OUTSIDE` where the window's candidates there paid their depth.
+    The single-posture search (:func:`cheapest_swivels`) has no such blind spot: it
+    measures the depth where its choice puts the arm."""
+    count = len(CANDIDATES)
+    cells, _ = measured_window(natural)
+    beyond = cells[:, :1] + _BEYOND
+    swivels = CANDIDATES[0] + beyond * SWIVEL_STEP
+    elbow, _ = candidate_elbows(placement, np.cos(swivels), np.sin(swivels))
+    circle = placement.circle
+    _, depth = clearance(avatar, placement.chain.side, circle.shoulder, circle.wrist, elbow, placement.body_frame, carried_frames=placement.carried_frames)
+    penalties = np.zeros((len(natural), count))
+    np.put_along_axis(penalties, beyond.astype(np.int64) % count, penetration_penalty(depth), axis=1)
     return penalties
 
 
