@@ -34,7 +34,8 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, beyond_penalties, body_penalties, candidate_costs, cheapest_swivels, candidate_elbows, parabola_offset, wrist_state
+from motor.arm.cheapest_swivel import cheapest_swivel
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, beyond_penalties, body_penalties, candidate_costs, candidate_elbows, wrist_state
 from motor.body.avatar import Avatar
 from motor.body.distance import components
 
@@ -124,7 +125,7 @@ def solve_arm(
     setup = place_arm(avatar, side, wrist_targets, hand_rotations, torso_rotations, torso_positions)
     circle = setup.circle
     if swivel is None:
-        psi = _cheapest_swivel(avatar, setup, other)
+        psi = cheapest_swivel(avatar, setup, other)
     else:
         psi = np.broadcast_to(np.asarray(swivel, dtype=float), circle.radius.shape).copy()
         if swivel_from is not None:
@@ -163,7 +164,7 @@ def arm_reach(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotatio
     planning checks a quarter of a million wrist positions of a corpus this way."""
     setup = place_arm(avatar, side, wrist_targets, hand_rotations)
     circle = setup.circle
-    psi = _cheapest_swivel(avatar, setup, None)
+    psi = cheapest_swivel(avatar, setup)
     return ArmReach(circle.wrist, circle.shortfall, _body_depth(avatar, setup, circle.elbow(psi, circle.direction(psi))))
 
 
@@ -401,18 +402,3 @@ def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Dot products over the last axis, element by element (the same rounding whatever
     the batch: frames must not depend on how many are computed at once)."""
     return u[..., 0] * v[..., 0] + u[..., 1] * v[..., 1] + u[..., 2] * v[..., 2]
-
-
-def _cheapest_swivel(avatar: Avatar, setup: ArmPlacement, other: ArmSegments | None) -> np.ndarray:
-    """The cheapest swivel of each frame on its own: the best candidate refined by a
-    parabola through it and its neighbours."""
-    natural = natural_swivel(setup.chain, setup.circle, setup.targets, setup.torso_q)
-    swivels = None if other is not None else cheapest_swivels(avatar, setup, natural)
-    if swivels is not None:
-        return swivels
-    cost = candidate_costs(avatar, setup, natural, other)
-    best = np.argmin(cost, axis=1)
-    rows = np.arange(len(best))
-    count = len(CANDIDATES)
-    left, middle, right = cost[rows, (best - 1) % count], cost[rows, best], cost[rows, (best + 1) % count]
-    return CANDIDATES[best] + parabola_offset(left, middle, right) * SWIVEL_STEP

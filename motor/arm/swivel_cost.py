@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
-from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, candidate_penalty, clearance, obstacle_table, penetration_penalty, row_meets, segment_table, upright_obstacles
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance, penetration_penalty
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
 
@@ -194,7 +194,7 @@ def _window_costs(
     _cost_rows(
         rows(natural), rows(cells), rows(psi), rows(penalty), np.zeros((0, 0)) if nearby is None else rows(nearby),
         hands, rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
-        _wrist_constant_row(chain), limits, CANDIDATES, costs,
+        wrist_constant_row(chain), limits, CANDIDATES, costs,
     )  # fmt: skip
     return costs
 
@@ -213,7 +213,7 @@ def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) 
     chain, circle = placement.chain, placement.circle
     shape = np.broadcast_shapes(*(c.shape for c in (*elbow, *radial)))
     rows = lambda c: np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float)
-    constants = _wrist_constant_row(chain)
+    constants = wrist_constant_row(chain)
     out = tuple(np.empty(shape) for _ in range(4))
     _wrist_rows(
         np.ascontiguousarray(placement.hands, dtype=float), np.ascontiguousarray(circle.wrist, dtype=float),
@@ -222,8 +222,8 @@ def wrist_state(placement: ArmPlacement, elbow: Components, radial: Components) 
     return out
 
 
-def _wrist_constant_row(chain) -> np.ndarray:  # noqa: ANN001
-    """The constants of :func:`_wrist_angles` for an arm (:class:`motor.arm.chain.ArmChain`)."""
+def wrist_constant_row(chain) -> np.ndarray:  # noqa: ANN001
+    """The constants of :func:`wrist_angles` for an arm (:class:`motor.arm.chain.ArmChain`)."""
     a = np.asarray(chain.fore_rest, dtype=float)
     return np.array([
         1.0 / chain.fore, *a, *_cross(a, chain.flexion_axis), *_cross(a, chain.deviation_axis),
@@ -241,7 +241,7 @@ _OUT2 = numba.float64[:, ::1]
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _hand_matrix(hands, i):  # noqa: ANN001, ANN202
+def hand_matrix(hands, i):  # noqa: ANN001, ANN202
     """The rotation matrix of the hand quaternion ``hands[i]``, row by row."""
     x, y, z, w = hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3]
     return (
@@ -252,7 +252,7 @@ def _hand_matrix(hands, i):  # noqa: ANN001, ANN202
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _wrist_angles(m, c, wrist, elbow, radial, constants):  # noqa: ANN001, ANN202
+def wrist_angles(m, c, wrist, elbow, radial, constants):  # noqa: ANN001, ANN202
     """:func:`wrist_state` of one candidate: flexion, deviation, twist and swing (radians),
     from the hand's matrix ``m``, the circle's axis ``c``, the wrist, the candidate's elbow
     and its direction from the circle's centre ``radial`` (3-tuples). The forearm seen
@@ -291,28 +291,28 @@ def _wrist_angles(m, c, wrist, elbow, radial, constants):  # noqa: ANN001, ANN20
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _wrist_constants(constants):  # noqa: ANN001, ANN202
-    """The 14 constants of :func:`_wrist_angles` as a tuple (held in registers in the loops)."""
+def wrist_constants(constants):  # noqa: ANN001, ANN202
+    """The 14 constants of :func:`wrist_angles` as a tuple (held in registers in the loops)."""
     return (constants[0], constants[1], constants[2], constants[3], constants[4], constants[5], constants[6],
             constants[7], constants[8], constants[9], constants[10], constants[11], constants[12], constants[13])  # fmt: skip
 
 
 @numba.njit([numba.void(*(_IN2,) * 9, _IN1, *(_OUT2,) * 4)], cache=True, error_model="numpy")
 def _wrist_rows(hands, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, flexion, deviation, twist, swing):  # noqa: ANN001, ANN202
-    """:func:`wrist_state` per frame ``i`` and candidate ``k`` (:func:`_wrist_angles`)."""
-    fixed = _wrist_constants(constants)
+    """:func:`wrist_state` per frame ``i`` and candidate ``k`` (:func:`wrist_angles`)."""
+    fixed = wrist_constants(constants)
     for i in range(ex.shape[0]):
-        m = _hand_matrix(hands, i)
+        m = hand_matrix(hands, i)
         c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
         w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
         for k in range(ex.shape[1]):
-            flexion[i, k], deviation[i, k], twist[i, k], swing[i, k] = _wrist_angles(
+            flexion[i, k], deviation[i, k], twist[i, k], swing[i, k] = wrist_angles(
                 m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed
             )
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _turn_remainder(x):  # noqa: ANN001, ANN202
+def turn_remainder(x):  # noqa: ANN001, ANN202
     """``x % 2π`` as numpy computes it (the floored remainder), without its ``fmod`` where
     ``x`` lies within one turn of [0, 2π): there the remainder is ``x``, ``x − 2π`` (exact,
     as ``fmod``'s is) or ``x + 2π`` (the addition numpy makes too)."""
@@ -327,7 +327,7 @@ def _turn_remainder(x):  # noqa: ANN001, ANN202
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _natural(away):  # noqa: ANN001, ANN202
+def natural_cost(away):  # noqa: ANN001, ANN202
     """The cost of being ``away`` radians (in [-π, π]) from the natural swivel: quadratic,
     and steeply beyond :data:`SWIVEL_RANGE`."""
     beyond = max(abs(away) - SWIVEL_RANGE, 0.0)
@@ -335,7 +335,7 @@ def _natural(away):  # noqa: ANN001, ANN202
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _wrist_load(flexion, deviation, twist, limits):  # noqa: ANN001, ANN202
+def wrist_load(flexion, deviation, twist, limits):  # noqa: ANN001, ANN202
     """The wrist's load (module docstring) of one candidate's wrist state; ``limits``:
     flexion, deviation and twist limits, low and high (radians)."""
     excess_flexion = flexion - min(max(flexion, limits[0]), limits[1])
@@ -366,185 +366,25 @@ def _cost_rows(natural, cells, psi, penalty, nearby, hands, wrist, circle_axis, 
     arithmetic of the numpy version (``tests/perf_equivalence/plain_costs.py``), element
     by element, the wrist state within numba's ``atan2``."""
     count = candidates.size
-    fixed = _wrist_constants(constants)
+    fixed = wrist_constants(constants)
     for i in range(cells.shape[0]):
         for j in range(count):
-            costs[i, j] = _natural(_turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
+            costs[i, j] = natural_cost(turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
         cell = int(cells[i, 0]) % count - 1
         if hands.shape[0] == 0:
             for k in range(cells.shape[1]):
                 # the window's cells are consecutive: the next candidate round the circle
                 cell = cell + 1 if cell + 1 < count else 0
-                costs[i, cell] = _natural(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
+                costs[i, cell] = natural_cost(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
             continue
-        m = _hand_matrix(hands, i)
+        m = hand_matrix(hands, i)
         c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
         w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
         for k in range(cells.shape[1]):
             cell = cell + 1 if cell + 1 < count else 0
-            flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
-            measured = _natural(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
-            costs[i, cell] = measured + _wrist_load(flexion, deviation, twist, limits)
-
-
-def cheapest_swivels(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray | None:
-    """The cheapest swivel (radians) of each frame on its own, by :func:`candidate_costs`
-    with no other arm: the cheapest candidate, refined by a parabola through it and its
-    neighbours (:func:`parabola_offset`) — the very numbers of that composition — or None
-    where the body does not stand upright at rest (the composition then carries it).
-
-    Compiled (:func:`_cheapest_rows`), and cheaper than measuring every candidate: a
-    candidate costs at least its distance from the natural swivel plus the wrist's load,
-    so the window's candidates are measured against the body cheapest bound first, and
-    those whose bound exceeds the best cost found (and are no neighbour of the best) are
-    never measured: they cannot be the least, nor tie with it."""
-    if placement.body_frame is not None or placement.carried_frames is not None:
-        return None
-    chain, circle = placement.chain, placement.circle
-    cells, psi = measured_window(natural)
-    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
-    rows = lambda value: np.ascontiguousarray(value, dtype=float)
-    kinds, parameters, boxes, in_trunk = obstacle_table(upright_obstacles(avatar))
-    limits = np.array([*chain.wrist_flexion, *chain.wrist_deviation, *chain.twist_range], dtype=float)
-    swivels = np.empty(len(natural))
-    _cheapest_rows(
-        rows(natural), rows(cells), rows(psi), np.zeros((0, 4)) if placement.hands is None else rows(placement.hands),
-        rows(circle.shoulder), rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
-        _wrist_constant_row(chain), limits, CANDIDATES, segment_table(arm_capsules(avatar, chain.side)),
-        kinds, parameters, boxes, in_trunk, swivels,
-    )  # fmt: skip
-    return swivels
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _parabola(left, middle, right):  # noqa: ANN001, ANN202
-    """:func:`parabola_offset` of one frame, the same operations (NaN passes through the clip)."""
-    curvature = left - 2.0 * middle + right
-    if not curvature > 1e-12:
-        return 0.0
-    step = 0.5 * (left - right) / curvature
-    return step if step != step else min(max(step, -0.5), 0.5)
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _by_natural_cost(natural_cost, order):  # noqa: ANN001, ANN202
-    """Into ``order``: the window's candidates by increasing cost of their distance from
-    the natural swivel, ties in window order (an insertion sort of ~21 numbers that the
-    window, centred on the natural swivel, nearly sorts already once walked outward)."""
-    width = order.size
-    middle = width // 2
-    for k in range(width):
-        order[k] = middle + (k + 1) // 2 if k % 2 else middle - k // 2
-    for k in range(1, width):
-        held, j = order[k], k
-        while j > 0 and (natural_cost[order[j - 1]] > natural_cost[held] or (natural_cost[order[j - 1]] == natural_cost[held] and order[j - 1] > held)):
-            order[j] = order[j - 1]
-            j -= 1
-        order[j] = held
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _first_known_least(costs, known):  # noqa: ANN001, ANN202
-    """``np.argmin`` among the measured ``costs`` (the first NaN, else the first least):
-    every other candidate costs more than the least."""
-    best = -1
-    for j in range(costs.size):
-        if not known[j]:
-            continue
-        if costs[j] != costs[j]:
-            return j
-        if best < 0 or costs[j] < costs[best]:
-            best = j
-    return best
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _finite(values):  # noqa: ANN001, ANN202
-    """Whether every value of the tuple is finite."""
-    for value in values:
-        if not math.isfinite(value):
-            return False
-    return True
-
-
-_BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
-_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
-
-
-@numba.njit(
-    [numba.void(_IN1, *(_IN2,) * 2, *(_IN2,) * 4, *(_IN2,) * 6, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1])],
-    cache=True,
-    error_model="numpy",
-)
-def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels):  # noqa: ANN001, ANN202, E501
-    """:func:`cheapest_swivels` per frame ``i``: every candidate's cost as :func:`_cost_rows`
-    sums it, with the body's clearance penalty
-    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates, measured
-    lazily — by increasing distance cost from the natural swivel, until that alone exceeds
-    the least cost found; the wrist's load only for those, and the penalty only where the
-    two do not exceed it (each sum with the penalty and the load, both ≥ 0, rounds to at
-    least the sum without them) — and the least one's neighbours too, then the parabola
-    through the three. A frame with a NaN input has every candidate measured: ``np.argmin``
-    then picks the first NaN."""
-    count, width = candidates.size, cells.shape[1]
-    loaded = hands.shape[0] != 0
-    fixed = _wrist_constants(constants)
-    costs, known = np.empty(count), np.empty(count, dtype=np.bool_)
-    natural_cost, load, order = np.empty(width), np.empty(width), np.empty(width, dtype=np.int64)
-    cell_of, window = np.empty(width, dtype=np.int64), np.empty(count, dtype=np.int64)
-    meets = np.empty((2, kinds.size), dtype=np.bool_)
-    m = (0.0,) * 9
-    c = (0.0, 0.0, 0.0)
-    for i in range(cells.shape[0]):
-        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
-        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
-        if loaded:
-            m = _hand_matrix(hands, i)
-            c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
-        low, high = (ex[i].min(), ey[i].min(), ez[i].min()), (ex[i].max(), ey[i].max(), ez[i].max())
-        whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
-        least = math.inf
-        for j in range(count):
-            costs[j] = _natural(_turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
-            known[j] = True
-        cell = int(cells[i, 0]) % count - 1
-        for k in range(width):
-            cell = cell + 1 if cell + 1 < count else 0
-            cell_of[k], window[cell], known[cell] = cell, k, False
-            natural_cost[k], load[k] = _natural(psi[i, k] - natural[i]), -1.0
-            whole |= natural_cost[k] != natural_cost[k]
-        for j in range(count):
-            if known[j]:
-                least = min(least, costs[j])
-        row_meets(s, w, low, high, segments, boxes, meets)
-        _by_natural_cost(natural_cost, order)
-        for k in order:
-            if not whole and natural_cost[k] > least:
-                break
-            if loaded:
-                flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
-                load[k] = _wrist_load(flexion, deviation, twist, limits)
-                if not whole and natural_cost[k] + load[k] > least:
-                    continue
-            cost = natural_cost[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
-            if loaded:
-                cost = cost + load[k]
-            costs[cell_of[k]], known[cell_of[k]] = cost, True
-            least = min(least, cost)
-        best = _first_known_least(costs, known)
-        for j in ((best - 1) % count, (best + 1) % count):
-            if known[j]:
-                continue
-            k = window[j]
-            if loaded and load[k] < 0.0:
-                flexion, deviation, twist, _ = _wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
-                load[k] = _wrist_load(flexion, deviation, twist, limits)
-            costs[j] = natural_cost[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
-            if loaded:
-                costs[j] = costs[j] + load[k]
-            known[j] = True
-        swivels[i] = candidates[best] + _parabola(costs[(best - 1) % count], costs[best], costs[(best + 1) % count]) * SWIVEL_STEP
+            flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+            measured = natural_cost(psi[i, k] - natural[i]) + _paid(penalty, nearby, i, k, cell)
+            costs[i, cell] = measured + wrist_load(flexion, deviation, twist, limits)
 
 
 def parabola_offset(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> np.ndarray:
@@ -561,5 +401,3 @@ def load_kernels() -> None:
     constants, limits = np.ones(14), np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
     _wrist_rows(hands, points, points, *(cells,) * 6, constants, *(np.empty((1, 1)) for _ in range(4)))
     _cost_rows(np.zeros(1), *(cells,) * 3, np.zeros((0, 0)), hands, points, points, *(cells,) * 6, constants, limits, CANDIDATES, np.empty((1, CANDIDATES.size)))
-    tables = np.zeros((2, 4)), np.zeros(0, dtype=np.int64), np.zeros((0, 7)), np.zeros((0, 2, 3)), np.zeros(0, dtype=np.bool_)
-    _cheapest_rows(np.zeros(1), *(cells,) * 2, hands, *(points,) * 3, *(cells,) * 6, constants, limits, CANDIDATES, *tables, np.empty(1))

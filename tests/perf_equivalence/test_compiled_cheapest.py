@@ -1,7 +1,7 @@
-"""The compiled cheapest swivel (:func:`motor.arm.swivel_cost.cheapest_swivels`), which
+"""The compiled cheapest swivel (:func:`motor.arm.cheapest_swivel.cheapest_swivels`), which
 measures only the candidates that can still be the least, gives the numbers of the
-composition it replaces — every candidate's cost (:func:`candidate_costs`), the first
-least, the parabola through it and its neighbours — bit for bit: over both avatars and
+composition it replaces (:func:`motor.arm.cheapest_swivel.cheapest_by_costs`: every
+candidate's cost, the first least, the parabola through it and its neighbours) bit for bit: over both avatars and
 sides, targets near the body and far, with and without hand rotations, natural swivels
 over several turns, and frames with NaN or infinite targets among finite ones."""
 
@@ -14,32 +14,13 @@ from motor import quaternion as quat
 from motor.arm.chain import natural_swivel, place_arm
 from motor.arm.clearance import arm_capsules, clearance, obstacle_table, segment_table, upright_obstacles
 from motor.arm.ik import arm_reach
-from motor.arm.swivel_cost import (
-    CANDIDATES,
-    SWIVEL_STEP,
-    _cheapest_rows,
-    _window_costs,
-    _wrist_constant_row,
-    candidate_costs,
-    candidate_elbows,
-    cheapest_swivels,
-    measured_window,
-    parabola_offset,
-)
+from motor.arm.cheapest_swivel import _cheapest_rows, cheapest_by_costs, cheapest_swivels
+from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, _window_costs, candidate_elbows, measured_window, parabola_offset, wrist_constant_row
 from motor.body.avatar import load_avatar
 from motor.body.distance import components
 
 RNG = np.random.default_rng(19)
 N = 64
-
-
-def composed(avatar, placement, natural):  # noqa: ANN001, ANN201
-    """The cheapest swivel as every candidate's cost gives it."""
-    cost = candidate_costs(avatar, placement, natural)
-    best = np.argmin(cost, axis=1)
-    rows, count = np.arange(len(best)), len(CANDIDATES)
-    left, middle, right = cost[rows, (best - 1) % count], cost[rows, best], cost[rows, (best + 1) % count]
-    return CANDIDATES[best] + parabola_offset(left, middle, right) * SWIVEL_STEP
 
 
 def targets_about(avatar, side, spread, toward):  # noqa: ANN001, ANN201
@@ -59,7 +40,7 @@ def test_cheapest_swivels_are_the_composed_ones(avatar_name, side, spread, towar
     placement = place_arm(avatar, side, targets_about(avatar, side, spread, toward), quat.normalize(RNG.normal(size=(N, 4))) if hands else None)
     natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
     natural = natural + turns * RNG.integers(-2, 3, N) * 2.0 * np.pi
-    assert np.array_equal(cheapest_swivels(avatar, placement, natural), composed(avatar, placement, natural))
+    assert np.array_equal(cheapest_swivels(avatar, placement, natural), cheapest_by_costs(avatar, placement, natural))
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf], ids=["NaN", "infinite"])
@@ -72,7 +53,7 @@ def test_frames_with_bad_targets_are_the_composed_ones_and_leave_the_others_alon
     with np.errstate(all="ignore"):
         placement = place_arm(avatar, "r", targets, rotations)
         natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
-        got, expected = cheapest_swivels(avatar, placement, natural), composed(avatar, placement, natural)
+        got, expected = cheapest_swivels(avatar, placement, natural), cheapest_by_costs(avatar, placement, natural)
     assert np.array_equal(got, expected, equal_nan=True)
     fine = np.setdiff1d(np.arange(N), [3, 17])
     assert np.all(np.isfinite(got[fine]))
@@ -94,7 +75,7 @@ def test_reach_checks_read_the_same_penetration_as_before():
     reach = arm_reach(avatar, "l", targets)
     placement = place_arm(avatar, "l", targets)
     natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
-    psi = composed(avatar, placement, natural)
+    psi = cheapest_by_costs(avatar, placement, natural)
     circle = placement.circle
     elbow = circle.elbow(psi, circle.direction(psi))
     depth = clearance(avatar, "l", circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(elbow)), None)[1][:, 0]
@@ -125,7 +106,7 @@ def test_a_nan_elbow_far_from_the_natural_swivel_is_still_the_first_least(hands)
     limits = np.array([*placement.chain.wrist_flexion, *placement.chain.wrist_deviation, *placement.chain.twist_range])
     _cheapest_rows(
         natural, cells, psi, np.zeros((0, 4)) if placement.hands is None else rows_of(placement.hands), rows_of(circle.shoulder),
-        rows_of(circle.wrist), rows_of(circle.axis), *map(rows_of, elbow), *map(rows_of, radial), _wrist_constant_row(placement.chain),
+        rows_of(circle.wrist), rows_of(circle.axis), *map(rows_of, elbow), *map(rows_of, radial), wrist_constant_row(placement.chain),
         limits, CANDIDATES, segment_table(arm_capsules(avatar, "r")), kinds, parameters, boxes, in_trunk, got,
     )  # fmt: skip
     assert np.array_equal(got, expected, equal_nan=True)

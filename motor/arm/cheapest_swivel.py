@@ -1,0 +1,231 @@
+"""The cheapest swivel of a lone posture: where a reach check or a single frame puts the elbow.
+
+Solving one posture on its own (:func:`motor.arm.ik.solve_arm` without a swivel track,
+:func:`motor.arm.ik.arm_reach`: planning checks a quarter of a million wrist positions of
+a corpus this way) takes the cheapest of the candidate swivels
+(:func:`motor.arm.swivel_cost.candidate_costs`), refined by a parabola through it and
+its neighbours (:func:`cheapest_by_costs`). Where the body stands upright at rest and no
+other arm is kept clear of, a compiled search (:func:`cheapest_swivels`) gives the very
+same numbers while measuring only the candidates that can still be the least.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from motor.arm.chain import ArmPlacement, natural_swivel
+from motor.arm.clearance import ArmSegments, arm_capsules, candidate_penalty, obstacle_table, row_meets, segment_table, upright_obstacles
+from motor.arm.swivel_cost import (
+    CANDIDATES,
+    OUTSIDE,
+    SWIVEL_STEP,
+    candidate_costs,
+    candidate_elbows,
+    hand_matrix,
+    measured_window,
+    natural_cost,
+    parabola_offset,
+    turn_remainder,
+    wrist_angles,
+    wrist_constant_row,
+    wrist_constants,
+    wrist_load,
+)
+from motor.body.avatar import Avatar
+
+_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
+_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
+
+
+def cheapest_swivel(avatar: Avatar, placement: ArmPlacement, other: ArmSegments | None = None) -> np.ndarray:
+    """The cheapest swivel (radians) of each frame of ``placement`` on its own, keeping
+    clear of the ``other`` arm's capsules too: compiled where it can be
+    (:func:`cheapest_swivels`), else :func:`cheapest_by_costs` — the same numbers."""
+    natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
+    swivels = None if other is not None else cheapest_swivels(avatar, placement, natural)
+    return cheapest_by_costs(avatar, placement, natural, other) if swivels is None else swivels
+
+
+def cheapest_by_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, other: ArmSegments | None = None) -> np.ndarray:
+    """The cheapest swivel of each frame from every candidate's cost
+    (:func:`motor.arm.swivel_cost.candidate_costs` about the natural swivels ``natural
+    (n,)``): the first least candidate, refined by a parabola through it and its
+    neighbours (:func:`motor.arm.swivel_cost.parabola_offset`)."""
+    cost = candidate_costs(avatar, placement, natural, other)
+    best = np.argmin(cost, axis=1)
+    rows = np.arange(len(best))
+    count = len(CANDIDATES)
+    left, middle, right = cost[rows, (best - 1) % count], cost[rows, best], cost[rows, (best + 1) % count]
+    return CANDIDATES[best] + parabola_offset(left, middle, right) * SWIVEL_STEP
+
+
+def cheapest_swivels(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> np.ndarray | None:
+    """:func:`cheapest_by_costs` with no other arm, compiled: the very numbers of that
+    composition, or None where the body does not stand upright at rest (the composition
+    then carries it).
+
+    Compiled (:func:`_cheapest_rows`), and cheaper than measuring every candidate: a
+    candidate costs at least its distance from the natural swivel plus the wrist's load,
+    so the window's candidates are measured against the body cheapest bound first, and
+    those whose bound exceeds the best cost found (and are no neighbour of the best) are
+    never measured: they cannot be the least, nor tie with it."""
+    if placement.body_frame is not None or placement.carried_frames is not None:
+        return None
+    chain, circle = placement.chain, placement.circle
+    cells, psi = measured_window(natural)
+    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
+    rows = lambda value: np.ascontiguousarray(value, dtype=float)
+    kinds, parameters, boxes, in_trunk = obstacle_table(upright_obstacles(avatar))
+    limits = np.array([*chain.wrist_flexion, *chain.wrist_deviation, *chain.twist_range], dtype=float)
+    swivels = np.empty(len(natural))
+    _cheapest_rows(
+        rows(natural), rows(cells), rows(psi), np.zeros((0, 4)) if placement.hands is None else rows(placement.hands),
+        rows(circle.shoulder), rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
+        wrist_constant_row(chain), limits, CANDIDATES, segment_table(arm_capsules(avatar, chain.side)),
+        kinds, parameters, boxes, in_trunk, swivels,
+    )  # fmt: skip
+    return swivels
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _parabola(left, middle, right):  # noqa: ANN001, ANN202
+    """:func:`motor.arm.swivel_cost.parabola_offset` of one frame, the same operations (NaN
+    passes through the clip)."""
+    curvature = left - 2.0 * middle + right
+    if not curvature > 1e-12:
+        return 0.0
+    step = 0.5 * (left - right) / curvature
+    return step if step != step else min(max(step, -0.5), 0.5)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _by_distance(distance, order):  # noqa: ANN001, ANN202
+    """Into ``order``: the window's candidates by increasing ``distance`` cost (from the
+    natural swivel), ties in window order (an insertion sort of ~21 numbers that the
+    window, centred on the natural swivel, nearly sorts already once walked outward)."""
+    width = order.size
+    middle = width // 2
+    for k in range(width):
+        order[k] = middle + (k + 1) // 2 if k % 2 else middle - k // 2
+    for k in range(1, width):
+        held, j = order[k], k
+        while j > 0 and (distance[order[j - 1]] > distance[held] or (distance[order[j - 1]] == distance[held] and order[j - 1] > held)):
+            order[j] = order[j - 1]
+            j -= 1
+        order[j] = held
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _first_known_least(costs, known):  # noqa: ANN001, ANN202
+    """``np.argmin`` among the measured ``costs`` (the first NaN, else the first least):
+    every other candidate costs more than the least."""
+    best = -1
+    for j in range(costs.size):
+        if not known[j]:
+            continue
+        if costs[j] != costs[j]:
+            return j
+        if best < 0 or costs[j] < costs[best]:
+            best = j
+    return best
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _finite(values):  # noqa: ANN001, ANN202
+    """Whether every value of the tuple is finite."""
+    for value in values:
+        if not math.isfinite(value):
+            return False
+    return True
+
+
+_BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
+_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
+_IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
+
+
+@numba.njit(
+    [numba.void(_IN1, *(_IN2,) * 2, *(_IN2,) * 4, *(_IN2,) * 6, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1])],
+    cache=True,
+    error_model="numpy",
+)
+def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels):  # noqa: ANN001, ANN202, E501
+    """:func:`cheapest_swivels` per frame ``i``: every candidate's cost as
+    :func:`motor.arm.swivel_cost.candidate_costs` sums it, with the body's clearance penalty
+    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates, measured
+    lazily — by increasing distance cost from the natural swivel, until that alone exceeds
+    the least cost found; the wrist's load only for those, and the penalty only where the
+    two do not exceed it (each sum with the penalty and the load, both ≥ 0, rounds to at
+    least the sum without them) — and the least one's neighbours too, then the parabola
+    through the three. A frame with a NaN input has every candidate measured: ``np.argmin``
+    then picks the first NaN."""
+    count, width = candidates.size, cells.shape[1]
+    loaded = hands.shape[0] != 0
+    fixed = wrist_constants(constants)
+    costs, known = np.empty(count), np.empty(count, dtype=np.bool_)
+    distance, load, order = np.empty(width), np.empty(width), np.empty(width, dtype=np.int64)
+    cell_of, window = np.empty(width, dtype=np.int64), np.empty(count, dtype=np.int64)
+    meets = np.empty((2, kinds.size), dtype=np.bool_)
+    m = (0.0,) * 9
+    c = (0.0, 0.0, 0.0)
+    for i in range(cells.shape[0]):
+        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+        if loaded:
+            m = hand_matrix(hands, i)
+            c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
+        low, high = (ex[i].min(), ey[i].min(), ez[i].min()), (ex[i].max(), ey[i].max(), ez[i].max())
+        whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
+        least = math.inf
+        for j in range(count):
+            costs[j] = natural_cost(turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
+            known[j] = True
+        cell = int(cells[i, 0]) % count - 1
+        for k in range(width):
+            cell = cell + 1 if cell + 1 < count else 0
+            cell_of[k], window[cell], known[cell] = cell, k, False
+            distance[k], load[k] = natural_cost(psi[i, k] - natural[i]), -1.0
+            whole |= distance[k] != distance[k]
+        for j in range(count):
+            if known[j]:
+                least = min(least, costs[j])
+        row_meets(s, w, low, high, segments, boxes, meets)
+        _by_distance(distance, order)
+        for k in order:
+            if not whole and distance[k] > least:
+                break
+            if loaded:
+                flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+                load[k] = wrist_load(flexion, deviation, twist, limits)
+                if not whole and distance[k] + load[k] > least:
+                    continue
+            cost = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+            if loaded:
+                cost = cost + load[k]
+            costs[cell_of[k]], known[cell_of[k]] = cost, True
+            least = min(least, cost)
+        best = _first_known_least(costs, known)
+        for j in ((best - 1) % count, (best + 1) % count):
+            if known[j]:
+                continue
+            k = window[j]
+            if loaded and load[k] < 0.0:
+                flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+                load[k] = wrist_load(flexion, deviation, twist, limits)
+            costs[j] = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+            if loaded:
+                costs[j] = costs[j] + load[k]
+            known[j] = True
+        swivels[i] = candidates[best] + _parabola(costs[(best - 1) % count], costs[best], costs[(best + 1) % count]) * SWIVEL_STEP
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loop once (it loads when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    hands, points, cells = np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.zeros((1, 1))
+    constants, limits = np.ones(14), np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
+    tables = np.zeros((2, 4)), np.zeros(0, dtype=np.int64), np.zeros((0, 7)), np.zeros((0, 2, 3)), np.zeros(0, dtype=np.bool_)
+    _cheapest_rows(np.zeros(1), *(cells,) * 2, hands, *(points,) * 3, *(cells,) * 6, constants, limits, CANDIDATES, *tables, np.empty(1))
