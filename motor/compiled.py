@@ -3,7 +3,9 @@
 numba compiles each kernel (:mod:`motor.quaternion`'s products,
 :mod:`motor.body.distance`'s signed distances, :mod:`motor.arm.clearance`'s
 arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
-:mod:`motor.arm.swivel`'s value tables, :mod:`motor.arm.cheapest_swivel`'s pruned search) once per checkout and caches it on disk
+:mod:`motor.arm.swivel`'s value tables, :mod:`motor.arm.cheapest_swivel`'s pruned search,
+:mod:`motor.signing.path_batch`'s trace of a move within its hull) once per checkout and
+caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
 the kernel's module — about 0.7 s in all, most of it numba's own start — never in the
@@ -20,12 +22,13 @@ import time
 from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, swivel, swivel_cost
 from motor.body import distance
+from motor.signing import path_batch
 
 
 def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, path_batch):
         module.load_kernels()
     return time.perf_counter() - started

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from functools import cache
 from itertools import pairwise
 
+import numba
 import numpy as np
 from scipy.interpolate import BSpline
 
@@ -89,13 +90,28 @@ def _traced_within(piece: np.ndarray) -> np.ndarray:
         return piece
     first, weights = _basis(piece.shape[0])
     dense = np.empty((first.size + 1, 3))
-    dense[0] = piece[0]
-    traced = np.zeros((first.size, 3))
-    for a in range(weights.shape[1]):  # the batch's order of sums (_within)
-        traced = traced + piece[first + a] * weights[:, a, None]
-    dense[1:] = traced
-    dense[-1] = piece[-1]
+    _within_rows(np.ascontiguousarray(piece, dtype=float), first, weights, dense)
     return dense
+
+
+@numba.njit(
+    [numba.void(numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
+                numba.types.Array(numba.float64, 2, "C", readonly=True), numba.float64[:, ::1])],
+    cache=True,
+    error_model="numpy",
+)
+def _within_rows(piece, first, weights, dense):  # noqa: ANN001, ANN202
+    """Into ``dense``: ``piece``'s first point, then each dense point as the sum over the
+    basis's weights from zero in :func:`_within`'s order (so the same numbers), the last
+    point exactly the piece's last."""
+    dense[0] = piece[0]
+    for r in range(first.size):
+        for c in range(3):
+            total = 0.0
+            for a in range(weights.shape[1]):
+                total = total + piece[first[r] + a, c] * weights[r, a]
+            dense[r + 1, c] = total
+    dense[-1] = piece[-1]
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
@@ -482,3 +498,10 @@ def _gaussian(values: np.ndarray, sigma: np.ndarray, counts: np.ndarray) -> np.n
             smoothed = smoothed + (padded[:, r - j : r - j + width] + padded[:, r + j : r + j + width]) * kernel[:, r - j, None]
         out[members] = smoothed
     return out
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loop once (it loads when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    first, weights = _basis(3)
+    _within_rows(np.zeros((3, 3)), first, weights, np.empty((first.size + 1, 3)))

@@ -10,13 +10,14 @@ import pytest
 from motor import quaternion as quat
 from motor.arm import cheapest_swivel, clearance, swivel, swivel_cost
 from motor.body import distance
+from motor.signing import path_batch
 from motor.compiled import warm_up
 
 LOOPS = [
     (quat, "_multiply_rows"), (quat, "_rotate_rows"), (quat, "_cross_rows"), (quat, "_normalize_rows"),
     (distance, "_closest_loop"), (distance, "_segments_loop"), (distance, "_point_segment_loop"), (distance, "_volume_loop"),
     (clearance, "_clearance_rows"), (clearance, "_charge_trunk"), (swivel, "_cost_to_go"),
-    (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"), (cheapest_swivel, "_cheapest_rows"),
+    (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"), (cheapest_swivel, "_cheapest_rows"), (path_batch, "_within_rows"),
 ]  # fmt: skip
 
 
