@@ -13,7 +13,8 @@ Candidate swivels are the whole circle in steps of :data:`SWIVEL_STEP`
 * the arm's clearance from the body and the other arm (:mod:`motor.arm.clearance`).
 
 Only the candidates within :data:`WINDOW` steps of the natural swivel are measured; the
-others cost their distance from it plus :data:`OUTSIDE`. Everything is computed on
+others cost their distance from it plus :data:`OUTSIDE` (a swivel track adds what they pay
+for going into the body, :func:`beyond_penalties`). Everything is computed on
 coordinate arrays ``(n, K)`` (contiguous per coordinate); the wrist state and the costs
 of each frame's candidates are compiled loops (:func:`_wrist_rows`, :func:`_cost_rows`),
 held to the numpy arithmetic they replaced by ``tests/perf_equivalence``.
