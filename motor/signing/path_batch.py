@@ -88,30 +88,7 @@ def _traced_within(piece: np.ndarray) -> np.ndarray:
     """One piece ``(k, 3)`` traced within its hull, starting with its first point (``_trace``)."""
     if piece.shape[0] < 3:
         return piece
-    first, weights = _basis(piece.shape[0])
-    dense = np.empty((first.size + 1, 3))
-    _within_rows(np.ascontiguousarray(piece, dtype=float), first, weights, dense)
-    return dense
-
-
-@numba.njit(
-    [numba.void(numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
-                numba.types.Array(numba.float64, 2, "C", readonly=True), numba.float64[:, ::1])],
-    cache=True,
-    error_model="numpy",
-)
-def _within_rows(piece, first, weights, dense):  # noqa: ANN001, ANN202
-    """Into ``dense``: ``piece``'s first point, then each dense point as the sum over the
-    basis's weights from zero in :func:`_within`'s order (so the same numbers), the last
-    point exactly the piece's last."""
-    dense[0] = piece[0]
-    for r in range(first.size):
-        for c in range(3):
-            total = 0.0
-            for a in range(weights.shape[1]):
-                total = total + piece[first[r] + a, c] * weights[r, a]
-            dense[r + 1, c] = total
-    dense[-1] = piece[-1]
+    return _within(piece[None])[0]
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
@@ -247,10 +224,12 @@ def _trace(pieces: list[np.ndarray], through: bool) -> list[np.ndarray]:
         stacked = np.stack([pieces[index] for index in members])
         if k < 3:
             dense = stacked.copy()
-        else:
+        elif through:
             dense = np.empty((len(members), PATH_DENSITY * (k - 1) + 1, 3))
             dense[:, 0] = stacked[:, 0]
-            dense[:, 1:] = _through(stacked) if through else _within(stacked)
+            dense[:, 1:] = _through(stacked)
+        else:
+            dense = _within(stacked)
         for row, index in enumerate(members):
             out[index] = dense[row]
     return out
@@ -338,13 +317,32 @@ def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _within(pieces: np.ndarray) -> np.ndarray:
     """The clamped B-spline with control polygon each row of ``(g, k ≥ 3, 3)``, densely,
-    without the first point (``lmp._within``)."""
+    starting with its first point (``lmp._within``): compiled (:func:`_within_rows`)."""
     first, weights = _basis(pieces.shape[1])
-    dense = np.zeros((pieces.shape[0], first.size, 3))
-    for a in range(weights.shape[1]):
-        dense = dense + pieces[:, first + a] * weights[None, :, a, None]
-    dense[:, -1] = pieces[:, -1]
+    dense = np.empty((pieces.shape[0], first.size + 1, 3))
+    _within_rows(np.ascontiguousarray(pieces, dtype=float), first, weights, dense)
     return dense
+
+
+@numba.njit(
+    [numba.void(numba.types.Array(numba.float64, 3, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
+                numba.types.Array(numba.float64, 2, "C", readonly=True), numba.float64[:, :, ::1])],
+    cache=True,
+    error_model="numpy",
+)
+def _within_rows(pieces, first, weights, dense):  # noqa: ANN001, ANN202
+    """Into ``dense (g, n + 1, 3)``: each piece's first point, then each dense point as
+    the sum from zero over the basis's weights ``(n, degree + 1)`` of the control points
+    from ``first (n,)`` on, in the weights' order, the last point exactly the piece's last."""
+    for g in range(pieces.shape[0]):
+        dense[g, 0] = pieces[g, 0]
+        for r in range(first.size):
+            for c in range(3):
+                total = 0.0
+                for a in range(weights.shape[1]):
+                    total = total + pieces[g, first[r] + a, c] * weights[r, a]
+                dense[g, r + 1, c] = total
+        dense[g, -1] = pieces[g, -1]
 
 
 def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
@@ -503,5 +501,4 @@ def _gaussian(values: np.ndarray, sigma: np.ndarray, counts: np.ndarray) -> np.n
 def load_kernels() -> None:
     """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    first, weights = _basis(3)
-    _within_rows(np.zeros((3, 3)), first, weights, np.empty((first.size + 1, 3)))
+    _within(np.zeros((1, 3, 3)))
