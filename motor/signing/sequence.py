@@ -32,8 +32,9 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.hand_turn import takes_long_way, turn_way
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.collision import joint_placement, posed_capsule, to_rest
 from motor.body.distance import capsule_distance
-from motor.body.kinematics import forward_kinematics
+from motor.body.kinematics import Pose, forward_kinematics
 from motor.control import MotorControl
 from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
@@ -313,25 +314,23 @@ class MotionCheck:
     max_upper_arm_depth: float
 
 
-def upper_arm_depths(avatar: Avatar, motion: Motion) -> dict[str, np.ndarray]:
-    """Per arm, per frame: how deep (m) the upper arm's capsule (the avatar's collision
-    volume, posed) is inside the trunk's volumes (a torso, and a chest where the avatar has
-    one), each where its joint carries it — the trunk turns toward a hand reaching across
-    the body, and the volumes with it; 0 outside. The depth is the signed distance's
+def upper_arm_depths(avatar: Avatar, pose: Pose) -> dict[str, np.ndarray]:
+    """Per arm, per frame of ``pose`` (forward kinematics' global joint poses): how deep
+    (m) the upper arm's capsule (the avatar's collision volume, posed) is inside the
+    trunk's volumes (a torso, and a chest where the avatar has one), each where its joint
+    carries it — the trunk turns toward a hand reaching across the body, and the volumes
+    with it; 0 outside. The depth is the signed distance's
     (:func:`motor.body.distance.capsule_distance`), which the swivel search keeps within
     a few millimetres where arms merely touch."""
-    pose = forward_kinematics(avatar, np.where(np.isfinite(motion.rotations), motion.rotations, quat.IDENTITY))
-    rest = avatar.rest_positions
+    placed = lambda joint: joint_placement(avatar, pose.positions, pose.orientations, joint)
+    trunk = [(volume, placed(volume.joint)) for volume in avatar.collision.trunk()]
     depths = {}
     for arm in ARMS:
         upper = avatar.collision.arm(AVATAR_SIDE[arm], "upper_arm")
-        carrier = avatar.joint_index(upper.joint)
-        ends = [pose.point(carrier, end - rest[carrier]) for end in (upper.a, upper.b)]
-        depth = np.zeros(motion.frame_count)
-        for volume in avatar.collision.trunk():
-            holder = avatar.joint_index(volume.joint)
-            back = quat.conjugate(pose.orientations[:, holder])
-            a, b = (rest[holder] + quat.rotate(back, end - pose.positions[:, holder]) for end in ends)
+        ends = posed_capsule(upper, *placed(upper.joint))
+        depth = np.zeros(pose.positions.shape[0])
+        for volume, placement in trunk:
+            a, b = (to_rest(*placement, end) for end in ends)
             depth = np.maximum(depth, -capsule_distance(volume, a, b, upper.radius))
         depths[arm] = depth
     return depths
@@ -350,7 +349,7 @@ def frame_faults(avatar: Avatar, signed: SignedMotion) -> dict[str, np.ndarray]:
     for arm in ARMS:
         wrist = avatar.arm_joints(AVATAR_SIDE[arm])[3]
         shortfall = np.maximum(shortfall, np.linalg.norm(pose.positions[:, wrist] - asked[arm], axis=1))
-    depths = upper_arm_depths(avatar, motion)
+    depths = upper_arm_depths(avatar, pose)
     return {"non_finite": ~finite, "shortfall": shortfall, "upper_arm_depth": np.maximum(*depths.values())}
 
 

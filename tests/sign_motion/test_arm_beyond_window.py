@@ -16,6 +16,7 @@ import pytest
 from motor.arm.chain import natural_swivel, place_arm
 from motor.arm.ik import track_costs
 from motor.arm.swivel_cost import CANDIDATES, beyond_penalties, candidate_costs, measured_window
+from motor.body.kinematics import forward_kinematics
 from motor.signing.plan import SignPlan
 from motor.signing.planning import plan_signs
 from motor.signing.sequence import realize_signs, upper_arm_depths
@@ -42,7 +43,7 @@ def test_the_upper_arm_stays_out_of_the_chest(avatar, shared, corpus, glosses):
     plans = plan_signs(avatar, signs_named(shared / "corpora" / "sigml" / corpus, glosses))
     assert all(isinstance(plan, SignPlan) for plan in plans)
     signed = realize_signs(avatar, plans, 25.0)
-    depths = upper_arm_depths(avatar, signed.motion)
+    depths = upper_arm_depths(avatar, forward_kinematics(avatar, signed.motion.rotations))
     assert max(float(np.max(depth)) for depth in depths.values()) < 0.01
 
 
