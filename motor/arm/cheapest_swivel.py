@@ -142,6 +142,22 @@ def _finite(values):  # noqa: ANN001, ANN202
     return True
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits):  # noqa: ANN001, ANN202
+    """The wrist's load (:func:`motor.arm.swivel_cost.wrist_load`) of window candidate ``k``
+    of frame ``i``, the hand's matrix ``m``, the circle's axis ``c``, the wrist ``w``."""
+    flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+    return wrist_load(flexion, deviation, twist, limits)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets):  # noqa: ANN001, ANN202
+    """Window candidate ``k``'s whole cost in :func:`motor.arm.swivel_cost.candidate_costs`'s
+    sums: its distance cost plus its body clearance penalty, then its wrist load."""
+    cost = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+    return cost + load[k] if loaded else cost
+
+
 _BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
 _KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
 _IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
@@ -198,13 +214,10 @@ def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex,
             if not whole and distance[k] > least:
                 break
             if loaded:
-                flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
-                load[k] = wrist_load(flexion, deviation, twist, limits)
+                load[k] = _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits)
                 if not whole and distance[k] + load[k] > least:
                     continue
-            cost = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
-            if loaded:
-                cost = cost + load[k]
+            cost = _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets)
             costs[cell_of[k]], known[cell_of[k]] = cost, True
             least = min(least, cost)
         best = _first_known_least(costs, known)
@@ -213,12 +226,8 @@ def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex,
                 continue
             k = window[j]
             if loaded and load[k] < 0.0:
-                flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
-                load[k] = wrist_load(flexion, deviation, twist, limits)
-            costs[j] = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
-            if loaded:
-                costs[j] = costs[j] + load[k]
-            known[j] = True
+                load[k] = _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits)
+            costs[j], known[j] = _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets), True
         swivels[i] = candidates[best] + _parabola(costs[(best - 1) % count], costs[best], costs[(best + 1) % count]) * SWIVEL_STEP
 
 
