@@ -170,16 +170,15 @@ def penalty(distance: np.ndarray) -> np.ndarray:
 
 def overlap_penalty(distance: np.ndarray) -> np.ndarray:
     """Cost of a segment's signed distance (m) from a body volume or the other arm's upper
-    arm or forearm: :func:`penalty`, and :data:`PENETRATION_PENALTY` more, quadratic in
-    the depth beyond :data:`TOLERATED_DEPTH`."""
-    depth = np.maximum(-distance - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
-    return penalty(distance) + PENETRATION_PENALTY * depth * depth
+    arm or forearm: :func:`penalty`, and :func:`penetration_penalty` of its depth."""
+    return penalty(distance) + penetration_penalty(-distance)
 
 
 def penetration_penalty(depth: np.ndarray) -> np.ndarray:
-    """The part of :func:`overlap_penalty` a depth ``depth`` (m, ≥ 0) into the body pays
-    beyond :data:`TOLERATED_DEPTH`: what a candidate swivel beyond the measured window
-    pays (:mod:`motor.arm.swivel_cost`)."""
+    """What a depth ``depth`` (m) into the body pays beyond :data:`TOLERATED_DEPTH`:
+    :data:`PENETRATION_PENALTY` per :data:`CLEARANCE` of it, squared (0 at a distance).
+    Part of :func:`overlap_penalty`, and what a candidate swivel beyond the measured
+    window pays (:mod:`motor.arm.swivel_cost`)."""
     beyond = np.maximum(depth - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
     return PENETRATION_PENALTY * beyond * beyond
 
