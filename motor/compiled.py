@@ -20,7 +20,7 @@ from __future__ import annotations
 import time
 
 from motor import quaternion
-from motor.arm import cheapest_swivel, clearance, swivel, swivel_cost
+from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost
 from motor.body import distance
 from motor.signing import path_batch
 
@@ -29,6 +29,6 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, path_batch):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, path_batch):
         module.load_kernels()
     return time.perf_counter() - started

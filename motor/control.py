@@ -54,7 +54,8 @@ from dataclasses import replace
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.ik import solve_arm, swivel_of, swivel_zeros
+from motor.arm.given_swivel import arm_rotations
+from motor.arm.ik import swivel_of, swivel_zeros
 from motor.arm.reach_turn import TURN_JOINTS, trunk_turn, turned
 from motor.arm.swivel_track import SWIVEL_PERIOD, TRACK_REACH, SwivelGrid
 from motor.face.arkit import FACE_NAMES
@@ -738,8 +739,9 @@ class MotorControl:
 
 def _solve_rows(avatar: Avatar, side: str, rows: np.ndarray) -> np.ndarray:
     """Arm joint rotations ``(n, 4, 4)`` from rows of wrist, hand rotation, swivel, the
-    swivel's zero and the twist's reference (:meth:`MotorControl._rotations`)."""
-    return solve_arm(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], twist_reference=rows[:, 11:15], swivel_from=rows[:, 8:11]).rotations
+    swivel's zero and the twist's reference (:meth:`MotorControl._rotations`): the
+    compiled :func:`motor.arm.given_swivel.arm_rotations`, as the trunk's frame is upright."""
+    return arm_rotations(avatar, side, rows[:, :3], rows[:, 3:7], rows[:, 7], rows[:, 8:11], rows[:, 11:15])
 
 
 def _turning(yaw: np.ndarray) -> np.ndarray | None:

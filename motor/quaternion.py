@@ -52,17 +52,24 @@ def _as_rows(a: np.ndarray, own: tuple[int, ...], lead: tuple[int, ...]) -> np.n
     return np.ascontiguousarray(a).reshape(-1, a.shape[-1])
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def multiplied(px, py, pz, pw, qx, qy, qz, qw):  # noqa: ANN001, ANN201
+    """The Hamilton product ``p * q`` of two quaternions given by their components, for
+    compiled callers (:func:`multiply` over arrays)."""
+    return (
+        pw * qx + px * qw + py * qz - pz * qy,
+        pw * qy - px * qz + py * qw + pz * qx,
+        pw * qz + px * qy - py * qx + pz * qw,
+        pw * qw - px * qx - py * qy - pz * qz,
+    )
+
+
 @_products
 def _multiply_rows(p, q, out):  # noqa: ANN001, ANN202
     p_step, q_step = p.shape[0] > 1, q.shape[0] > 1
     for i in range(out.shape[0]):
         j, k = i * p_step, i * q_step
-        px, py, pz, pw = p[j, 0], p[j, 1], p[j, 2], p[j, 3]
-        qx, qy, qz, qw = q[k, 0], q[k, 1], q[k, 2], q[k, 3]
-        out[i, 0] = pw * qx + px * qw + py * qz - pz * qy
-        out[i, 1] = pw * qy - px * qz + py * qw + pz * qx
-        out[i, 2] = pw * qz + px * qy - py * qx + pz * qw
-        out[i, 3] = pw * qw - px * qx - py * qy - pz * qz
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = multiplied(p[j, 0], p[j, 1], p[j, 2], p[j, 3], q[k, 0], q[k, 1], q[k, 2], q[k, 3])
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")

@@ -35,7 +35,7 @@ _MODEL_ARM_CM = 60.0
 #: into forward as the arm rises (its axis' upward component from the first value to
 #: the second), so that the reference is never near the arm's axis where a hand goes
 #: (the blend is degenerate only for a hand raised behind the head).
-_DOWN_BACK = np.array([0.0, -1.0, -0.5]) / np.sqrt(1.25)
+DOWN_BACK = np.array([0.0, -1.0, -0.5]) / np.sqrt(1.25)
 RAISED = (0.2, 0.7)
 #: Within twice this (m) of the straight arm's reach the wrist eases toward a point this
 #: much short of it: at full stretch the elbow's bend, and with it the elbow's speed,
@@ -148,15 +148,14 @@ class ElbowCircle:
         distance = quat.norm(reach)
         fallback = _turned(torso_q, np.array([0.0, -1.0, 0.0]))
         axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
-        nearest = np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(chain.flexion_range[1]))
-        reached = np.maximum(_short_of(distance, _farthest(chain)), nearest)
+        reached = np.maximum(_short_of(distance, farthest_reach(chain)), nearest_reach(chain))
         cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
         flexion = np.arccos(np.minimum(np.maximum(cos_flexion, -1.0), 1.0))
         cos_shoulder = np.minimum(np.maximum((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0), 1.0)
         up = _turned(torso_q, np.array([0.0, 1.0, 0.0]))
         raised = np.minimum(np.maximum((np.sum(axis * up, axis=-1, keepdims=True) - RAISED[0]) / (RAISED[1] - RAISED[0]), 0.0), 1.0)
         raised = raised * raised * (3.0 - 2.0 * raised)
-        reference = (1.0 - raised) * _turned(torso_q, _DOWN_BACK) + raised * _turned(torso_q, np.array([0.0, 0.0, 1.0]))
+        reference = (1.0 - raised) * _turned(torso_q, DOWN_BACK) + raised * _turned(torso_q, np.array([0.0, 0.0, 1.0]))
         down = reference - np.sum(reference * axis, axis=-1, keepdims=True) * axis
         down_norm = np.linalg.norm(down, axis=-1, keepdims=True)
         sideways = _turned(torso_q, np.array([chain.side_sign, 0.0, 0.0]))
@@ -192,17 +191,23 @@ class ElbowCircle:
         return self.down[shape] * cos + self.out[shape] * sin
 
 
-def _farthest(chain: ArmChain) -> float:
+def farthest_reach(chain: ArmChain) -> float:
     """Shoulder-to-wrist distance (m) of the arm stretched as far as its elbow goes."""
     upper, fore = chain.upper, chain.fore
     return float(np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(chain.flexion_range[0])))
+
+
+def nearest_reach(chain: ArmChain) -> float:
+    """Shoulder-to-wrist distance (m) of the arm bent as far as its elbow goes."""
+    upper, fore = chain.upper, chain.fore
+    return float(np.sqrt(upper**2 + fore**2 + 2.0 * upper * fore * np.cos(chain.flexion_range[1])))
 
 
 def exact_reach(chain: ArmChain) -> float:
     """The farthest shoulder-to-wrist distance (m) the arm reaches exactly, where its reach
     starts to ease (:func:`_short_of`): what planners place their paths within, so that
     the arm follows them as planned."""
-    return _farthest(chain) - 2.0 * REACH_EASE
+    return farthest_reach(chain) - 2.0 * REACH_EASE
 
 
 def _short_of(distance: np.ndarray, farthest: float) -> np.ndarray:

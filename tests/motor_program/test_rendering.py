@@ -205,7 +205,7 @@ def test_streaming_windows_equal_one_call(avatar, fps) -> None:
 
 
 def test_frames_are_vectorized_not_looped(avatar, monkeypatch) -> None:
-    calls = {"solve_arm": 0, "hand_rotations": 0}
+    calls = {"arm_rotations": 0, "hand_rotations": 0}
 
     def counted(name, function):
         def wrapper(*args, **kwargs):
@@ -214,7 +214,7 @@ def test_frames_are_vectorized_not_looped(avatar, monkeypatch) -> None:
 
         return wrapper
 
-    monkeypatch.setattr(control_module, "solve_arm", counted("solve_arm", control_module.solve_arm))
+    monkeypatch.setattr(control_module, "arm_rotations", counted("arm_rotations", control_module.arm_rotations))
     monkeypatch.setattr(control_module, "hand_rotations", counted("hand_rotations", control_module.hand_rotations))
     counts = []
     for fps in (30.0, 300.0):
