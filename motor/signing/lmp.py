@@ -449,7 +449,7 @@ class SignChannelLMP:
         if flip:
             first = -first
         by_distance = self.channel[1] == "wrist_position"
-        if not by_distance and self.pegs.ready > time and np.all(np.isfinite(here)):
+        if not by_distance and self.pegs.ready > time and np.isfinite(here).all():
             return self._template(rotation, flip, first).track(here, time)
         way = np.stack([here, first] if self.via is None else [here, *np.asarray(self.via, dtype=float), first])
         transition = Move(time, self.pegs.ready, self.transition, way)
@@ -475,7 +475,7 @@ class SignChannelLMP:
         :attr:`via_fractions`) and of each move (even)."""
         assert self.via_fractions is not None
         transition = np.concatenate([[0.0], np.asarray(self.via_fractions, dtype=float), [1.0]])
-        return [transition, *(np.linspace(0.0, 1.0, m.values.shape[0]) for m in self.moves)]
+        return [transition, *(even_fractions(m.values.shape[0]) for m in self.moves)]
 
     def _template(self, rotation: bool, flip: bool, first: np.ndarray) -> _Template:
         """The track of a channel moved by even fractions of its values (hand rotation, hand
@@ -486,7 +486,7 @@ class SignChannelLMP:
         if flip not in templates:
             for manner in (self.transition, *(m.manner for m in self.moves)):
                 profile(manner)  # an unknown manner: the error a Move gives
-            way = np.stack([first, first] if self.via is None else [first, *np.asarray(self.via, dtype=float), first])
+            way = np.array([first, first] if self.via is None else [first, *np.asarray(self.via, dtype=float), first])
             values = [way]
             for move in self.moves:
                 values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
@@ -508,7 +508,8 @@ class _Template:
         values[0] = here
         starts = self.base.starts.copy()
         starts[0] = time
-        return replace(self.base, initial=here, starts=starts, values=values)
+        base = self.base
+        return _Track(base.rotation, here, starts, base.ends, base.manners, values, base.keys, base.first, base.last, base.warnings)
 
 
 def _layout(sizes: Sequence[int], fractions: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -519,9 +520,17 @@ def _layout(sizes: Sequence[int], fractions: Sequence[np.ndarray]) -> tuple[np.n
 
 
 @cache
+def even_fractions(count: int) -> np.ndarray:
+    """``count`` even fractions of the way from 0 to 1 (``np.linspace``; read-only, shared)."""
+    fractions = np.linspace(0.0, 1.0, count)
+    fractions.flags.writeable = False
+    return fractions
+
+
+@cache
 def _even_layout(sizes: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_layout` of moves of ``sizes`` values at even fractions (read-only, shared)."""
-    arrays = _layout(sizes, [np.linspace(0.0, 1.0, size) for size in sizes])
+    arrays = _layout(sizes, [even_fractions(size) for size in sizes])
     for array in arrays:
         array.flags.writeable = False
     return arrays
