@@ -4,7 +4,8 @@ numba compiles each kernel (:mod:`motor.quaternion`'s products,
 :mod:`motor.body.distance`'s signed distances, :mod:`motor.arm.clearance`'s
 arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
 :mod:`motor.arm.swivel`'s value tables, :mod:`motor.arm.cheapest_swivel`'s pruned search,
-:mod:`motor.signing.path_batch`'s trace of a move within its hull) once per checkout and
+:mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
+rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull) once per checkout and
 caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
@@ -22,6 +23,7 @@ import time
 from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost
 from motor.body import distance
+from motor.hand import shape
 from motor.signing import path_batch
 
 
@@ -29,6 +31,6 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, path_batch):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, shape, path_batch):
         module.load_kernels()
     return time.perf_counter() - started

@@ -9,7 +9,9 @@ The products (:func:`multiply`, :func:`rotate`, :func:`cross`) and :func:`normal
 loops compiled by numba over the broadcast rows: the same operations in the same order as
 numpy's arithmetic on whole arrays, so the same numbers bit for bit
 (``tests/perf_equivalence/test_compiled_quaternion.py``), without its temporaries.
-Functions with trigonometry stay numpy's (numba's ``sin`` may differ in the last bit).
+Functions with trigonometry stay numpy's over arrays; compiled callers turn about an axis
+with :func:`about_axis`, whose C-library ``sin`` and ``cos`` round as numpy's do here (numba's
+``arccos``, ``arctan2``, ``tanh`` and ``exp`` do not: they differ from numpy's in the last bit).
 """
 
 from __future__ import annotations
@@ -62,6 +64,17 @@ def multiplied(px, py, pz, pw, qx, qy, qz, qw):  # noqa: ANN001, ANN201
         pw * qz + px * qy - py * qx + pz * qw,
         pw * qw - px * qx - py * qy - pz * qz,
     )
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def about_axis(ax, ay, az, angle):  # noqa: ANN001, ANN201
+    """The rotation by ``angle`` (radians) about the unit axis ``(ax, ay, az)``, for
+    compiled callers (:func:`from_axis_angle` over arrays; the C library's ``sin`` and
+    ``cos``, which round as numpy's do on the machines measured:
+    ``tests/perf_equivalence/test_compiled_quaternion.py``)."""
+    half = 0.5 * angle
+    sine = math.sin(half)
+    return ax * sine, ay * sine, az * sine, math.cos(half)
 
 
 @_products

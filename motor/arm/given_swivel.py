@@ -129,14 +129,6 @@ def _cross(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN202
 
 
 @_inline
-def _about(ax, ay, az, angle):  # noqa: ANN001, ANN202
-    """:func:`motor.quaternion.from_axis_angle` of one axis and angle."""
-    half = 0.5 * angle
-    sine = math.sin(half)
-    return ax * sine, ay * sine, az * sine, math.cos(half)
-
-
-@_inline
 def _wrapped(angle):  # noqa: ANN001, ANN202
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
@@ -146,7 +138,7 @@ def _swing(qx, qy, qz, qw, ax, ay, az):  # noqa: ANN001, ANN202
     """:func:`motor.quaternion.swing_twist` of one quaternion: the swing and the twist angle."""
     along = qx * ax + qy * ay + qz * az
     angle = _wrapped(2.0 * math.atan2(along, qw))
-    tx, ty, tz, tw = _about(ax, ay, az, angle)
+    tx, ty, tz, tw = quat.about_axis(ax, ay, az, angle)
     sx, sy, sz, sw = quat.multiplied(qx, qy, qz, qw, -tx, -ty, -tz, tw)
     return sx, sy, sz, sw, angle
 
@@ -210,7 +202,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         axis_norm = np.sqrt(ax * ax + ay * ay + az * az)
         across = _clamp(axis_norm / max(scalars[_CLAVICLE_LENGTH] * distance, 1e-12) / 0.3, 0.0, 1.0)
         scale = max(axis_norm, 1e-12)
-        kx, ky, kz, kw = _about(ax / scale, ay / scale, az / scale, scalars[_CLAVICLE_MAX] * amount * across)
+        kx, ky, kz, kw = quat.about_axis(ax / scale, ay / scale, az / scale, scalars[_CLAVICLE_MAX] * amount * across)
         ox, oy, oz = quat.rotated(kx, ky, kz, kw, cx, cy, cz)
         sx, sy, sz = vectors[_SC_POSITION, 0] + ox, vectors[_SC_POSITION, 1] + oy, vectors[_SC_POSITION, 2] + oz
         # the elbow circle (chain.ElbowCircle.of)
@@ -271,7 +263,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         out[i, 0, 0], out[i, 0, 1], out[i, 0, 2], out[i, 0, 3] = kx, ky, kz, kw
         out[i, 1, 0], out[i, 1, 1], out[i, 1, 2], out[i, 1, 3] = quat.multiplied(-kx, -ky, -kz, kw, qx, qy, qz, qw)
         hinge = vectors[_HINGE_REST]
-        ex, ey, ez, ew = _about(hinge[0], hinge[1], hinge[2], flexion)
+        ex, ey, ez, ew = quat.about_axis(hinge[0], hinge[1], hinge[2], flexion)
         fx, fy, fz, fw = quat.multiplied(qx, qy, qz, qw, ex, ey, ez, ew)
         # the forearm's twist: the change the hand asks for since the reference
         lx, ly, lz, lw = quat.multiplied(-fx, -fy, -fz, fw, hx, hy, hz, hw)
@@ -279,7 +271,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         certainty = _clamp(2.0 - 2.0 * math.acos(_clamp(abs(gw), 0.0, 1.0)) / SURE_SWING, 0.0, 1.0)
         more = _wrapped(-angle - reference[i, 1])
         twist = _clamp(reference[i, 0] + certainty * more, scalars[_TWIST_LOW], scalars[_TWIST_HIGH])
-        tx, ty, tz, tw = _about(px, py, pz, twist)
+        tx, ty, tz, tw = quat.about_axis(px, py, pz, twist)
         lx, ly, lz, lw = quat.multiplied(ex, ey, ez, ew, tx, ty, tz, tw)
         out[i, 2, 0], out[i, 2, 1], out[i, 2, 2], out[i, 2, 3] = lx, ly, lz, lw
         # the wrist: the rest of the hand's turn, within the wrist's limits

@@ -23,8 +23,10 @@ Parameter layout (:data:`PARAMETER_COUNT` = 26):
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
+import numba
 import numpy as np
 
 from motor import quaternion as quat
@@ -203,46 +205,90 @@ def hand_rotations(avatar: Avatar, side: str, params: np.ndarray) -> np.ndarray:
     """Local rotations ``(n, 17, 4)`` of one hand's joints (order of ``avatar.hand_joints``).
 
     ``params (n, PARAMETER_COUNT)`` as made by :func:`handshape_params` (or interpolated).
+    The thumb's angles are numpy's (:func:`thumb_angles`); the rotations one compiled
+    loop over the rows: the thumb's base joint turns about its abduction, palmar and twist
+    axes in turn, its outer joints and the long fingers' middle and end joints about their
+    hinges, the ring and little fingers' carpometacarpal joints about an oblique axis and
+    the long fingers' base joints by the seed's formula (module docstring). The same
+    numbers, bit for bit, as numpy's arithmetic on whole arrays
+    (``tests/perf_equivalence/plain_hand.py``).
     """
     params = np.atleast_2d(np.asarray(params, dtype=float))
     if params.shape[-1] != PARAMETER_COUNT:
         raise ValueError(f"hand parameters have {params.shape[-1]} columns, expected {PARAMETER_COUNT}")
-    frame = avatar.hand_frames[side]
-    calibration = avatar.calibration
+    axes, fingers = _hand_tables(avatar, side)
     rotations = np.empty((params.shape[0], 17, 4))
-    rotations[:, 0:3] = _thumb_rotations(avatar, side, params)
-    slot = 3
-    for k, finger in enumerate(LONG_FINGERS):
-        columns = params[:, FINGER_START + 4 * k : FINGER_START + 4 * k + 4]
-        bend, middle, end = (columns[:, (0, 2, 3)] * calibration.max_bend[k]).T
-        splay = columns[:, 1] * calibration.max_splay[k]
-        if finger in _CMC_MAX:
-            rotations[:, slot] = _cmc_rotation(frame, finger, bend, columns[:, 1])
-            slot += 1
-        rotations[:, slot] = _base_rotation(frame, k, bend, splay, calibration)
-        rotations[:, slot + 1] = quat.from_axis_angle(frame.bend_axis, middle)
-        rotations[:, slot + 2] = quat.from_axis_angle(frame.bend_axis, end)
-        slot += 3
+    _hand_rows(np.ascontiguousarray(params), np.ascontiguousarray(thumb_angles(avatar, params)), axes, fingers, rotations)
     return rotations
 
 
-def _base_rotation(frame: HandFrame, k: int, bend: np.ndarray, splay: np.ndarray, calibration: FingerCalibration) -> np.ndarray:
-    """The seed-000 finger base joint from bend and splay (radians)."""
-    toward_thumb = _TOWARD_THUMB[k]
-    b_prime = np.clip(2.0 * bend / np.pi, 0.0, 1.0)
-    splay_part = quat.from_axis_angle(frame.splay_axis, toward_thumb * splay * (1.0 - b_prime))
-    bend_part = quat.from_axis_angle(frame.bend_axis, bend)
-    taper = calibration.theta_flat[k] * (1.0 - b_prime) + calibration.theta_fist1[k] * b_prime
-    taper_part = quat.from_axis_angle(frame.splay_axis, toward_thumb * taper)
-    twist_part = quat.from_axis_angle(frame.twist_axis, calibration.theta_fist2[k] * b_prime)
-    return quat.multiply(quat.multiply(splay_part, bend_part), quat.multiply(taper_part, twist_part))
+#: Rows of a hand's axis table (:func:`_hand_tables`).
+_SPLAY, _BEND, _TWIST, _CMC_AXIS, _ABDUCTION, _PALMAR, _THUMB_TWIST = range(7)
+#: Columns of a hand's finger table (:func:`_hand_tables`).
+_TOWARD, _FLAT, _FIST1, _FIST2, _BEND_BASE, _BEND_MIDDLE, _BEND_END, _SPLAY_MAX, _CMC = range(9)
 
 
-def _cmc_rotation(frame: HandFrame, finger: str, bend: np.ndarray, splay_proportion: np.ndarray) -> np.ndarray:
-    """Carpometacarpal hinge of the ring or little finger, its axis oblique across the palm."""
-    axis = quat.normalize(frame.bend_axis + 0.35 * frame.twist_axis)
-    b_prime = np.clip(2.0 * bend / np.pi, 0.0, 1.0)
-    return quat.from_axis_angle(axis, _CMC_MAX[finger] * b_prime * np.clip(np.abs(splay_proportion), 0.0, 1.0))
+@functools.lru_cache(maxsize=32)
+def _hand_tables(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray]:
+    """The hand's constants as :func:`_hand_rows` reads them: axes ``(7, 3)`` and, per
+    long finger, its constants ``(4, 9)`` (a carpometacarpal maximum of 0: no such joint)."""
+    frame = avatar.hand_frames[side]
+    calibration = avatar.calibration
+    axes = np.stack([frame.splay_axis, frame.bend_axis, frame.twist_axis, quat.normalize(frame.bend_axis + 0.35 * frame.twist_axis), *thumb_axes(avatar, side)])
+    fingers = np.column_stack([
+        _TOWARD_THUMB, calibration.theta_flat, calibration.theta_fist1, calibration.theta_fist2, calibration.max_bend,
+        calibration.max_splay, [_CMC_MAX.get(finger, 0.0) for finger in LONG_FINGERS],
+    ]).astype(float)  # fmt: skip
+    axes.flags.writeable = fingers.flags.writeable = False
+    return axes, fingers
+
+
+_ROWS = numba.types.Array(numba.float64, 2, "C", readonly=True)
+
+
+@numba.njit([numba.void(_ROWS, _ROWS, _ROWS, _ROWS, numba.float64[:, :, ::1])], cache=True, error_model="numpy")
+def _hand_rows(params, angles, axes, fingers, out):  # noqa: ANN001, ANN202
+    about = quat.about_axis
+    splay_x, splay_y, splay_z = axes[_SPLAY, 0], axes[_SPLAY, 1], axes[_SPLAY, 2]
+    bend_x, bend_y, bend_z = axes[_BEND, 0], axes[_BEND, 1], axes[_BEND, 2]
+    palmar = axes[_PALMAR]
+    for i in range(params.shape[0]):
+        a = about(axes[_ABDUCTION, 0], axes[_ABDUCTION, 1], axes[_ABDUCTION, 2], angles[i, 0])
+        b = about(palmar[0], palmar[1], palmar[2], angles[i, 1])
+        c = about(axes[_THUMB_TWIST, 0], axes[_THUMB_TWIST, 1], axes[_THUMB_TWIST, 2], angles[i, 2])
+        ab = quat.multiplied(a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3])
+        out[i, 0, 0], out[i, 0, 1], out[i, 0, 2], out[i, 0, 3] = quat.multiplied(ab[0], ab[1], ab[2], ab[3], c[0], c[1], c[2], c[3])
+        out[i, 1, 0], out[i, 1, 1], out[i, 1, 2], out[i, 1, 3] = about(palmar[0], palmar[1], palmar[2], angles[i, 3])
+        out[i, 2, 0], out[i, 2, 1], out[i, 2, 2], out[i, 2, 3] = about(palmar[0], palmar[1], palmar[2], angles[i, 4])
+        slot = 3
+        for k in range(fingers.shape[0]):
+            f = fingers[k]
+            column = FINGER_START + 4 * k
+            bend = params[i, column] * f[_BEND_BASE]
+            splay = params[i, column + 1] * f[_SPLAY_MAX]
+            b_prime = min(max(2.0 * bend / np.pi, 0.0), 1.0)
+            if f[_CMC] != 0.0:
+                angle = f[_CMC] * b_prime * min(max(abs(params[i, column + 1]), 0.0), 1.0)
+                out[i, slot, 0], out[i, slot, 1], out[i, slot, 2], out[i, slot, 3] = about(axes[_CMC_AXIS, 0], axes[_CMC_AXIS, 1], axes[_CMC_AXIS, 2], angle)
+                slot += 1
+            s = about(splay_x, splay_y, splay_z, f[_TOWARD] * splay * (1.0 - b_prime))
+            b = about(bend_x, bend_y, bend_z, bend)
+            t = about(splay_x, splay_y, splay_z, f[_TOWARD] * (f[_FLAT] * (1.0 - b_prime) + f[_FIST1] * b_prime))
+            w = about(axes[_TWIST, 0], axes[_TWIST, 1], axes[_TWIST, 2], f[_FIST2] * b_prime)
+            sb = quat.multiplied(s[0], s[1], s[2], s[3], b[0], b[1], b[2], b[3])
+            tw = quat.multiplied(t[0], t[1], t[2], t[3], w[0], w[1], w[2], w[3])
+            out[i, slot, 0], out[i, slot, 1], out[i, slot, 2], out[i, slot, 3] = quat.multiplied(sb[0], sb[1], sb[2], sb[3], tw[0], tw[1], tw[2], tw[3])
+            middle = about(bend_x, bend_y, bend_z, params[i, column + 2] * f[_BEND_MIDDLE])
+            out[i, slot + 1, 0], out[i, slot + 1, 1], out[i, slot + 1, 2], out[i, slot + 1, 3] = middle
+            end = about(bend_x, bend_y, bend_z, params[i, column + 3] * f[_BEND_END])
+            out[i, slot + 2, 0], out[i, slot + 2, 1], out[i, slot + 2, 2], out[i, slot + 2, 3] = end
+            slot += 3
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loop once (it loads when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    _hand_rows(np.zeros((1, PARAMETER_COUNT)), np.zeros((1, 5)), np.eye(7, 3), np.zeros((4, 9)), np.empty((1, 17, 4)))
 
 
 def thumb_axes(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -263,17 +309,3 @@ def thumb_angles(avatar: Avatar, params: np.ndarray) -> np.ndarray:
     bent = params[:, THUMB_BENDING] * avatar.calibration.thumb_max_bend
     angles[:, 3:5] = (1.0 - override) * angles[:, 3:5] + override * bent
     return angles
-
-
-def thumb_rotations_from_angles(avatar: Avatar, side: str, angles: np.ndarray) -> np.ndarray:
-    """Local rotations ``(n, 3, 4)`` of thumb1..3 from angles ``(n, 5)`` (see :func:`thumb_angles`)."""
-    abduction, palmar, twist = thumb_axes(avatar, side)
-    base = quat.multiply(
-        quat.multiply(quat.from_axis_angle(abduction, angles[:, 0]), quat.from_axis_angle(palmar, angles[:, 1])),
-        quat.from_axis_angle(twist, angles[:, 2]),
-    )
-    return np.stack((base, quat.from_axis_angle(palmar, angles[:, 3]), quat.from_axis_angle(palmar, angles[:, 4])), axis=1)
-
-
-def _thumb_rotations(avatar: Avatar, side: str, params: np.ndarray) -> np.ndarray:
-    return thumb_rotations_from_angles(avatar, side, thumb_angles(avatar, params))

@@ -11,6 +11,7 @@ from motor import quaternion as quat
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost
 from motor.body import distance
 from motor.body.avatar import load_avatar
+from motor.hand import shape
 from motor.signing import path_batch
 from motor.compiled import warm_up
 
@@ -19,7 +20,7 @@ LOOPS = [
     (distance, "_closest_loop"), (distance, "_segments_loop"), (distance, "_point_segment_loop"), (distance, "_volume_loop"),
     (clearance, "_clearance_rows"), (clearance, "_charge_trunk"), (swivel, "_cost_to_go"),
     (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"), (cheapest_swivel, "_cheapest_rows"), (path_batch, "_within_rows"),
-    (given_swivel, "_posed_rows"),
+    (given_swivel, "_posed_rows"), (shape, "_hand_rows"),
 ]  # fmt: skip
 
 
@@ -39,5 +40,6 @@ def test_read_only_strided_and_integer_inputs_need_no_other_compilation():
     ends = np.broadcast_to(np.ones(3), (5, 3))
     assert distance.segment_distance(ends, points, ends, points).shape == (5,)
     wrists = np.broadcast_to(np.array([-0.2, 1.2, 0.3]), (5, 3))
+    assert shape.hand_rotations(load_avatar("max"), "l", np.broadcast_to(np.arange(26), (3, 26))[:, ::1]).shape == (3, 17, 4)
     assert given_swivel.arm_rotations(load_avatar("max"), "r", wrists, rows, np.zeros(5, dtype=np.int64), points, rows[:, ::-1]).shape == (5, 4, 4)
     assert all(len(getattr(module, name).signatures) == 1 for module, name in LOOPS)
