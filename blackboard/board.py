@@ -8,13 +8,14 @@ clock time of the utterance start, subtracted for the timeline and for observers
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from blackboard.chunk import ChunkState, ChunkStateMachine, Transition
 from blackboard.events import BehaviorFeedback, ChunkStateChanged, EventBus
 from blackboard.planning import GestureDemands, MotorProgramLike
 from blackboard.timeline import Timeline
 from blackboard.chunk_timing import ChunkTiming, GestureTiming
+from motor.program.lmp import TimePegs
 from mura.model import BehaviorSpec, ChunkSpec
 from tts import SpeechTiming
 
@@ -28,6 +29,16 @@ class PlannedGesture:
     timing: GestureTiming
     program: MotorProgramLike
     next_gesture_follows: bool
+
+
+@dataclass(frozen=True)
+class SpentProgram:
+    """What is kept of a motor program once its chunk is Completed (:meth:`Blackboard.retire`):
+    the pegs it realized (seconds, session clock) and its warnings, without its LMPs."""
+
+    pegs: TimePegs
+    warnings: tuple[str, ...] = ()
+    lmps: tuple[object, ...] = ()
 
 
 class Blackboard:
@@ -109,6 +120,22 @@ class Blackboard:
         previous = self.machine.state
         transition = self.machine.move(state, time, reason)
         self._announce(previous, transition)
+
+    def retire(self) -> None:
+        """Drop what only planning and performing the chunk needed, once it is Completed.
+
+        The utterance's job keeps every board to its end (for the end time and, when the
+        output is collected, the audio), so what a board holds adds up with the length of
+        the speech: a gesture's motor program (LMPs, wrist trajectories) is about 40 kB,
+        so with the phonemes an hour of the memory benchmark's speech (a gesture every 2 s)
+        would hold about 80 MB. The motor control holds the LMPs itself for as long as it
+        samples them, and the phonemes are in the timeline; what the scheduler reads of a
+        completed board stays: the programs' pegs, the speech's words, marks and audio, the
+        timing and the state.
+        """
+        self.gestures = tuple(replace(g, program=SpentProgram(g.program.pegs, tuple(g.program.warnings))) for g in self.gestures)
+        if self.speech is not None:
+            self.speech = replace(self.speech, phonemes=())
 
     def _announce(self, previous: ChunkState | None, transition: Transition) -> None:
         local = Transition(transition.state, transition.time - self.origin, transition.reason)

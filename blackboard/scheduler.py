@@ -357,6 +357,7 @@ class Scheduler:
 
     def _complete(self, board: Blackboard, reason: str = "") -> None:
         board.move(ChunkState.COMPLETED, self._time, reason)
+        board.retire()  # the job keeps the board to the utterance's end: only what is read later stays
         self._check_done(self._job_of(board))
 
     def _check_done(self, job: Job) -> None:
