@@ -11,8 +11,8 @@ The one-hour case: :func:`long_utterance` builds an utterance of about an hour o
 by repeating the seed's Fig. 2 utterance (two chunks, a deictic and an iconic gesture)
 with fresh time tags and ids, each repetition its own pair of chunks.
 
-What is measured is the streaming render (``Agent.render_files``, what ``mura render``
-runs) at a short and a long length (60 s and 600 s; ``--quick``: 30 s and 120 s) and, in
+What is measured is the streaming render (``Agent.render_files`` with ``NAME.glb``, what
+``mura render`` runs) at a short and a long length (60 s and 600 s; ``--quick``: 30 s and 120 s) and, in
 the full run, at one hour. Memory is *flat* when the peak grows by less than
 :data:`FLAT_MB_PER_HOUR` per hour of speech between the two lengths: what remains is the
 timeline (words, phonemes, chunk states), while accumulating the frames and the audio
@@ -153,15 +153,16 @@ def render_with_agent(seconds: str) -> dict[str, float]:
 
 def render_streaming(seconds: str) -> dict[str, float]:
     """Render a :func:`long_utterance` of ``seconds`` with ``Agent().render_files`` (the
-    streaming path ``mura render`` takes) into a temporary folder; returns the performed
-    duration and the size of the files written, MB."""
+    streaming path ``mura render`` takes, ``NAME.glb`` included as it writes it unless
+    ``--no-glb``) into a temporary folder; returns the performed duration and the size of
+    the files written, MB."""
     import tempfile
 
     from agent.agent import Agent
 
     with tempfile.TemporaryDirectory(prefix="mura-bench-memory-") as folder:
-        files = Agent(limits=_long_job_limits()).render_files(long_utterance(float(seconds)), folder, name="long")
-        size = sum(path.stat().st_size for path in (files.wav, files.bvh, files.timeline, files.html))
+        files = Agent(limits=_long_job_limits()).render_files(long_utterance(float(seconds)), folder, name="long", glb=True)
+        size = sum(path.stat().st_size for path in (files.wav, files.bvh, files.timeline, files.html, files.glb) if path is not None)
     return {"duration_s": files.duration, "files_mb": size / 2**20}
 
 
