@@ -100,9 +100,11 @@ ARM_CHANNELS: tuple[str, ...] = ("wrist_position", "hand_rotation", "handshape")
 #: the swivel grid's margin.
 HISTORY = 1.0
 #: LMPs that lost control are dropped once a channel has this many of them (or all but
-#: its last): each drop computes the channel's state where its history now starts, so
-#: dropping a few at a time spares that work; memory stays flat all the same.
-FORGET_BATCH = 2
+#: its last): each drop computes the channel's state where its history now starts (about
+#: 1 ms for the arm channels), so dropping several at a time spares that work — streamed
+#: 0.1 s windows about 5 % faster at 8 than at 2 — while memory stays flat all the same
+#: (a channel keeps at most this many spent LMPs, some 40 kB each).
+FORGET_BATCH = 8
 #: How far past a window's start frames are computed ahead, seconds: later windows are
 #: then served from them until an activation changes what they would be.
 FRAME_LOOKAHEAD = 2.0

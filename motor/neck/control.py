@@ -46,7 +46,7 @@ EYE_RANGE = np.radians(45.0)
 EYES: tuple[str, ...] = ("l_eyeball_joint", "r_eyeball_joint")
 GAZE_CHANNEL = ("neck", "gaze")
 #: Gaze shifts that lost control are dropped this many at a time (:meth:`NeckControl.forget_before`).
-FORGET_BATCH = 2
+FORGET_BATCH = 8
 
 NeckLMP = GazeLMP | HeadMovementLMP | TrunkLMP
 
