@@ -189,7 +189,9 @@ def test_every_utterance_plans_and_renders_within_reach_without_nan(avatar, path
 
 
 @pytest.mark.parametrize("fps", [25.0, 60.0])
-def test_streaming_windows_equal_one_call(avatar, fps) -> None:
+def test_streaming_windows_equal_one_call(avatar, fps, monkeypatch) -> None:
+    # two gestures leave each channel fewer spent LMPs than the control drops at a time
+    monkeypatch.setattr(control_module, "FORGET_BATCH", 2)
     control, whole = render(avatar, _two_gestures(), fps=fps, end=4.0)
     activated = sum(len(lmps) for lmps in control.activated().values())
     edges = [0.0, 0.013, 0.5, 0.51, 1.37, 2.0, 2.0, 3.3, 4.0]
