@@ -103,14 +103,19 @@ def _rotate_rows(q, v, out):  # noqa: ANN001, ANN202
         out[i, 0], out[i, 1], out[i, 2] = rotated(q[j, 0], q[j, 1], q[j, 2], q[j, 3], v[k, 0], v[k, 1], v[k, 2])
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def crossed(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN201
+    """The cross product ``u × v`` of two vectors given by their components, for compiled
+    callers (:func:`cross` over arrays)."""
+    return uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+
+
 @_products
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
     u_step, v_step = u.shape[0] > 1, v.shape[0] > 1
     for i in range(out.shape[0]):
         j, k = i * u_step, i * v_step
-        out[i, 0] = u[j, 1] * v[k, 2] - u[j, 2] * v[k, 1]
-        out[i, 1] = u[j, 2] * v[k, 0] - u[j, 0] * v[k, 2]
-        out[i, 2] = u[j, 0] * v[k, 1] - u[j, 1] * v[k, 0]
+        out[i, 0], out[i, 1], out[i, 2] = crossed(u[j, 0], u[j, 1], u[j, 2], v[k, 0], v[k, 1], v[k, 2])
 
 
 @numba.njit([numba.void(_ROWS, _OUT)], cache=True, error_model="numpy")

@@ -35,10 +35,10 @@ _OUT3 = numba.float64[:, :, ::1]
 _CLAVICLE, _SC_POSITION, _UPPER_REST, _HINGE_REST, _REST_NORMAL, _PRONATION, _FLEXION, _DEVIATION = range(8)
 #: Entries of the chain's scalar table (:func:`_chain_tables`).
 (
-    _SIDE_SIGN, _UPPER, _FORE, _UPPER_SQUARED, _FORE_SQUARED, _TWICE_UPPER, _BOTH_TWICE, _ARM_LENGTH, _CLAVICLE_LENGTH,
+    _SIDE_SIGN, _UPPER, _UPPER_SQUARED, _FORE_SQUARED, _TWICE_UPPER, _BOTH_TWICE, _ARM_LENGTH, _CLAVICLE_LENGTH,
     _CLAVICLE_MAX, _NEAREST, _FARTHEST, _TWIST_LOW, _TWIST_HIGH, _WRIST_FLEXION_LOW, _WRIST_FLEXION_HIGH,
     _DEVIATION_LOW, _DEVIATION_HIGH,
-) = range(18)  # fmt: skip
+) = range(17)  # fmt: skip
 
 
 def arm_rotations(
@@ -82,7 +82,7 @@ def arm_rotations(
 @functools.lru_cache(maxsize=32)
 def _chain_tables(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray]:
     """The arm's constants as the compiled loop reads them: unit vectors and points
-    ``(8, 3)`` and scalars ``(18,)``, each computed as the numpy composition computes it."""
+    ``(8, 3)`` and scalars ``(17,)``, each computed as the numpy composition computes it."""
     chain = arm_chain(avatar, side)
     upper, fore = chain.upper, chain.fore
     vectors = np.stack(
@@ -99,7 +99,7 @@ def _chain_tables(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray]:
     ).astype(float)
     scalars = np.array(
         [
-            chain.side_sign, upper, fore, upper**2, fore**2, 2.0 * upper, 2.0 * upper * fore, upper + fore,
+            chain.side_sign, upper, upper**2, fore**2, 2.0 * upper, 2.0 * upper * fore, upper + fore,
             quat.norm(chain.clavicle), chain.clavicle_max,
             nearest_reach(chain), farthest_reach(chain),
             *chain.twist_range, *chain.wrist_flexion, *chain.wrist_deviation,
@@ -124,8 +124,14 @@ def _normalized3(x, y, z):  # noqa: ANN001, ANN202
 
 
 @_inline
-def _cross(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN202
-    return uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+def _normalized4(x, y, z, w):  # noqa: ANN001, ANN202
+    square = 0.0
+    square += x * x
+    square += y * y
+    square += z * z
+    square += w * w
+    length = np.sqrt(square)
+    return x / length, y / length, z / length, w / length
 
 
 @_inline
@@ -168,13 +174,7 @@ def _from_matrix(m00, m01, m02, m10, m11, m12, m20, m21, m22):  # noqa: ANN001, 
         x, y, z, w = m02 + m20, m12 + m21, 1.0 - m00 - m11 + m22, m10 - m01
     else:
         x, y, z, w = m21 - m12, m02 - m20, m10 - m01, 1.0 + m00 + m11 + m22
-    square = 0.0
-    square += x * x
-    square += y * y
-    square += z * z
-    square += w * w
-    length = np.sqrt(square)
-    return x / length, y / length, z / length, w / length
+    return _normalized4(x, y, z, w)
 
 
 @numba.njit([numba.void(_IN2, _IN2, _IN1, _IN2, _IN2, _IN2, _IN1, _OUT3)], cache=True, error_model="numpy")
@@ -186,11 +186,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
     px, py, pz = vectors[_PRONATION, 0], vectors[_PRONATION, 1], vectors[_PRONATION, 2]
     for i in range(targets.shape[0]):
         tx, ty, tz = targets[i, 0], targets[i, 1], targets[i, 2]
-        square = 0.0
-        for k in range(4):
-            square += hands[i, k] * hands[i, k]
-        length = np.sqrt(square)
-        hx, hy, hz, hw = hands[i, 0] / length, hands[i, 1] / length, hands[i, 2] / length, hands[i, 3] / length
+        hx, hy, hz, hw = _normalized4(hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3])
         # the clavicle turns the shoulder toward a far reach (chain.clavicle_rotation)
         rx = tx - (vectors[_SC_POSITION, 0] + cx)
         ry = ty - (vectors[_SC_POSITION, 1] + cy)
@@ -198,7 +194,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         distance = np.sqrt(rx * rx + ry * ry + rz * rz)
         t = _clamp((distance / scalars[_ARM_LENGTH] - low_reach) / (high_reach - low_reach), 0.0, 1.0)
         amount = t * t * (3.0 - 2.0 * t)
-        ax, ay, az = _cross(cx, cy, cz, rx, ry, rz)
+        ax, ay, az = quat.crossed(cx, cy, cz, rx, ry, rz)
         axis_norm = np.sqrt(ax * ax + ay * ay + az * az)
         across = _clamp(axis_norm / max(scalars[_CLAVICLE_LENGTH] * distance, 1e-12) / 0.3, 0.0, 1.0)
         scale = max(axis_norm, 1e-12)
@@ -232,8 +228,8 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
             scale = max(down_norm, 1e-12)
             dx, dy, dz = dx / scale, dy / scale, dz / scale
         else:
-            dx, dy, dz = _cross(ax, ay, az, side_sign, 0.0, 0.0)
-        ux, uy, uz = _cross(ax, ay, az, dx, dy, dz)
+            dx, dy, dz = quat.crossed(ax, ay, az, side_sign, 0.0, 0.0)
+        ux, uy, uz = quat.crossed(ax, ay, az, dx, dy, dz)
         ux, uy, uz = side_sign * ux, side_sign * uy, side_sign * uz
         along = upper * cos_shoulder
         mx, my, mz = sx + ax * along, sy + ay * along, sz + az * along
@@ -245,9 +241,9 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         cos, sin = math.cos(psi), math.sin(psi)
         gx, gy, gz = dx * cos + ux * sin, dy * cos + uy * sin, dz * cos + uz * sin
         bx, by, bz = _normalized3(mx + gx * radius - sx, my + gy * radius - sy, mz + gz * radius - sz)
-        nx, ny, nz = _cross(gx, gy, gz, ax, ay, az)
+        nx, ny, nz = quat.crossed(gx, gy, gz, ax, ay, az)
         nx, ny, nz = _normalized3(nx, ny, nz)
-        wx, wy, wz = _cross(bx, by, bz, nx, ny, nz)
+        wx, wy, wz = quat.crossed(bx, by, bz, nx, ny, nz)
         rest = vectors[_UPPER_REST], vectors[_HINGE_REST], vectors[_REST_NORMAL]
         # target @ rest^T, both with the frames' axes as columns
         m00 = bx * rest[0][0] + nx * rest[1][0] + wx * rest[2][0]
@@ -299,6 +295,6 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
 def load_kernels() -> None:
     """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    vectors, scalars = np.eye(8, 3), np.ones(18)
+    vectors, scalars = np.eye(8, 3), np.ones(17)
     row = np.array([[0.0, 0.0, 0.0, 1.0]])
     _posed_rows(np.zeros((1, 3)), row, np.zeros(1), np.ones((1, 3)), row, vectors, scalars, np.empty((1, 4, 4)))
