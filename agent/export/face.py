@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from agent.export.staging import ScratchRows
 from motor.face.arkit import FACE_NAMES
 from motor.motion import Motion
 
@@ -104,16 +105,11 @@ class FaceWriter:
 
     def _read(self, columns: np.ndarray) -> Iterator[np.ndarray]:
         """The weights' ``columns``, :data:`FRAMES_PER_BLOCK` frames at a time, read from the
-        scratch file block by block: a memory map of it would count its pages in the
-        process's resident memory once read, 45 MB per hour of frames at 60 fps."""
-        if self.frame_count == 0:
-            return
-        width = len(FACE_NAMES)
-        with open(self.scratch, "rb") as frames:
-            for start in range(0, self.frame_count, FRAMES_PER_BLOCK):
-                rows = min(FRAMES_PER_BLOCK, self.frame_count - start)
-                block = np.frombuffer(frames.read(rows * width * 4), dtype="<f4").reshape(rows, width)
-                yield block[:, columns]
+        scratch file a block at a time (:class:`agent.export.staging.ScratchRows`: a map
+        of the whole file would keep its pages resident, 45 MB per hour at 60 fps)."""
+        frames = ScratchRows(self.scratch, self.frame_count, len(FACE_NAMES), "<f4")
+        for start in range(0, self.frame_count, FRAMES_PER_BLOCK):
+            yield frames[start : start + FRAMES_PER_BLOCK][:, columns]
 
 
 def _blocks(weights: np.ndarray) -> Iterator[np.ndarray]:

@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from agent.export.staging import staged_binary
+from agent.export.staging import ScratchRows, staged_binary
 from motor.body.avatar import Avatar
 from motor.body.skinned import SkinnedBody
 from motor.motion import Motion
@@ -321,32 +321,11 @@ class GlbAnimation:
             raise GltfError("glTF export: no frames were added")
         first = self._first
         joints, faces = len(first.joint_names), len(first.face_names)
-        frames = ScratchFrames(self.scratch, self.frame_count, 4 * joints + 3 + faces)
+        frames = ScratchRows(self.scratch, self.frame_count, 4 * joints + 3 + faces, "<f8")
         model = self.model or skeleton_model(first, self.root_height)
         document = _Document(json.loads(json.dumps(model.gltf)), model.blob)
         _add_animation(document, model.binding, first, frames, joints, faces)
         document.write(stream)
-
-
-class ScratchFrames:
-    """Frames written to a scratch file as rows of ``width`` little-endian float64, read
-    back a block of rows at a time: each block is mapped on its own and unmapped once its
-    caller lets go of it. A map of the whole file would count every page it has read in
-    the process's resident memory until the end — about 470 MB per hour of frames at
-    60 fps — as each glTF channel reads every frame."""
-
-    def __init__(self, path: Path, count: int, width: int) -> None:
-        self.path = path
-        self.shape = (count, width)
-
-    def __getitem__(self, rows: slice) -> np.ndarray:
-        count, width = self.shape
-        start, stop, step = rows.indices(count)
-        if step != 1:
-            raise IndexError("scratch frames are read in runs of rows")
-        if stop <= start:
-            return np.zeros((0, width))
-        return np.memmap(self.path, dtype="<f8", mode="r", offset=start * width * 8, shape=(stop - start, width))
 
 
 def write_motion_glb(motion: Motion, path: str | os.PathLike[str], model: AvatarModel | None = None, root_height: float = 0.0) -> None:
@@ -363,7 +342,7 @@ def write_motion_glb(motion: Motion, path: str | os.PathLike[str], model: Avatar
         scratch.unlink(missing_ok=True)
 
 
-def _add_animation(document: _Document, binding: Binding, first: Motion, frames: ScratchFrames, joints: int, faces: int) -> None:
+def _add_animation(document: _Document, binding: Binding, first: Motion, frames: ScratchRows, joints: int, faces: int) -> None:
     count = frames.shape[0]
     if count == 0:
         return
