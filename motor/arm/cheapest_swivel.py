@@ -17,15 +17,14 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement, natural_swivel
-from motor.arm.clearance import ArmSegments, arm_capsules, candidate_penalty, obstacle_table, row_meets, segment_table, upright_obstacles
+from motor.arm.clearance import ArmSegments, arm_capsules, candidate_depth, candidate_penalty, obstacle_table, row_meets, segment_table, upright_obstacles
 from motor.arm.swivel_cost import (
     CANDIDATES,
     OUTSIDE,
     SWIVEL_STEP,
+    WINDOW,
     candidate_costs,
-    candidate_elbows,
     hand_matrix,
-    measured_window,
     natural_cost,
     parabola_offset,
     turn_remainder,
@@ -74,20 +73,39 @@ def cheapest_swivels(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
     never measured: they cannot be the least, nor tie with it."""
     if placement.body_frame is not None or placement.carried_frames is not None:
         return None
+    swivels, _, _ = _searched(avatar, placement, natural, with_depth=False)
+    return swivels
+
+
+def cheapest_reach(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`cheapest_swivels` of a placement of the body upright at rest (as
+    :func:`motor.arm.chain.place_arm` places it without a torso), and where the arm puts
+    its elbows at them ``(n, 3)`` and how deep (m, ≥ 0) it then enters the body ``(n,)``:
+    the numbers of :meth:`motor.arm.chain.ElbowCircle.elbow` and
+    :func:`motor.arm.clearance.clearance` at those swivels, in the same compiled pass (a
+    reach check reads the depth of a quarter of a million postures a corpus)."""
+    if placement.body_frame is not None or placement.carried_frames is not None:
+        raise ValueError("cheapest_reach measures the body upright at rest only")
+    swivels, elbows, depth = _searched(avatar, placement, natural, with_depth=True)
+    return swivels, elbows, np.maximum(depth, 0.0)
+
+
+def _searched(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, with_depth: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_cheapest_rows` over the placement's frames: swivels, and with ``with_depth``
+    the elbows there and the body's depth (else empty arrays)."""
     chain, circle = placement.chain, placement.circle
-    cells, psi = measured_window(natural)
-    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     rows = lambda value: np.ascontiguousarray(value, dtype=float)
     kinds, parameters, boxes, in_trunk = obstacle_table(upright_obstacles(avatar))
     limits = np.array([*chain.wrist_flexion, *chain.wrist_deviation, *chain.twist_range], dtype=float)
-    swivels = np.empty(len(natural))
+    count = len(natural) if with_depth else 0
+    swivels, elbows, depth = np.empty(len(natural)), np.empty((count, 3)), np.empty(count)
     _cheapest_rows(
-        rows(natural), rows(cells), rows(psi), np.zeros((0, 4)) if placement.hands is None else rows(placement.hands),
-        rows(circle.shoulder), rows(circle.wrist), rows(circle.axis), *map(rows, elbow), *map(rows, radial),
-        wrist_constant_row(chain), limits, CANDIDATES, segment_table(arm_capsules(avatar, chain.side)),
-        kinds, parameters, boxes, in_trunk, swivels,
+        rows(natural), np.zeros((0, 4)) if placement.hands is None else rows(placement.hands),
+        rows(circle.shoulder), rows(circle.wrist), rows(circle.axis), rows(circle.center), rows(circle.radius),
+        rows(circle.down), rows(circle.out), wrist_constant_row(chain), limits, CANDIDATES,
+        segment_table(arm_capsules(avatar, chain.side)), kinds, parameters, boxes, in_trunk, swivels, elbows, depth,
     )  # fmt: skip
-    return swivels
+    return swivels, elbows, depth
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
@@ -143,19 +161,36 @@ def _finite(values):  # noqa: ANN001, ANN202
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits):  # noqa: ANN001, ANN202
+def _wrist_load_at(k, m, c, w, elbow, radial, fixed, limits):  # noqa: ANN001, ANN202
     """The wrist's load (:func:`motor.arm.swivel_cost.wrist_load`) of window candidate ``k``
-    of frame ``i``, the hand's matrix ``m``, the circle's axis ``c``, the wrist ``w``."""
-    flexion, deviation, twist, _ = wrist_angles(m, c, w, (ex[i, k], ey[i, k], ez[i, k]), (rx[i, k], ry[i, k], rz[i, k]), fixed)
+    (its elbow and direction: columns of ``elbow`` and ``radial (3, W)``), the hand's matrix
+    ``m``, the circle's axis ``c``, the wrist ``w``."""
+    flexion, deviation, twist, _ = wrist_angles(m, c, w, (elbow[0, k], elbow[1, k], elbow[2, k]), (radial[0, k], radial[1, k], radial[2, k]), fixed)
     return wrist_load(flexion, deviation, twist, limits)
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets):  # noqa: ANN001, ANN202
+def _measured(k, distance, load, loaded, s, w, elbow, segments, kinds, parameters, boxes, in_trunk, meets):  # noqa: ANN001, ANN202
     """Window candidate ``k``'s whole cost in :func:`motor.arm.swivel_cost.candidate_costs`'s
     sums: its distance cost plus its body clearance penalty, then its wrist load."""
-    cost = distance[k] + candidate_penalty(s, w, ex[i, k], ey[i, k], ez[i, k], segments, kinds, parameters, boxes, in_trunk, meets)
+    cost = distance[k] + candidate_penalty(s, w, elbow[0, k], elbow[1, k], elbow[2, k], segments, kinds, parameters, boxes, in_trunk, meets)
     return cost + load[k] if loaded else cost
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _window_of(i, natural, center, radius, down, out, psi, elbow, radial):  # noqa: ANN001, ANN202
+    """Into ``psi (W,)``, ``elbow`` and ``radial (3, W)``: frame ``i``'s measured window
+    (:func:`motor.arm.swivel_cost.measured_window`) and its candidates' elbows and their
+    directions from the circle's centre (:func:`motor.arm.swivel_cost.candidate_elbows`),
+    the same operations; returns the window's first cell."""
+    centre = np.rint((natural[i] - CANDIDATES[0]) / SWIVEL_STEP)
+    for k in range(psi.size):
+        psi[k] = CANDIDATES[0] + (centre + float(k - WINDOW)) * SWIVEL_STEP
+        cos, sin = math.cos(psi[k]), math.sin(psi[k])
+        for a in range(3):
+            radial[a, k] = down[i, a] * cos + out[i, a] * sin
+            elbow[a, k] = center[i, a] + radius[i] * radial[a, k]
+    return centre + float(-WINDOW)
 
 
 _BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
@@ -164,46 +199,51 @@ _IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
 
 
 @numba.njit(
-    [numba.void(_IN1, *(_IN2,) * 2, *(_IN2,) * 4, *(_IN2,) * 6, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1])],
+    [numba.void(_IN1, *(_IN2,) * 4, _IN2, _IN1, _IN2, _IN2, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1], numba.float64[:, ::1], numba.float64[::1])],
     cache=True,
     error_model="numpy",
 )
-def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels):  # noqa: ANN001, ANN202, E501
+def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius, down, out, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels, elbows, depth):  # noqa: ANN001, ANN202, E501
     """:func:`cheapest_swivels` per frame ``i``: every candidate's cost as
     :func:`motor.arm.swivel_cost.candidate_costs` sums it, with the body's clearance penalty
-    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates, measured
-    lazily — by increasing distance cost from the natural swivel, until that alone exceeds
-    the least cost found; the wrist's load only for those, and the penalty only where the
-    two do not exceed it (each sum with the penalty and the load, both ≥ 0, rounds to at
-    least the sum without them) — and the least one's neighbours too, then the parabola
-    through the three. A frame with a NaN input has every candidate measured: ``np.argmin``
-    then picks the first NaN."""
-    count, width = candidates.size, cells.shape[1]
+    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates (their
+    elbows placed on the circle here, :func:`_window_of`), measured lazily — by
+    increasing distance cost from the natural swivel, until that alone exceeds the least
+    cost found; the wrist's load only for those, and the penalty only where the two do
+    not exceed it (each sum with the penalty and the load, both ≥ 0, rounds to at least
+    the sum without them) — and the least one's neighbours too, then the parabola through
+    the three. A frame with a NaN input has every candidate measured: ``np.argmin`` then
+    picks the first NaN. Where ``depth`` has rows, the elbow at the chosen swivel
+    (:meth:`motor.arm.chain.ElbowCircle.elbow`) goes into ``elbows`` and how deep the arm
+    then enters the body (:func:`motor.arm.clearance.candidate_depth`, before its floor at 0) into ``depth``."""
+    count, width = candidates.size, 2 * WINDOW + 1
     loaded = hands.shape[0] != 0
     fixed = wrist_constants(constants)
     costs, known = np.empty(count), np.empty(count, dtype=np.bool_)
     distance, load, order = np.empty(width), np.empty(width), np.empty(width, dtype=np.int64)
     cell_of, window = np.empty(width, dtype=np.int64), np.empty(count, dtype=np.int64)
+    psi, elbow, radial = np.empty(width), np.empty((3, width)), np.empty((3, width))
     meets = np.empty((2, kinds.size), dtype=np.bool_)
     m = (0.0,) * 9
     c = (0.0, 0.0, 0.0)
-    for i in range(cells.shape[0]):
+    for i in range(natural.size):
         s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
         w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
         if loaded:
             m = hand_matrix(hands, i)
             c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
-        low, high = (ex[i].min(), ey[i].min(), ez[i].min()), (ex[i].max(), ey[i].max(), ez[i].max())
+        first = _window_of(i, natural, center, radius, down, out, psi, elbow, radial)
+        low, high = (elbow[0].min(), elbow[1].min(), elbow[2].min()), (elbow[0].max(), elbow[1].max(), elbow[2].max())
         whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
         least = math.inf
         for j in range(count):
             costs[j] = natural_cost(turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
             known[j] = True
-        cell = int(cells[i, 0]) % count - 1
+        cell = int(first) % count - 1
         for k in range(width):
             cell = cell + 1 if cell + 1 < count else 0
             cell_of[k], window[cell], known[cell] = cell, k, False
-            distance[k], load[k] = natural_cost(psi[i, k] - natural[i]), -1.0
+            distance[k], load[k] = natural_cost(psi[k] - natural[i]), -1.0
             whole |= distance[k] != distance[k]
         for j in range(count):
             if known[j]:
@@ -214,10 +254,10 @@ def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex,
             if not whole and distance[k] > least:
                 break
             if loaded:
-                load[k] = _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits)
+                load[k] = _wrist_load_at(k, m, c, w, elbow, radial, fixed, limits)
                 if not whole and distance[k] + load[k] > least:
                     continue
-            cost = _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets)
+            cost = _measured(k, distance, load, loaded, s, w, elbow, segments, kinds, parameters, boxes, in_trunk, meets)
             costs[cell_of[k]], known[cell_of[k]] = cost, True
             least = min(least, cost)
         best = _first_known_least(costs, known)
@@ -226,15 +266,21 @@ def _cheapest_rows(natural, cells, psi, hands, shoulder, wrist, circle_axis, ex,
                 continue
             k = window[j]
             if loaded and load[k] < 0.0:
-                load[k] = _wrist_load_at(i, k, m, c, w, ex, ey, ez, rx, ry, rz, fixed, limits)
-            costs[j], known[j] = _measured(i, k, distance, load, loaded, s, w, ex, ey, ez, segments, kinds, parameters, boxes, in_trunk, meets), True
+                load[k] = _wrist_load_at(k, m, c, w, elbow, radial, fixed, limits)
+            costs[j], known[j] = _measured(k, distance, load, loaded, s, w, elbow, segments, kinds, parameters, boxes, in_trunk, meets), True
         swivels[i] = candidates[best] + _parabola(costs[(best - 1) % count], costs[best], costs[(best + 1) % count]) * SWIVEL_STEP
+        if depth.size == 0:
+            continue
+        cos, sin = math.cos(swivels[i]), math.sin(swivels[i])
+        for a in range(3):
+            elbows[i, a] = center[i, a] + (down[i, a] * cos + out[i, a] * sin) * radius[i]
+        depth[i] = candidate_depth(s, w, elbows[i, 0], elbows[i, 1], elbows[i, 2], segments, kinds, parameters, boxes, in_trunk, meets)
 
 
 def load_kernels() -> None:
     """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    hands, points, cells = np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.zeros((1, 1))
+    one, points = np.zeros(1), np.zeros((1, 3))
     constants, limits = np.ones(14), np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
     tables = np.zeros((2, 4)), np.zeros(0, dtype=np.int64), np.zeros((0, 7)), np.zeros((0, 2, 3)), np.zeros(0, dtype=np.bool_)
-    _cheapest_rows(np.zeros(1), *(cells,) * 2, hands, *(points,) * 3, *(cells,) * 6, constants, limits, CANDIDATES, *tables, np.empty(1))
+    _cheapest_rows(one, np.array([[0.0, 0.0, 0.0, 1.0]]), *(points,) * 4, one, *(points,) * 2, constants, limits, CANDIDATES, *tables, np.empty(1), np.empty((1, 3)), np.empty(1))

@@ -522,6 +522,29 @@ def candidate_penalty(s, w, ex_, ey_, ez_, segments, kinds, parameters, boxes, i
     return cost
 
 
+@numba.njit(cache=True, error_model="numpy")
+def candidate_depth(s, w, ex_, ey_, ez_, segments, kinds, parameters, boxes, in_trunk, meets):  # noqa: ANN001, ANN201
+    """How deep (m; 0 if clear) the arm from shoulder ``s`` to wrist ``w`` (3-tuples) with
+    its elbow at ``ex_, ey_, ez_`` enters the obstacles of an :func:`obstacle_table` at rest:
+    what :func:`_clearance_rows` gives one frame of one candidate, the same comparisons
+    in the same order; for compiled callers that place one elbow. ``meets (2, V)`` is
+    scratch."""
+    elbow = (ex_, ey_, ez_)
+    row_meets(s, w, elbow, elbow, segments, boxes, meets)
+    deepest = 0.0
+    for g in range(2):
+        f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+        grow = radius + CLEARANCE
+        for v in range(kinds.size):
+            if not meets[g, v]:
+                continue
+            ax, ay, az, bx, by, bz = _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
+            if _misses(boxes[v], grow, ax, ay, az, bx, by, bz):
+                continue
+            deepest = max(deepest, -volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius))
+    return deepest
+
+
 def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
     the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the

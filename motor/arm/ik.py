@@ -34,7 +34,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel, place_arm
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
-from motor.arm.cheapest_swivel import cheapest_swivel
+from motor.arm.cheapest_swivel import cheapest_reach, cheapest_swivel
 from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, beyond_penalties, body_penalties, candidate_costs, candidate_elbows, wrist_state
 from motor.body.avatar import Avatar
 from motor.body.distance import components
@@ -164,8 +164,9 @@ def arm_reach(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotatio
     planning checks a quarter of a million wrist positions of a corpus this way."""
     setup = place_arm(avatar, side, wrist_targets, hand_rotations)
     circle = setup.circle
-    psi = cheapest_swivel(avatar, setup)
-    return ArmReach(circle.wrist, circle.shortfall, _body_depth(avatar, setup, circle.elbow(psi, circle.direction(psi))))
+    natural = natural_swivel(setup.chain, circle, setup.targets, setup.torso_q)
+    _, _, depth = cheapest_reach(avatar, setup, natural)
+    return ArmReach(circle.wrist, circle.shortfall, depth)
 
 
 def _body_depth(avatar: Avatar, setup: ArmPlacement, elbow: np.ndarray) -> np.ndarray:

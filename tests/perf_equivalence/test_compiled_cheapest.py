@@ -1,9 +1,11 @@
 """The compiled cheapest swivel (:func:`motor.arm.cheapest_swivel.cheapest_swivels`), which
 measures only the candidates that can still be the least, gives the numbers of the
 composition it replaces (:func:`motor.arm.cheapest_swivel.cheapest_by_costs`: every
-candidate's cost, the first least, the parabola through it and its neighbours) bit for bit: over both avatars and
-sides, targets near the body and far, with and without hand rotations, natural swivels
-over several turns, and frames with NaN or infinite targets among finite ones."""
+candidate's cost, the first least, the parabola through it and its neighbours) bit for
+bit, and the reach check's pass (:func:`motor.arm.cheapest_swivel.cheapest_reach`) the
+composition's elbows and depth there: over both avatars and sides, targets near the body
+and far, with and without hand rotations, natural swivels over several turns, and frames
+with NaN or infinite targets or hand rotations among finite ones."""
 
 from __future__ import annotations
 
@@ -12,10 +14,9 @@ import pytest
 
 from motor import quaternion as quat
 from motor.arm.chain import natural_swivel, place_arm
-from motor.arm.clearance import arm_capsules, clearance, obstacle_table, segment_table, upright_obstacles
+from motor.arm.clearance import clearance
 from motor.arm.ik import arm_reach
-from motor.arm.cheapest_swivel import _cheapest_rows, cheapest_by_costs, cheapest_swivels
-from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, _window_costs, candidate_elbows, measured_window, parabola_offset, wrist_constant_row
+from motor.arm.cheapest_swivel import cheapest_by_costs, cheapest_reach, cheapest_swivels
 from motor.body.avatar import load_avatar
 from motor.body.distance import components
 
@@ -67,48 +68,56 @@ def test_a_turned_body_is_left_to_the_composition():
     assert cheapest_swivels(avatar, placement, natural) is None
 
 
-def test_reach_checks_read_the_same_penetration_as_before():
-    """The reach check (whose planning calls made the pruning worth it) reads the depth at
-    the cheapest swivel: the composed swivel gives the same elbows, so the same depth."""
-    avatar = load_avatar("kim")
-    targets = targets_about(avatar, "l", 0.12, "chest")
-    reach = arm_reach(avatar, "l", targets)
-    placement = place_arm(avatar, "l", targets)
+@pytest.mark.parametrize("avatar_name", ["max", "kim"])
+@pytest.mark.parametrize("side", ["l", "r"])
+@pytest.mark.parametrize(("spread", "toward"), [(0.05, "front"), (0.3, "front"), (0.04, "chest"), (0.15, "chest")])
+@pytest.mark.parametrize("hands", [True, False], ids=["hand rotations", "no hand rotations"])
+def test_reach_checks_read_the_composed_elbows_and_depth(avatar_name, side, spread, toward, hands):
+    """The reach check's pass (:func:`cheapest_reach`, which places the elbow at the
+    cheapest swivel and measures the body's depth there) gives what the composition gives:
+    the composed swivel's elbows (:meth:`ElbowCircle.elbow`) and their depth
+    (:func:`clearance`), and :func:`arm_reach` reads that depth."""
+    avatar = load_avatar(avatar_name)
+    targets = targets_about(avatar, side, spread, toward)
+    rotations = quat.normalize(RNG.normal(size=(N, 4))) if hands else None
+    placement = place_arm(avatar, side, targets, rotations)
     natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
     psi = cheapest_by_costs(avatar, placement, natural)
     circle = placement.circle
     elbow = circle.elbow(psi, circle.direction(psi))
-    depth = clearance(avatar, "l", circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(elbow)), None)[1][:, 0]
-    assert np.array_equal(reach.penetration, depth)
-    assert np.any(depth > 0.0)
+    depth = clearance(avatar, side, circle.shoulder, circle.wrist, tuple(c[:, None] for c in components(elbow)), None)[1][:, 0]
+    swivels, elbows, depths = cheapest_reach(avatar, placement, natural)
+    assert np.array_equal(swivels, psi)
+    assert np.array_equal(elbows, elbow)
+    assert np.array_equal(depths, depth)
+    assert np.array_equal(arm_reach(avatar, side, targets, rotations).penetration, depth)
 
 
-@pytest.mark.parametrize("hands", [True, False], ids=["hand rotations", "no hand rotations"])
-def test_a_nan_elbow_far_from_the_natural_swivel_is_still_the_first_least(hands):
-    """``np.argmin`` picks the first NaN: a frame whose costly candidate (one never measured
-    when everything is finite) has a NaN elbow gets what the composition gives it."""
+def test_the_reach_checks_measure_arms_in_the_body():
+    """The table above meets the body: some of its arms are measured inside it."""
+    avatar = load_avatar("kim")
+    assert np.any(arm_reach(avatar, "l", targets_about(avatar, "l", 0.12, "chest")).penetration > 0.0)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf], ids=["NaN", "infinite"])
+def test_frames_with_bad_hand_rotations_are_the_composed_ones(bad):
+    """A frame whose hand rotation is not finite has every candidate's wrist load NaN: every
+    candidate is measured and the first NaN is the least, as ``np.argmin`` picks it."""
     avatar = load_avatar("max")
-    placement = place_arm(avatar, "r", targets_about(avatar, "r", 0.1, "front"), quat.normalize(RNG.normal(size=(N, 4))) if hands else None)
-    natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
-    cells, psi = measured_window(natural)
-    elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
-    for coordinate in elbow:
-        coordinate[::3, -1] = np.nan  # the window's last candidate, 100° from the natural swivel
-    circle = placement.circle
-    penalty, _ = clearance(avatar, "r", circle.shoulder, circle.wrist, elbow, None)
-    cost = _window_costs(placement, natural, cells, psi, penalty, elbow, radial, None)
-    best = np.argmin(cost, axis=1)
-    rows, count = np.arange(N), len(CANDIDATES)
-    expected = CANDIDATES[best] + parabola_offset(cost[rows, (best - 1) % count], cost[rows, best], cost[rows, (best + 1) % count]) * SWIVEL_STEP
-    got = np.empty(N)
-    kinds, parameters, boxes, in_trunk = obstacle_table(upright_obstacles(avatar))
-    rows_of = lambda value: np.ascontiguousarray(value, dtype=float)
-    limits = np.array([*placement.chain.wrist_flexion, *placement.chain.wrist_deviation, *placement.chain.twist_range])
-    _cheapest_rows(
-        natural, cells, psi, np.zeros((0, 4)) if placement.hands is None else rows_of(placement.hands), rows_of(circle.shoulder),
-        rows_of(circle.wrist), rows_of(circle.axis), *map(rows_of, elbow), *map(rows_of, radial), wrist_constant_row(placement.chain),
-        limits, CANDIDATES, segment_table(arm_capsules(avatar, "r")), kinds, parameters, boxes, in_trunk, got,
-    )  # fmt: skip
+    rotations = quat.normalize(RNG.normal(size=(N, 4)))
+    rotations[[5, 40]] = bad
+    with np.errstate(all="ignore"):
+        placement = place_arm(avatar, "r", targets_about(avatar, "r", 0.1, "front"), rotations)
+        natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
+        got, expected = cheapest_swivels(avatar, placement, natural), cheapest_by_costs(avatar, placement, natural)
     assert np.array_equal(got, expected, equal_nan=True)
-    if hands:  # the wrist's load of a NaN elbow is NaN (without it, NaN distances cost nothing)
-        assert np.all(best[::3] == cells[::3, -1].astype(int) % count)
+    assert np.all(np.isfinite(np.delete(got, [5, 40])))
+
+
+def test_a_turned_body_is_refused_by_the_reach_pass():
+    avatar = load_avatar("max")
+    turned = np.broadcast_to(quat.from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.3), (N, 4))
+    placement = place_arm(avatar, "r", targets_about(avatar, "r", 0.1, "front"), torso_rotations=turned)
+    natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
+    with pytest.raises(ValueError, match="upright"):
+        cheapest_reach(avatar, placement, natural)
