@@ -20,6 +20,7 @@ from motor.arm.ik import ArmReach, arm_reach
 from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
 from motor.body.collision import outside_torso
 from motor.signing.hand_clearance import hands_clear_of_torso
+from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 
 #: Shortest path length that counts as a movement, metres.
@@ -99,7 +100,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
         chains = np.repeat(np.arange(len(owners)), [count for _, count in owners])
         cleared, _ = clear_paths(avatar, arm, points, turns, chains=chains)
         pieces = iter(cleared)
-        moved = [index for index, (a, b) in enumerate(zip(cleared, points)) if not _same(a, b)]
+        moved = np.flatnonzero(_changed(cleared, points)).tolist()
         shifts = np.zeros(len(points))
         shifts[moved] = path_shifts([cleared[index] for index in moved], [points[index] for index in moved])
         shifts_of = iter(shifts.tolist())
@@ -115,7 +116,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             first = plan.first[arm]
             record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
             moves = plan.moves[(arm, "wrist_position")]
-            record["moves"][(arm, "wrist_position")] = tuple(replace(m, values=v) for m, v in zip(moves, parts[1:]))
+            record["moves"][(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, v) for m, v in zip(moves, parts[1:]))
     return [
         draft if not isinstance(draft, SignPlan) else replace(
             draft, first=fixed[id(draft)]["first"], moves=fixed[id(draft)]["moves"],
@@ -265,7 +266,7 @@ def clear_paths(
         checked = mask & np.any(np.abs(shift) > 1e-12, axis=1)
     points = _clear_points(avatar, arm, points, turns, checked, across)[0]
     total = int(np.any(np.abs(points - original) > 1e-9, axis=1).sum())
-    return [path.copy() for path in np.split(points, np.cumsum(lengths)[:-1])], total  # each path its own array
+    return [points[start:end].copy() for start, end in _bounds(lengths)], total  # each path its own array
 
 
 def _refined(points: np.ndarray, turns: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -430,7 +431,7 @@ def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> li
     following = np.where(single, 0, index + 1)
     turns = quat.slerp(flat_keys[base + index], flat_keys[base + following], position - index)
     turns[single] = flat_keys[base[single]]
-    return np.split(turns, np.cumsum(counts)[:-1])
+    return [turns[start:end] for start, end in _bounds(counts)]
 
 
 def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
@@ -448,13 +449,36 @@ def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
     lengths = travelled[owner, column]
     totals = travelled[np.arange(len(paths)), counts - 1]
     fractions = lengths / np.where(totals > _SAME, totals, 1.0)[owner]
-    for path in np.flatnonzero(totals <= _SAME):
-        fractions[starts[path] : starts[path] + counts[path]] = np.linspace(0.0, 1.0, counts[path])
+    # a path that does not move: evenly spaced, as np.linspace(0, 1, n) computes them
+    still = (totals <= _SAME)[owner]
+    step = 1.0 / np.maximum(counts - 1, 1)
+    fractions[still] = column[still] * step[owner[still]] + 0.0
+    last = starts + counts - 1
+    fractions[last[(totals <= _SAME) & (counts > 1)]] = 1.0
     return fractions
 
 
-def _same(a: np.ndarray, b: np.ndarray) -> bool:
-    return a.shape == b.shape and bool(np.array_equal(a, b))
+def _bounds(counts: np.ndarray) -> list[tuple[int, int]]:
+    """Where each of consecutive pieces ``counts`` long starts and ends in their
+    concatenation (``np.split``'s pieces, without its per-piece cost)."""
+    ends = np.cumsum(counts).tolist()
+    return list(zip([0, *ends[:-1]], ends))
+
+
+def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray:
+    """Which paths ``(n_k, 3)`` differ from their originals ``(m_k, 3)`` ``(k,)``: in length
+    (points were inserted) or in any coordinate (``!=``, as ``np.array_equal`` compares)."""
+    lengths = np.array([len(path) for path in paths])
+    changed = lengths != np.array([len(path) for path in originals])
+    kept = np.flatnonzero(~changed)
+    if kept.size == 0:
+        return changed
+    counts = lengths[kept]
+    differs = np.any(np.concatenate([paths[k] for k in kept]) != np.concatenate([originals[k] for k in kept]), axis=1)
+    starts = np.cumsum(counts) - counts
+    nonempty = counts > 0
+    changed[kept[nonempty]] = np.logical_or.reduceat(differs, starts[nonempty])
+    return changed
 
 
 def arc_fractions(points: np.ndarray) -> np.ndarray:
