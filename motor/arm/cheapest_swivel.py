@@ -35,6 +35,11 @@ from motor.arm.swivel_cost import (
 )
 from motor.body.avatar import Avatar
 
+#: The cells whose swivels' cosines and sines the search looks up (:func:`_cell_turns`):
+#: those of natural swivels within two turns of the candidates'.
+_FIRST_CELL = -2 * len(CANDIDATES)
+_CELL_COUNT = 5 * len(CANDIDATES)
+
 _IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
 _IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
 
@@ -178,19 +183,44 @@ def _measured(k, distance, load, loaded, s, w, elbow, segments, kinds, parameter
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _window_of(i, natural, center, radius, down, out, psi, elbow, radial):  # noqa: ANN001, ANN202
+def _swivel_at(cell):  # noqa: ANN001, ANN202
+    """The swivel (radians) of a window cell (unwrapped steps from the first candidate, a
+    float): :func:`motor.arm.swivel_cost.measured_window`'s arithmetic."""
+    return CANDIDATES[0] + cell * SWIVEL_STEP
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _cell_turns():  # noqa: ANN202
+    """The cosines and sines ``(2, C)`` of the swivels of the cells :data:`_FIRST_CELL`
+    onward (a window's cells repeat from frame to frame: looked up, not computed again)."""
+    turns = np.empty((2, _CELL_COUNT))
+    for index in range(_CELL_COUNT):
+        psi = _swivel_at(float(_FIRST_CELL + index))
+        turns[0, index], turns[1, index] = math.cos(psi), math.sin(psi)
+    return turns
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _window_of(i, natural, center, radius, down, out, turns, psi, elbow, radial):  # noqa: ANN001, ANN202
     """Into ``psi (W,)``, ``elbow`` and ``radial (3, W)``: frame ``i``'s measured window
     (:func:`motor.arm.swivel_cost.measured_window`) and its candidates' elbows and their
     directions from the circle's centre (:func:`motor.arm.swivel_cost.candidate_elbows`),
-    the same operations; returns the window's first cell."""
+    the same operations, the cosines and sines from ``turns`` (:func:`_cell_turns`) where
+    it holds the cells; returns the window's first cell."""
     centre = np.rint((natural[i] - CANDIDATES[0]) / SWIVEL_STEP)
+    first = centre + float(-WINDOW)
+    tabled = _FIRST_CELL <= first and first + 2 * WINDOW < _FIRST_CELL + _CELL_COUNT
     for k in range(psi.size):
-        psi[k] = CANDIDATES[0] + (centre + float(k - WINDOW)) * SWIVEL_STEP
-        cos, sin = math.cos(psi[k]), math.sin(psi[k])
+        psi[k] = _swivel_at(centre + float(k - WINDOW))
+        if tabled:
+            index = int(first) - _FIRST_CELL + k
+            cos, sin = turns[0, index], turns[1, index]
+        else:
+            cos, sin = math.cos(psi[k]), math.sin(psi[k])
         for a in range(3):
             radial[a, k] = down[i, a] * cos + out[i, a] * sin
             elbow[a, k] = center[i, a] + radius[i] * radial[a, k]
-    return centre + float(-WINDOW)
+    return first
 
 
 _BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
@@ -223,6 +253,7 @@ def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius,
     distance, load, order = np.empty(width), np.empty(width), np.empty(width, dtype=np.int64)
     cell_of, window = np.empty(width, dtype=np.int64), np.empty(count, dtype=np.int64)
     psi, elbow, radial = np.empty(width), np.empty((3, width)), np.empty((3, width))
+    turns = _cell_turns()
     meets = np.empty((2, kinds.size), dtype=np.bool_)
     m = (0.0,) * 9
     c = (0.0, 0.0, 0.0)
@@ -232,7 +263,7 @@ def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius,
         if loaded:
             m = hand_matrix(hands, i)
             c = (circle_axis[i, 0], circle_axis[i, 1], circle_axis[i, 2])
-        first = _window_of(i, natural, center, radius, down, out, psi, elbow, radial)
+        first = _window_of(i, natural, center, radius, down, out, turns, psi, elbow, radial)
         low, high = (elbow[0].min(), elbow[1].min(), elbow[2].min()), (elbow[0].max(), elbow[1].max(), elbow[2].max())
         whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
         least = math.inf
