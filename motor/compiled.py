@@ -5,7 +5,9 @@ numba compiles each kernel (:mod:`motor.quaternion`'s products,
 arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
 :mod:`motor.arm.swivel`'s value tables, :mod:`motor.arm.cheapest_swivel`'s pruned search,
 :mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
-rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull) once per checkout and
+rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull,
+:mod:`motor.signing.law_time`'s law time of many paths and :mod:`motor.signing.retiming`'s
+law factors) once per checkout and
 caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
@@ -24,13 +26,13 @@ from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost
 from motor.body import distance
 from motor.hand import shape
-from motor.signing import path_batch
+from motor.signing import law_time, path_batch, retiming
 
 
 def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, shape, path_batch):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, shape, path_batch, law_time, retiming):
         module.load_kernels()
     return time.perf_counter() - started

@@ -7,14 +7,13 @@ overhead is most of the synthesis time. Here the paths are grouped by their numb
 points and each group is traced in one pass over a ``(paths, points, 3)`` array: the
 interpolating spline by a batched tridiagonal solve (the same not-a-knot conditions and
 cubic Hermite pieces scipy's ``CubicSpline`` builds), the B-spline within the hull by its
-basis at the fixed parameters of a path of that size, the law time by the same grid,
-interpolation and Gaussian smoothing :func:`~motor.signing.lmp.law_fractions` uses, row by row.
+basis at the fixed parameters of a path of that size; the law time of all the paths of
+three or more points in one compiled pass (:class:`motor.signing.law_time.DensePaths`).
 
 The results equal the one-path functions within rounding (a few ulps: the spline's linear
 solve orders its operations differently from LAPACK's); repeated points are dropped as
 the one-path function drops them (paths traced through their points go through it when
-they have any), and the paths whose law-time grid is too coarse for the batch's kernel go
-through the one-path function. ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
+they have any). ``tests/perf_equivalence/test_path_batch.py`` pins the equality.
 """
 
 from __future__ import annotations
@@ -29,10 +28,8 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from motor.signing.lmp import (
-    LAW_SMOOTHING,
     PATH_DENSITY,
     REVERSAL_ANGLE,
-    _SAME,
     Move,
     TracedChain,
     law_fractions,
@@ -40,17 +37,12 @@ from motor.signing.lmp import (
     stopping_length,
     stopping_times,
 )
-from motor.trajectory.power_law import EXPONENT, clamped_curvature
+from motor.signing.law_time import DensePaths
 from motor.trajectory.spline import HOLD_LENGTH
 
 #: Turning angles below this product of adjacent chord lengths count as zero (a hold), as
 #: in :func:`motor.trajectory.spline.turning_angles`.
 _HOLD = 1e-9
-#: Truncation of the Gaussian kernel in standard deviations (``gaussian_filter1d``'s default).
-_TRUNCATE = 4.0
-#: Largest kernel radius (grid steps) smoothed here; wider kernels (very short paths) go
-#: through :func:`motor.signing.lmp.law_fractions`.
-_MAX_RADIUS = 64
 
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
@@ -154,7 +146,7 @@ def _turning(points: np.ndarray) -> np.ndarray:
     return np.arccos(np.clip(cos, -1.0, 1.0)).reshape(points.shape[0], -1)
 
 
-def _distinct(arrays: Sequence[np.ndarray]) -> tuple[list[np.ndarray], list[int]]:
+def distinct_paths(arrays: Sequence[np.ndarray]) -> tuple[list[np.ndarray], list[int]]:
     """The distinct arrays (bit for bit; a corpus repeats many moves) and, for each array,
     the index of its twin among them."""
     seen: dict[tuple, int] = {}
@@ -169,7 +161,7 @@ def _distinct(arrays: Sequence[np.ndarray]) -> tuple[list[np.ndarray], list[int]
 def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
     """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)``, in one pass per
     size (each distinct path once)."""
-    distinct, twins = _distinct([np.asarray(path) for path in paths])
+    distinct, twins = distinct_paths([np.asarray(path) for path in paths])
     traced = _smooth_pieces_many(distinct, through)
     return [traced[twin] for twin in twins]
 
@@ -346,155 +338,25 @@ def _within_rows(pieces, first, weights, dense):  # noqa: ANN001, ANN202
 
 
 def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
-    """:func:`motor.signing.lmp.law_fractions` of every dense path ``(m, 3)``: the curvature
-    per group of paths of one size, the law-time grid (its interpolations and smoothing)
-    per batch of paths with grids of about one size (each distinct path once)."""
-    distinct, twins = _distinct([np.asarray(path) for path in paths])
+    """:func:`motor.signing.lmp.law_fractions` of every dense path ``(m, 3)``: those of three
+    or more points laid end to end in compiled passes (:class:`motor.signing.law_time.DensePaths`;
+    each distinct path once, the fractions views of one array)."""
+    distinct, twins = distinct_paths([np.asarray(path) for path in paths])
     fractions = _law_fractions_many(distinct)
     return [fractions[twin] for twin in twins]
 
 
 def _law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
     out: list[np.ndarray | None] = [None] * len(paths)
-    rows: list[tuple[int, np.ndarray, np.ndarray, np.ndarray, float, int, float]] = []
-    for m, members in _groups(paths).items():
-        if m < 3:
-            for index in members:  # two points: the way's two ends, [0, 1] (none: as given)
-                out[index] = np.array([0.0, 1.0]) if m == 2 and np.all(np.isfinite(paths[index])) else law_fractions(paths[index])
-            continue
-        chords, arc, log_curvature, counts, sigma, done = _law_curvature(np.stack([paths[index] for index in members]))
-        for row, index in enumerate(members):
-            if done[row]:
-                rows.append((index, chords[row], arc[row], log_curvature[row], float(sigma[row]), int(counts[row])))
-            else:
-                out[index] = law_fractions(paths[index])
-    batches: dict[tuple[int, int], list[tuple]] = defaultdict(list)
-    for row in rows:  # paths and grids of about one size each
-        batches[(int(np.log(row[2].size) / _LOG_SPREAD), int(np.log(row[5]) / _LOG_SPREAD))].append(row)
-    for batch in batches.values():
-        for (index, *_), fractions in zip(batch, _law_grid(batch)):
-            out[index] = fractions
-    return out
-
-
-#: Paths whose sizes and law-time grids differ by less than this factor share a pass.
-_LOG_SPREAD = float(np.log(1.4))
-
-
-def _law_curvature(points: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Chords, arc length, log clamped curvature, grid size and kernel width of every row of
-    ``(g, m ≥ 3, 3)`` (:func:`motor.signing.lmp.law_fractions`), and which rows the grid
-    pass takes (the others: no length, or a kernel wider than :data:`_MAX_RADIUS`)."""
-    g, m, _ = points.shape
-    chords = np.linalg.norm(np.diff(points, axis=1), axis=2)
-    arc = np.concatenate([np.zeros((g, 1)), np.cumsum(chords, axis=1)], axis=1)
-    total = arc[:, -1]
-    spans = np.maximum(0.5 * (chords[:, :-1] + chords[:, 1:]), _SAME)
-    curvature = np.empty((g, m))
-    curvature[:, 1:-1] = _turning(points) / spans
-    curvature[:, 0], curvature[:, -1] = curvature[:, 1], curvature[:, -2]
-    log_curvature = np.log(clamped_curvature(curvature))
-    step = np.minimum(LAW_SMOOTHING / 4.0, total / 8.0)
-    valid = total >= _SAME
-    counts = np.where(valid, np.ceil(total / np.where(valid, step, 1.0)), 1.0).astype(int) + 1
-    spacing = total / (counts - 1)
-    # the kernel's width in grid steps, at most four times the grid (law_fractions)
-    sigma = np.minimum(LAW_SMOOTHING / np.where(valid, spacing, LAW_SMOOTHING), 4.0 * counts)
-    done = valid & (_TRUNCATE * sigma + 0.5 < _MAX_RADIUS + 1)
-    return chords, arc, log_curvature, counts, sigma, done
-
-
-def _law_grid(batch: list[tuple]) -> list[np.ndarray]:
-    """The law-time fractions of rows ``(index, chords, arc, log curvature, kernel width,
-    grid size)`` of paths of any sizes, in one pass over arrays padded to the longest
-    (a path's arc padded with its length, its chords with zeros: what is computed for the
-    padding is never read)."""
-    n = len(batch)
-    sizes = np.array([row[2].size for row in batch])
-    longest = int(sizes.max())
-    arc = np.empty((n, longest))
-    log_curvature = np.empty((n, longest))
-    chords = np.zeros((n, longest - 1))
-    for r, (_, chord, length, logs, *_) in enumerate(batch):
-        arc[r, : length.size], arc[r, length.size :] = length, length[-1]
-        log_curvature[r, : logs.size], log_curvature[r, logs.size :] = logs, logs[-1]
-        chords[r, : chord.size] = chord
-    sigma = np.array([row[4] for row in batch])
-    counts = np.array([row[5] for row in batch])
-    total = arc[np.arange(n), sizes - 1]
-    spacing = total / (counts - 1)
-    width = int(counts.max())
-    columns = np.arange(width)
-    grid = columns * spacing[:, None] + 0.0
-    grid[np.arange(n), counts - 1] = total
-    grid = np.where(columns < counts[:, None], grid, np.inf)
-    # the grid index each arc point falls after, exactly: the uniform estimate, corrected
-    after = _last_at_or_below(grid, arc, np.clip((arc / spacing[:, None]).astype(int), 0, counts[:, None] - 1), counts)
-    # the arc index each grid point falls after: count the arc points at or below it
-    first_above = np.minimum(after + (grid[np.arange(n)[:, None], after] < arc), width)  # first grid ≥ arc point
-    tally = np.zeros((n, width + 1), dtype=int)
-    np.add.at(tally, (np.repeat(np.arange(n), longest), first_above.ravel()), 1)
-    below = np.minimum(np.maximum(np.cumsum(tally[:, :width], axis=1) - 1, 0), sizes[:, None] - 1)
-    values = _interp(grid, arc, log_curvature, below, sizes)
-    smooth = _gaussian(values, sigma, counts)
-    density = np.exp(EXPONENT * _interp(arc, grid, smooth, after, counts))
-    tau = np.concatenate([np.zeros((n, 1)), np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * chords, axis=1)], axis=1)
-    return [tau[r, :size] / tau[r, size - 1] for r, size in enumerate(sizes)]
-
-
-def _last_at_or_below(xp: np.ndarray, x: np.ndarray, guess: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """Per row, the last index ``j < counts`` with ``xp[j] ≤ x`` (xp sorted, ``x ≥ xp[0]``),
-    from a guess at most a few places off."""
-    rows = np.arange(x.shape[0])[:, None]
-    j = guess
-    for _ in range(3):
-        j = np.where(xp[rows, j] > x, np.maximum(j - 1, 0), j)
-        ahead = np.minimum(j + 1, counts[:, None] - 1)
-        j = np.where((ahead > j) & (xp[rows, ahead] <= x), ahead, j)
-    if np.any(xp[rows, j] > x) or np.any((j + 1 < counts[:, None]) & (xp[rows, np.minimum(j + 1, counts[:, None] - 1)] <= x)):
-        raise ArithmeticError("law-time grid search did not converge")
-    return j
-
-
-def _interp(x: np.ndarray, xp: np.ndarray, fp: np.ndarray, j: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``np.interp`` row by row, given ``j``: the last index with ``xp[j] ≤ x`` (rows of
-    ``xp`` hold ``counts`` values); arithmetic as numpy's."""
-    rows = np.arange(x.shape[0])[:, None]
-    last = counts[:, None] - 1
-    ahead = np.minimum(j + 1, last)
-    low, high = xp[rows, j], xp[rows, ahead]
-    flow, fhigh = fp[rows, j], fp[rows, ahead]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        slope = (fhigh - flow) / (high - low)
-        value = slope * (x - low) + flow
-    exact = (j >= last) | (low == x)
-    value = np.where(exact, flow, value)
-    value = np.where(x > xp[rows, last], fp[rows, last], value)
-    return np.where(x < xp[:, :1], fp[:, :1], value)
-
-
-def _gaussian(values: np.ndarray, sigma: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``gaussian_filter1d(row, sigma, mode="nearest")`` of every row's first ``counts``
-    values, with scipy's kernel and order of sums."""
-    rows = np.arange(values.shape[0])
-    width = values.shape[1]
-    radius = (_TRUNCATE * sigma + 0.5).astype(int)
-    out = np.empty_like(values)
-    for r in np.unique(radius):
-        members = rows[radius == r]
-        offsets = np.arange(-r, r + 1)
-        phi = np.exp(-0.5 / (sigma[members] * sigma[members])[:, None] * offsets**2)
-        kernel = phi / phi.sum(axis=1, keepdims=True)
-        # each row extended by its edge values ("nearest"), past its own count too
-        last = counts[members] - 1
-        padded = np.empty((members.size, width + 2 * r))
-        padded[:, r : r + width] = np.where(np.arange(width) <= last[:, None], values[members], values[members, last][:, None])
-        padded[:, :r] = values[members, :1]
-        padded[:, r + width :] = padded[:, r + width - 1 : r + width]
-        smoothed = padded[:, r : r + width] * kernel[:, r, None]
-        for j in range(r, 0, -1):
-            smoothed = smoothed + (padded[:, r - j : r - j + width] + padded[:, r + j : r + j + width]) * kernel[:, r - j, None]
-        out[members] = smoothed
+    long = []
+    for index, path in enumerate(paths):
+        if path.shape[0] >= 3:
+            long.append(index)
+        else:  # two points: the way's two ends, [0, 1] (none: as given)
+            out[index] = np.array([0.0, 1.0]) if path.shape[0] == 2 and np.all(np.isfinite(path)) else law_fractions(path)
+    dense = DensePaths([paths[index] for index in long])
+    for index, fractions in zip(long, dense.split(dense.law_fractions())):
+        out[index] = fractions
     return out
 
 

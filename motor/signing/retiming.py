@@ -19,19 +19,16 @@ moves after it follow; the plan says which moves were slowed and by how much.
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import replace
 
+import numba
 import numpy as np
 
 from motor.body.avatar import ARMS
+from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
-from motor.signing.path_batch import (
-    law_fractions_many,
-    polyline_lengths,
-    smooth_pieces_many,
-)
+from motor.signing.path_batch import distinct_paths, smooth_pieces_many
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.trajectory.biocontrol import shortest_duration
 
@@ -39,6 +36,12 @@ from motor.trajectory.biocontrol import shortest_duration
 _MEASURED = 1e-3
 #: A move is stretched only when it needs more than this share longer (rounding).
 _SLACK = 1e-6
+#: Law time (share of the piece's) below which a stretch of a piece counts as not spent.
+_MOVING = 1e-12
+
+_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
+_INDEX = numba.types.Array(numba.int64, 1, "C", readonly=True)
+_OUT1 = numba.float64[::1]
 
 
 def law_factor(values: np.ndarray) -> float:
@@ -54,7 +57,7 @@ def law_factor(values: np.ndarray) -> float:
             continue
         spent = np.diff(law_fractions(piece))
         travelled = np.diff(arc) / arc[-1]
-        moving = spent > 1e-12
+        moving = spent > _MOVING
         if np.any(moving):
             factor = max(factor, float(np.max(travelled[moving] / spent[moving])))
     return factor
@@ -70,59 +73,51 @@ def timing_length(values: np.ndarray) -> float:
 
 
 def timing_lengths(paths: Sequence[np.ndarray]) -> list[float]:
-    """:func:`timing_length` of every path ``(m, 3)``, in vectorized passes
-    (:mod:`motor.signing.path_batch`): the pieces of all the distinct paths traced at
-    once, their lengths and law factors per group of pieces of one size, with the
-    arithmetic of the one-path functions — the same numbers, bit for bit."""
-    index: dict[bytes, int] = {}
-    distinct: list[np.ndarray] = []
-    twins = []
-    for path in paths:
-        values = np.ascontiguousarray(path, dtype=float)
-        key = values.tobytes() + bytes(str(values.shape), "ascii")
-        if key not in index:
-            index[key] = len(distinct)
-            distinct.append(values)
-        twins.append(index[key])
+    """:func:`timing_length` of every path ``(m, 3)``, with the arithmetic of the one-path
+    functions — the same numbers, bit for bit: the pieces of all the distinct paths traced
+    at once (:func:`motor.signing.path_batch.smooth_pieces_many`), then laid end to end
+    (:class:`motor.signing.law_time.DensePaths`) for their lengths, law time and law
+    factors in compiled passes over all their points."""
+    distinct, twins = distinct_paths([np.asarray(path, dtype=float) for path in paths])
     splits = smooth_pieces_many(distinct, through=False)
-    pieces = [piece for split in splits for piece in split]
-    lengths = polyline_lengths(pieces)
-    factors = _law_factors(pieces)
-    timed, first = [], 0
-    for split in splits:
-        rows = slice(first, first + len(split))
-        first += len(split)
-        length = float(np.sum(np.sqrt([float(value) for value in lengths[rows]])) ** 2)
-        timed.append(0.0 if length <= 0.0 else length * max(1.0, *factors[rows]))
-    return [timed[twin] for twin in twins]
+    pieces = DensePaths([piece for split in splits for piece in split])
+    factors = np.empty(pieces.starts.size - 1)
+    _law_factors(pieces.arc, pieces.law_fractions(), pieces.starts, factors)
+    bounds = np.zeros(len(splits) + 1, dtype=np.int64)
+    np.cumsum([len(split) for split in splits], out=bounds[1:])
+    roots, largest = np.empty(len(splits)), np.empty(len(splits))
+    _per_path(pieces.lengths(), factors, bounds, roots, largest)
+    stopping = np.float_power(roots, 2.0)  # numpy's scalar ``**``: pow, not a product
+    timed = np.where(stopping <= 0.0, 0.0, stopping * largest)
+    return timed[twins].tolist()
 
 
-def _law_factors(pieces: Sequence[np.ndarray]) -> list[float]:
+@numba.njit([numba.void(_IN1, _IN1, _INDEX, _OUT1)], cache=True, error_model="numpy")
+def _law_factors(arc, fractions, starts, out):  # noqa: ANN001, ANN202
     """Each piece's share of the law factor (:func:`law_factor`'s loop body; 1 for a piece
-    of fewer than three points or shorter than :data:`_MEASURED`), per group of one size."""
-    factors = [1.0] * len(pieces)
-    groups: dict[int, list[int]] = defaultdict(list)
-    for number, piece in enumerate(pieces):
-        if piece.shape[0] >= 3:
-            groups[piece.shape[0]].append(number)
-    measured: list[tuple[list[int], np.ndarray]] = []  # per size: the pieces and their arcs
-    for members in groups.values():
-        chords = np.linalg.norm(np.diff(np.stack([pieces[number] for number in members]), axis=1), axis=2)
-        arc = np.concatenate([np.zeros((len(members), 1)), np.cumsum(chords, axis=1)], axis=1)
-        long = arc[:, -1] >= _MEASURED
-        measured.append(([number for number, keep in zip(members, long) if keep], arc[long]))
-    fractions = iter(law_fractions_many([pieces[number] for members, _ in measured for number in members]))
-    for members, arc in measured:
-        if not members:
+    of fewer than three points or shorter than :data:`_MEASURED`) from the arc length and
+    law-time fractions at its points, laid end to end."""
+    for p in range(starts.size - 1):
+        first, last = starts[p], starts[p + 1] - 1
+        out[p] = 1.0
+        if last - first < 2 or arc[last] < _MEASURED:
             continue
-        spent = np.diff(np.stack([next(fractions) for _ in members]), axis=1)
-        travelled = np.diff(arc, axis=1) / arc[:, -1:]
-        moving = spent > 1e-12
-        ratios = np.where(moving, travelled / np.where(moving, spent, 1.0), -np.inf).max(axis=1)
-        for number, ratio, any_moving in zip(members, ratios, moving.any(axis=1)):
-            if any_moving:
-                factors[number] = max(1.0, float(ratio))
-    return factors
+        for i in range(first, last):
+            spent = fractions[i + 1] - fractions[i]
+            if spent > _MOVING:
+                out[p] = max(out[p], (arc[i + 1] - arc[i]) / arc[last] / spent)
+
+
+@numba.njit([numba.void(_IN1, _IN1, _INDEX, _OUT1, _OUT1)], cache=True, error_model="numpy")
+def _per_path(lengths, factors, bounds, roots, largest):  # noqa: ANN001, ANN202
+    """Per path of pieces ``bounds[i]:bounds[i + 1]``: the sum of the square roots of their
+    lengths (in numpy's pairwise order) and the largest of 1 and their law factors."""
+    root = np.sqrt(lengths)
+    for path in range(bounds.size - 1):
+        roots[path] = pairwise_sum(root, bounds[path], bounds[path + 1] - bounds[path])
+        largest[path] = 1.0
+        for piece in range(bounds[path], bounds[path + 1]):
+            largest[path] = max(largest[path], factors[piece])
 
 
 def needed_duration(move: Move) -> float:
@@ -197,3 +192,9 @@ class _Warp:
 
     def __call__(self, time: float) -> float:
         return float(np.interp(time, self.old, self.new))
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loops once (they load when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    timing_lengths([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])

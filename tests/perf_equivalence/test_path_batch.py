@@ -3,8 +3,8 @@ and sign tracks sampled and activated many at once (motor.signing.track_batch) e
 one-by-one tracks.
 
 Cases are synthetic wrist paths (labelled by kind): smooth arcs, zigzags that reverse,
-paths with repeated points (holds), two and three points, and paths so short that their
-law-time kernel is wider than the batch smooths; each case is traced together with the
+paths with repeated points (holds), two and three points, paths so short that their
+law-time kernel is wider than their law-time grid, and paths that do not move; each case is traced together with the
 others of the table, as the batch sees them in a sequence of signs.
 """
 
@@ -18,6 +18,7 @@ from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
 from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, smooth_pieces, stopping_length
+from motor.signing.law_time import pairwise_sum
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 from motor.signing.plan import HandPose
 from motor.signing.reach import clear_paths, rotations_along
@@ -42,10 +43,12 @@ def _path(kind: str, count: int, seed: int) -> np.ndarray:
         return points
     if kind == "tiny":  # micrometres long: a wide law-time kernel
         return start + np.cumsum(2e-6 * rng.standard_normal((count, 3)), axis=0)
+    if kind == "still":  # no length: evenly spaced law time
+        return np.repeat(start[None], count, axis=0)
     return start + np.cumsum(0.03 * rng.standard_normal((count, 3)), axis=0)  # "random"
 
 
-CASES = [(kind, count) for kind in ("arc", "zigzag", "holds", "random") for count in (2, 3, 4, 5, 8, 13, 33)] + [("tiny", 6), ("tiny", 9)]
+CASES = [(kind, count) for kind in ("arc", "zigzag", "holds", "random") for count in (2, 3, 4, 5, 8, 13, 33)] + [("tiny", 6), ("tiny", 9), ("still", 3), ("still", 8)]
 PATHS = [_path(kind, count, seed) for seed, (kind, count) in enumerate(CASES)]
 IDS = [f"{kind}-{count}" for kind, count in CASES]
 
@@ -69,6 +72,13 @@ def test_batched_law_fractions_equal_one_path_fractions(case: int) -> None:
     index = sum(len(smooth_pieces(path, False)) for path in PATHS[:case])
     for offset, piece in enumerate(smooth_pieces(PATHS[case], False)):
         np.testing.assert_array_equal(law_fractions_many(dense)[index + offset], law_fractions(piece))
+
+
+@pytest.mark.parametrize("count", [0, 1, 7, 8, 9, 15, 16, 17, 127, 128, 129, 136, 255, 256, 257, 1000])
+def test_compiled_pairwise_sum_equals_numpy_sum(count: int) -> None:
+    """The law time's sums (kernel weights, chords) add in numpy's pairwise order."""
+    values = np.exp(3.0 * np.random.default_rng(count).standard_normal(count + 5))
+    assert pairwise_sum(values, 5, count) == values[5:].sum() == values[None, 5:].sum(axis=1)[0]
 
 
 @pytest.mark.parametrize("case", range(len(CASES)), ids=IDS)

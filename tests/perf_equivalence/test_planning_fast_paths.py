@@ -4,7 +4,7 @@ Cases: the wrist paths of real signs (every 25th parsed sign of both SiGML corpo
 planned up to, not including, the retiming) and synthetic paths (labelled by kind): a
 straight line, a zigzag that reverses, a path with a hold, two and three points, a path
 that does not move, one shorter than the millimetre whose law factor is measured, and
-one of micrometres (a law-time kernel wider than the batch smooths). The clearing's
+one of micrometres (a law-time kernel wider than its grid). The clearing's
 spread of displacements along chains is checked on synthetic chains.
 """
 
