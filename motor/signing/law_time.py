@@ -42,13 +42,19 @@ class DensePaths:
     ``starts[i]:starts[i + 1]``; their chords (the ``m − 1`` of each path from its first
     row on, 0 in its last row) and the arc length (m) at each point."""
 
-    def __init__(self, paths: Sequence[np.ndarray]) -> None:
-        self.points = np.ascontiguousarray(np.concatenate(paths) if paths else np.empty((0, 3)), dtype=float)
-        self.starts = np.zeros(len(paths) + 1, dtype=np.int64)
-        np.cumsum([path.shape[0] for path in paths], out=self.starts[1:])
+    def __init__(self, points: np.ndarray, starts: np.ndarray) -> None:
+        self.points = np.ascontiguousarray(points, dtype=float)
+        self.starts = np.ascontiguousarray(starts, dtype=np.int64)
         self.chords = np.empty(self.points.shape[0])
         self.arc = np.empty(self.points.shape[0])
         _chords_and_arcs(self.points, self.starts, self.chords, self.arc)
+
+    @classmethod
+    def of(cls, paths: Sequence[np.ndarray]) -> DensePaths:
+        """The paths ``(m, 3)`` laid end to end."""
+        starts = np.zeros(len(paths) + 1, dtype=np.int64)
+        np.cumsum([path.shape[0] for path in paths], out=starts[1:])
+        return cls(np.concatenate(paths) if paths else np.empty((0, 3)), starts)
 
     def lengths(self) -> np.ndarray:
         """Each path's length (m): its chords summed as numpy sums them (pairwise)."""
@@ -59,13 +65,11 @@ class DensePaths:
     def law_fractions(self) -> np.ndarray:
         """:func:`motor.signing.lmp.law_fractions` of every path of three or more points,
         end to end ``(n,)`` as the points (what a shorter path's rows hold is undefined)."""
-        cosines = np.empty(self.points.shape[0])
-        _turning_cosines(self.points, self.starts, self.chords, cosines)
         curvature = np.empty(self.points.shape[0])
         grids = np.empty((self.starts.size - 1, 2))  # per path: grid spacing (m), kernel width (grid steps)
         counts = np.empty(self.starts.size - 1, dtype=np.int64)
         radii = np.empty(self.starts.size - 1, dtype=np.int64)
-        _curvature_and_grids(np.arccos(cosines), self.chords, self.arc, self.starts, curvature, grids, counts, radii)
+        _curvature_and_grids(np.arccos(self.turning_cosines()), self.chords, self.arc, self.starts, curvature, grids, counts, radii)
         log_curvature = np.log(clamped_curvature(curvature))
         kernels = np.zeros(radii.size + 1, dtype=np.int64)
         np.cumsum(2 * radii + 1, out=kernels[1:])
@@ -76,6 +80,13 @@ class DensePaths:
         fractions = np.empty(self.points.shape[0])
         _law_time(np.exp(EXPONENT * smooth), self.chords, self.starts, counts, fractions)
         return fractions
+
+    def turning_cosines(self) -> np.ndarray:
+        """The cosine of the turn at each point (1 at a path's ends and next to a hold),
+        as :func:`motor.trajectory.spline.turning_angles` takes it before its arccos."""
+        cosines = np.empty(self.points.shape[0])
+        _turning_cosines(self.points, self.starts, self.chords, cosines)
+        return cosines
 
     def split(self, values: np.ndarray) -> list[np.ndarray]:
         """``values`` laid out as the points, one array (a view) per path."""
@@ -267,6 +278,6 @@ def _law_time(density, chords, starts, counts, out):  # noqa: ANN001, ANN202
 def load_kernels() -> None:
     """Run this module's compiled loops once (they load when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    paths = DensePaths([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])
+    paths = DensePaths.of([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])
     paths.lengths()
     paths.law_fractions()

@@ -44,6 +44,11 @@ from motor.trajectory.spline import HOLD_LENGTH
 #: in :func:`motor.trajectory.spline.turning_angles`.
 _HOLD = 1e-9
 
+_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
+_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
+_INDEX = numba.types.Array(numba.int64, 1, "C", readonly=True)
+_INDEX2 = numba.types.Array(numba.int64, 2, "C", readonly=True)
+
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     """:func:`motor.signing.lmp.stopping_length` of every path."""
@@ -77,10 +82,15 @@ def _length(polyline: np.ndarray) -> float:
 
 
 def _traced_within(piece: np.ndarray) -> np.ndarray:
-    """One piece ``(k, 3)`` traced within its hull, starting with its first point (``_trace``)."""
+    """One piece ``(k, 3)`` traced within its hull, starting with its first point (the
+    batch's :func:`_traced`)."""
     if piece.shape[0] < 3:
         return piece
-    return _within(piece[None])[0]
+    first, weights = _basis(piece.shape[0])
+    dense = np.empty((first.size + 1, 3))
+    piece = np.ascontiguousarray(piece, dtype=float)
+    _traced(piece, piece, np.array([[0, 0, piece.shape[0], 0, 0]]), first, weights, dense)
+    return dense
 
 
 def trace_chains(transitions: Sequence[tuple[float, float, str, np.ndarray]], moves: Sequence[Sequence[Move]]) -> list[TracedChain]:
@@ -159,21 +169,26 @@ def distinct_paths(arrays: Sequence[np.ndarray]) -> tuple[list[np.ndarray], list
 
 
 def smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
-    """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)``, in one pass per
-    size (each distinct path once)."""
+    """:func:`motor.signing.lmp.smooth_pieces` of every path ``(m, 3)`` (each distinct path
+    once): within the hull by :func:`traced_within`, through the points in one pass per size."""
     distinct, twins = distinct_paths([np.asarray(path) for path in paths])
-    traced = _smooth_pieces_many(distinct, through)
+    if through:
+        traced = _through_pieces_many(distinct)
+    else:
+        dense, bounds = traced_within(distinct)
+        pieces = dense.split(dense.points)
+        traced = [pieces[first:end] for first, end in pairwise(bounds.tolist())]
     return [traced[twin] for twin in twins]
 
 
-def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list[np.ndarray]]:
+def _through_pieces_many(paths: Sequence[np.ndarray]) -> list[list[np.ndarray]]:
     out: list[list[np.ndarray] | None] = [None] * len(paths)
     pieces: list[tuple[int, int, np.ndarray]] = []  # (path, order, piece)
     kept = _without_holds(paths)
     batched = []
     for index, (path, points) in enumerate(zip(paths, kept)):
-        if through and points is not path:  # a hold: scipy's spline, as the transitions always had
-            out[index] = smooth_pieces(path, through)
+        if points is not path:  # a hold: scipy's spline, as the transitions always had
+            out[index] = smooth_pieces(path, through=True)
         elif points.shape[0] < 3:  # fewer than three distinct points: the path as it is
             out[index] = [path]
         else:
@@ -187,10 +202,75 @@ def _smooth_pieces_many(paths: Sequence[np.ndarray], through: bool) -> list[list
             out[index] = [None] * (cuts.size - 1)
             for order, (first, last) in enumerate(zip(cuts[:-1], cuts[1:])):
                 pieces.append((index, order, stacked[row, first : last + 1]))
-    traced = _trace([piece for _, _, piece in pieces], through)
+    traced = _trace_through([piece for _, _, piece in pieces])
     for (index, order, _), dense in zip(pieces, traced):
         out[index][order] = dense
     return out
+
+
+def traced_within(paths: Sequence[np.ndarray]) -> tuple[DensePaths, np.ndarray]:
+    """:func:`motor.signing.lmp.smooth_pieces` within the hull of every path ``(m, 3)`` at
+    once: the pieces of all the paths laid end to end, and each path's range of them
+    (``bounds[i]:bounds[i + 1]``). The holds dropped, the cuts at reversals and the
+    B-spline traced in compiled passes over all the points (the turns' arccos by numpy)."""
+    given = DensePaths.of(paths)
+    n = given.points.shape[0]
+    keep = np.ones(n, dtype=bool)
+    keep[1:] = given.chords[:-1] > HOLD_LENGTH
+    firsts = given.starts[:-1]
+    keep[firsts[firsts < n]] = True
+    counted = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(keep, out=counted[1:])
+    kept = DensePaths(given.points[keep], counted[given.starts])
+    pieces = np.zeros((max(n, 1), len(_PIECE)), dtype=np.int64)
+    bounds = np.empty(len(paths) + 1, dtype=np.int64)
+    totals = np.empty(2, dtype=np.int64)  # pieces, dense points
+    _cut_at_reversals(np.arccos(kept.turning_cosines()), kept.starts, given.starts, pieces, bounds, totals)
+    pieces = pieces[: totals[0]]
+    traced = pieces[(pieces[:, _PIECE["given"]] == 0) & (pieces[:, _PIECE["points"]] >= 3)]
+    sizes = np.unique(traced[:, _PIECE["points"]])
+    bases = [_basis(int(k)) for k in sizes]
+    rows = np.zeros(int(sizes.max()) + 1 if sizes.size else 1, dtype=np.int64)
+    rows[sizes] = np.cumsum([0, *(first.size for first, _ in bases[:-1])]) if bases else 0
+    pieces[:, _PIECE["basis"]] = rows[np.minimum(pieces[:, _PIECE["points"]], rows.size - 1)]
+    first = np.concatenate([first for first, _ in bases]) if bases else np.zeros(0, dtype=np.int64)
+    weights = np.concatenate([weights for _, weights in bases]) if bases else np.zeros((0, 4))
+    dense = np.empty((totals[1], 3))
+    _traced(given.points, kept.points, pieces, first, weights, dense)
+    return DensePaths(dense, np.append(pieces[:, _PIECE["dense"]], totals[1])), bounds
+
+
+#: Columns of a piece's row in :func:`traced_within`: as given (1, fewer than three distinct
+#: points) or of the kept points (0), its first row and number of points there, its first
+#: dense row, its basis's first row.
+_PIECE = {"given": 0, "first": 1, "points": 2, "dense": 3, "basis": 4}
+
+
+@numba.njit([numba.void(_IN1, _INDEX, _INDEX, numba.int64[:, ::1], numba.int64[::1], numba.int64[::1])], cache=True, error_model="numpy")
+def _cut_at_reversals(angles, kept, given, pieces, bounds, totals):  # noqa: ANN001, ANN202
+    """Each path's pieces (rows of :data:`_PIECE`): the path as given when fewer than three
+    of its points are kept, else its kept points cut where they turn by
+    :data:`motor.signing.lmp.REVERSAL_ANGLE` or more; ``totals``: the pieces and their
+    dense points."""
+    count, rows = 0, 0
+    for p in range(given.size - 1):
+        bounds[p] = count
+        first, end = kept[p], kept[p + 1]
+        if end - first < 3:
+            pieces[count, 0], pieces[count, 1], pieces[count, 2], pieces[count, 3] = 1, given[p], given[p + 1] - given[p], rows
+            rows += given[p + 1] - given[p]
+            count += 1
+            continue
+        cut = first
+        for i in range(first + 1, end):
+            if i == end - 1 or angles[i] >= REVERSAL_ANGLE:
+                k = i - cut + 1
+                pieces[count, 0], pieces[count, 1], pieces[count, 2], pieces[count, 3] = 0, cut, k, rows
+                rows += k if k < 3 else PATH_DENSITY * (k - 1) + 1
+                count += 1
+                cut = i
+    bounds[given.size - 1] = count
+    totals[0], totals[1] = count, rows
 
 
 def _without_holds(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
@@ -209,19 +289,18 @@ def _without_holds(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
     return out
 
 
-def _trace(pieces: list[np.ndarray], through: bool) -> list[np.ndarray]:
-    """Each piece ``(k, 3)`` densely, starting with its first point (:func:`smooth_pieces`)."""
+def _trace_through(pieces: list[np.ndarray]) -> list[np.ndarray]:
+    """Each piece ``(k, 3)`` densely through its points, starting with its first point
+    (:func:`smooth_pieces`), per size."""
     out: list[np.ndarray | None] = [None] * len(pieces)
     for k, members in _groups(pieces).items():
         stacked = np.stack([pieces[index] for index in members])
         if k < 3:
             dense = stacked.copy()
-        elif through:
+        else:
             dense = np.empty((len(members), PATH_DENSITY * (k - 1) + 1, 3))
             dense[:, 0] = stacked[:, 0]
             dense[:, 1:] = _through(stacked)
-        else:
-            dense = _within(stacked)
         for row, index in enumerate(members):
             out[index] = dense[row]
     return out
@@ -295,7 +374,8 @@ def _derivatives(x: np.ndarray, dx: np.ndarray, slope: np.ndarray) -> np.ndarray
 def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
     """The clamped B-spline of a ``k``-point control polygon (``lmp._within``) at its dense
     parameters: the first control point each parameter depends on ``(n,)`` and the weights
-    of it and the next ``degree`` points ``(n, degree + 1)``, as scipy's de Boor gives them."""
+    of it and the next ``degree`` points ``(n, 4)``, as scipy's de Boor gives them (zeros
+    past ``degree + 1 = min(4, k)``, never read)."""
     degree = min(3, k - 1)
     interior = k - degree - 1
     knots = np.concatenate([np.zeros(degree + 1), np.arange(1, interior + 1) / (interior + 1), np.ones(degree + 1)])
@@ -303,38 +383,37 @@ def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
     matrix = BSpline(knots, np.eye(k), degree)(at)
     interval = np.clip(np.searchsorted(knots, at, side="right") - 1, degree, knots.size - degree - 2)
     first = interval - degree
-    weights = matrix[np.arange(at.size)[:, None], first[:, None] + np.arange(degree + 1)]
+    weights = np.zeros((at.size, 4))
+    weights[:, : degree + 1] = matrix[np.arange(at.size)[:, None], first[:, None] + np.arange(degree + 1)]
     return first, weights
 
 
-def _within(pieces: np.ndarray) -> np.ndarray:
-    """The clamped B-spline with control polygon each row of ``(g, k ≥ 3, 3)``, densely,
-    starting with its first point (``lmp._within``): compiled (:func:`_within_rows`)."""
-    first, weights = _basis(pieces.shape[1])
-    dense = np.empty((pieces.shape[0], first.size + 1, 3))
-    _within_rows(np.ascontiguousarray(pieces, dtype=float), first, weights, dense)
-    return dense
-
-
-@numba.njit(
-    [numba.void(numba.types.Array(numba.float64, 3, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
-                numba.types.Array(numba.float64, 2, "C", readonly=True), numba.float64[:, :, ::1])],
-    cache=True,
-    error_model="numpy",
-)
-def _within_rows(pieces, first, weights, dense):  # noqa: ANN001, ANN202
-    """Into ``dense (g, n + 1, 3)``: each piece's first point, then each dense point as
-    the sum from zero over the basis's weights ``(n, degree + 1)`` of the control points
-    from ``first (n,)`` on, in the weights' order, the last point exactly the piece's last."""
-    for g in range(pieces.shape[0]):
-        dense[g, 0] = pieces[g, 0]
-        for r in range(first.size):
+@numba.njit([numba.void(_IN2, _IN2, _INDEX2, _INDEX, _IN2, numba.float64[:, ::1])], cache=True, error_model="numpy")
+def _traced(given, kept, pieces, first, weights, dense):  # noqa: ANN001, ANN202
+    """Into ``dense``: each piece (rows of :data:`_PIECE`) of fewer than three points or as
+    given copied, each other one traced within its hull — its first point, then each
+    dense point as the sum from zero over the basis's ``min(4, k)`` weights of the control
+    points from ``first`` on, in the weights' order, the last point exactly the piece's last."""
+    for q in range(pieces.shape[0]):
+        start, k, at, basis = pieces[q, 1], pieces[q, 2], pieces[q, 3], pieces[q, 4]
+        source = given if pieces[q, 0] == 1 else kept
+        if pieces[q, 0] == 1 or k < 3:
+            for i in range(k):
+                for c in range(3):
+                    dense[at + i, c] = source[start + i, c]
+            continue
+        n, width = PATH_DENSITY * (k - 1), min(4, k)
+        for c in range(3):
+            dense[at, c] = source[start, c]
+        for r in range(n):
+            control = start + first[basis + r]
             for c in range(3):
                 total = 0.0
-                for a in range(weights.shape[1]):
-                    total = total + pieces[g, first[r] + a, c] * weights[r, a]
-                dense[g, r + 1, c] = total
-        dense[g, -1] = pieces[g, -1]
+                for a in range(width):
+                    total = total + source[control + a, c] * weights[basis + r, a]
+                dense[at + 1 + r, c] = total
+        for c in range(3):
+            dense[at + n, c] = source[start + k - 1, c]
 
 
 def law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
@@ -354,13 +433,13 @@ def _law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
             long.append(index)
         else:  # two points: the way's two ends, [0, 1] (none: as given)
             out[index] = np.array([0.0, 1.0]) if path.shape[0] == 2 and np.all(np.isfinite(path)) else law_fractions(path)
-    dense = DensePaths([paths[index] for index in long])
+    dense = DensePaths.of([paths[index] for index in long])
     for index, fractions in zip(long, dense.split(dense.law_fractions())):
         out[index] = fractions
     return out
 
 
 def load_kernels() -> None:
-    """Run this module's compiled loop once (it loads when the module is imported):
+    """Run this module's compiled loops once (they load when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    _within(np.zeros((1, 3, 3)))
+    traced_within([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])

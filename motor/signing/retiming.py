@@ -28,7 +28,7 @@ import numpy as np
 from motor.body.avatar import ARMS
 from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
-from motor.signing.path_batch import distinct_paths, smooth_pieces_many
+from motor.signing.path_batch import distinct_paths, traced_within
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.trajectory.biocontrol import shortest_duration
 
@@ -75,17 +75,13 @@ def timing_length(values: np.ndarray) -> float:
 def timing_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     """:func:`timing_length` of every path ``(m, 3)``, with the arithmetic of the one-path
     functions — the same numbers, bit for bit: the pieces of all the distinct paths traced
-    at once (:func:`motor.signing.path_batch.smooth_pieces_many`), then laid end to end
-    (:class:`motor.signing.law_time.DensePaths`) for their lengths, law time and law
-    factors in compiled passes over all their points."""
+    at once and laid end to end (:func:`motor.signing.path_batch.traced_within`), their
+    lengths, law time and law factors in compiled passes over all their points."""
     distinct, twins = distinct_paths([np.asarray(path, dtype=float) for path in paths])
-    splits = smooth_pieces_many(distinct, through=False)
-    pieces = DensePaths([piece for split in splits for piece in split])
+    pieces, bounds = traced_within(distinct)
     factors = np.empty(pieces.starts.size - 1)
     _law_factors(pieces.arc, pieces.law_fractions(), pieces.starts, factors)
-    bounds = np.zeros(len(splits) + 1, dtype=np.int64)
-    np.cumsum([len(split) for split in splits], out=bounds[1:])
-    roots, largest = np.empty(len(splits)), np.empty(len(splits))
+    roots, largest = np.empty(len(distinct)), np.empty(len(distinct))
     _per_path(pieces.lengths(), factors, bounds, roots, largest)
     stopping = np.float_power(roots, 2.0)  # numpy's scalar ``**``: pow, not a product
     timed = np.where(stopping <= 0.0, 0.0, stopping * largest)
