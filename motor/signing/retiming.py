@@ -30,7 +30,7 @@ from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
 from motor.signing.path_batch import distinct_paths, traced_within
 from motor.signing.plan import SignPlan, SignPlanningError
-from motor.trajectory.biocontrol import shortest_duration
+from motor.trajectory.biocontrol import shortest_duration, shortest_durations
 
 #: Shortest path (m) whose law factor is measured; shorter pieces travel evenly enough.
 _MEASURED = 1e-3
@@ -124,16 +124,30 @@ def needed_duration(move: Move) -> float:
 
 def retimed_all(drafts: list[SignPlan | SignPlanningError], batched: bool = True) -> list[SignPlan | SignPlanningError]:
     """:func:`retimed` of every plan; errors pass through. ``batched``: the timing lengths
-    of all the plans' wrist moves in one pass (:func:`timing_lengths`), else move by move."""
+    and least durations of all the plans' wrist moves in one pass (:func:`timing_lengths`,
+    :func:`motor.trajectory.biocontrol.shortest_durations`), only the plans with a move
+    that needs more retimed one by one; else plan by plan, move by move."""
+    if not batched:
+        return [retimed(draft) if isinstance(draft, SignPlan) else draft for draft in drafts]
     plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
-    paths = [move.values for plan in plans for move in _wrist_moves(plan)]
-    lengths = iter(timing_lengths(paths) if batched else [timing_length(path) for path in paths])
-    timed = {id(plan): retimed(plan, [next(lengths) for _ in _wrist_moves(plan)]) for plan in plans}
-    return [timed[id(draft)] if isinstance(draft, SignPlan) else draft for draft in drafts]
+    chains = [_wrist_moves(plan) for plan in plans]
+    moves = [move for chain in chains for move in chain]
+    lengths = timing_lengths([move.values for move in moves])
+    quick = _too_quick(shortest_durations(lengths, [move.manner for move in moves]), np.array([move.end - move.start for move in moves]))
+    bounds = np.zeros(len(chains) + 1, dtype=np.int64)
+    np.cumsum([len(chain) for chain in chains], out=bounds[1:])
+    slowed = np.diff(np.concatenate([[0], np.cumsum(quick)])[bounds]) > 0
+    timed = {id(plan): retimed(plan, lengths[first:end]) for plan, first, end, slow in zip(plans, bounds[:-1], bounds[1:], slowed) if slow}
+    return [timed.get(id(draft), draft) for draft in drafts]
 
 
 def _wrist_moves(plan: SignPlan) -> list[Move]:
     return [move for arm in ARMS for move in plan.moves.get((arm, "wrist_position"), ())]
+
+
+def _too_quick(need: np.ndarray | float, given: np.ndarray | float) -> np.ndarray | bool:
+    """Whether moves given ``given`` seconds need more (``need``, s), beyond rounding."""
+    return need > given * (1.0 + _SLACK)
 
 
 def retimed(plan: SignPlan, lengths: Sequence[float] | None = None) -> SignPlan:
@@ -147,20 +161,27 @@ def retimed(plan: SignPlan, lengths: Sequence[float] | None = None) -> SignPlan:
     for move, length in zip(moves, lengths, strict=True):
         need = shortest_duration(length, move.manner)
         given = move.end - move.start
-        if need > given * (1.0 + _SLACK):
+        if _too_quick(need, given):
             key = (move.start, move.end)
             stretches[key] = max(stretches.get(key, 1.0), need / given)
     if not stretches:
         return plan
     warp = _Warp.of(plan, stretches)
-    warped = {key: tuple(replace(m, start=warp(m.start), end=warp(m.end)) for m in channel) for key, channel in plan.moves.items()}
+    times = iter(warp.at([plan.duration, *(time for channel in plan.moves.values() for move in channel for time in (move.start, move.end))]))
+    duration = next(times)
+    warped = {key: tuple(_moved(move, next(times), next(times)) for move in channel) for key, channel in plan.moves.items()}
     slowest = max(stretches.items(), key=lambda item: item[1])
     (start, end), factor = slowest
     note = (
         f"{plan.gloss}: {len(stretches)} move(s) slowed to keep the wrist within its speed budget, "
         f"the most from {end - start:.2f} s to {factor * (end - start):.2f} s"
     )
-    return replace(plan, duration=warp(plan.duration), moves=warped, warnings=(*plan.warnings, note))
+    return replace(plan, duration=duration, moves=warped, warnings=(*plan.warnings, note))
+
+
+def _moved(move: Move, start: float, end: float) -> Move:
+    """``move`` over ``[start, end]`` (s): itself where the warp left it."""
+    return move if start == move.start and end == move.end else replace(move, start=start, end=end)
 
 
 class _Warp:
@@ -186,8 +207,9 @@ class _Warp:
         new = np.concatenate([[old[0]], old[0] + np.cumsum(np.diff(old) * scale)])
         return cls(old, new)
 
-    def __call__(self, time: float) -> float:
-        return float(np.interp(time, self.old, self.new))
+    def at(self, times: Sequence[float]) -> list[float]:
+        """The warped ``times`` (s)."""
+        return np.interp(times, self.old, self.new).tolist()
 
 
 def load_kernels() -> None:

@@ -4,8 +4,9 @@ Cases: the wrist paths of real signs (every 25th parsed sign of both SiGML corpo
 planned up to, not including, the retiming) and synthetic paths (labelled by kind): a
 straight line, a zigzag that reverses, a path with a hold, two and three points, a path
 that does not move, one shorter than the millimetre whose law factor is measured, and
-one of micrometres (a law-time kernel wider than its grid). The clearing's
-spread of displacements along chains is checked on synthetic chains.
+one of micrometres (a law-time kernel wider than its grid); the least durations of a
+table of lengths in mixed manners. The clearing's spread of displacements along chains
+is checked on synthetic chains.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
 from motor.signing.reach import _spread, _spread_chains, path_shift, path_shifts
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
+from motor.trajectory.biocontrol import MANNERS, shortest_duration, shortest_durations
 from mura.hamnosys import hamnosys_string, parse_hamnosys
 from mura.sigml import parse_sigml
 
@@ -90,6 +92,17 @@ def test_timing_length_of_a_synthetic_path_equals_one_by_one(kind, real_paths):
     table = [*real_paths[:40], path, path.copy(), *real_paths[40:80]]  # among others, repeated
     batched = timing_lengths(table)
     assert batched[40] == batched[41] == timing_length(path)
+
+
+#: Movement lengths (m) whose least durations are compared: none, tiny, a sign's, the arm's span.
+LENGTHS = [0.0, 1e-9, 1e-4, 0.003, 0.01, 0.05, 0.12, 0.3, 0.7, 1.5]
+
+
+@pytest.mark.parametrize("manner", sorted(MANNERS))
+def test_shortest_durations_equal_one_by_one(manner):
+    manners = [(manner, "lax", "fast")[index % 3] for index in range(len(LENGTHS))]  # mixed, as a corpus's moves
+    batched = shortest_durations(np.array(LENGTHS), manners)
+    assert batched.tolist() == [shortest_duration(length, name) for length, name in zip(LENGTHS, manners)]
 
 
 def test_retimed_plans_equal_plans_retimed_one_by_one(drafts):
