@@ -3,12 +3,14 @@ and :func:`motor.signing.lmp.law_fractions`.
 
 A sequence of signs traces thousands of short wrist paths (every move, every transition).
 One at a time, each costs a scipy spline and a few dozen small numpy calls, and the calls'
-overhead is most of the synthesis time. Here the paths are grouped by their number of
-points and each group is traced in one pass over a ``(paths, points, 3)`` array: the
-interpolating spline by a batched tridiagonal solve (the same not-a-knot conditions and
-cubic Hermite pieces scipy's ``CubicSpline`` builds), the B-spline within the hull by its
-basis at the fixed parameters of a path of that size; the law time of all the paths of
-three or more points in one compiled pass (:class:`motor.signing.law_time.DensePaths`).
+overhead is most of the synthesis time. Here the paths traced through their points are
+grouped by their number of points and each group is traced in one pass over a ``(paths,
+points, 3)`` array by the interpolating spline, a batched tridiagonal solve (the same
+not-a-knot conditions and cubic Hermite pieces scipy's ``CubicSpline`` builds); the paths
+traced within their hulls are laid end to end and traced in compiled loops over all their
+points, the B-spline by its basis at the fixed parameters of a piece of each size; the law
+time of all the paths of three or more points in compiled passes too
+(:class:`motor.signing.law_time.DensePaths`).
 
 The results equal the one-path functions within rounding (a few ulps: the spline's linear
 solve orders its operations differently from LAPACK's); repeated points are dropped as
@@ -89,7 +91,9 @@ def _traced_within(piece: np.ndarray) -> np.ndarray:
     first, weights = _basis(piece.shape[0])
     dense = np.empty((first.size + 1, 3))
     piece = np.ascontiguousarray(piece, dtype=float)
-    _traced(piece, piece, np.array([[0, 0, piece.shape[0], 0, 0]]), first, weights, dense)
+    row = np.zeros((1, _COLUMNS), dtype=np.int64)  # one piece of kept points, from row 0, its basis from row 0
+    row[0, _POINTS] = piece.shape[0]
+    _traced(piece, piece, row, first, weights, dense)
     return dense
 
 
@@ -214,6 +218,21 @@ def traced_within(paths: Sequence[np.ndarray]) -> tuple[DensePaths, np.ndarray]:
     (``bounds[i]:bounds[i + 1]``). The holds dropped, the cuts at reversals and the
     B-spline traced in compiled passes over all the points (the turns' arccos by numpy)."""
     given = DensePaths.of(paths)
+    kept = _kept(given)
+    pieces = np.zeros((max(given.points.shape[0], 1), _COLUMNS), dtype=np.int64)
+    bounds = np.empty(len(paths) + 1, dtype=np.int64)
+    totals = np.empty(2, dtype=np.int64)  # pieces, dense points
+    _cut_at_reversals(np.arccos(kept.turning_cosines()), kept.starts, given.starts, pieces, bounds, totals)
+    pieces = pieces[: totals[0]]
+    first, weights = _basis_table(pieces)
+    dense = np.empty((totals[1], 3))
+    _traced(given.points, kept.points, pieces, first, weights, dense)
+    return DensePaths(dense, np.append(pieces[:, _DENSE], totals[1])), bounds
+
+
+def _kept(given: DensePaths) -> DensePaths:
+    """The paths without the points :func:`motor.signing.lmp.smooth_pieces` drops (those
+    within :data:`motor.trajectory.spline.HOLD_LENGTH` of the point before)."""
     n = given.points.shape[0]
     keep = np.ones(n, dtype=bool)
     keep[1:] = given.chords[:-1] > HOLD_LENGTH
@@ -221,34 +240,33 @@ def traced_within(paths: Sequence[np.ndarray]) -> tuple[DensePaths, np.ndarray]:
     keep[firsts[firsts < n]] = True
     counted = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(keep, out=counted[1:])
-    kept = DensePaths(given.points[keep], counted[given.starts])
-    pieces = np.zeros((max(n, 1), len(_PIECE)), dtype=np.int64)
-    bounds = np.empty(len(paths) + 1, dtype=np.int64)
-    totals = np.empty(2, dtype=np.int64)  # pieces, dense points
-    _cut_at_reversals(np.arccos(kept.turning_cosines()), kept.starts, given.starts, pieces, bounds, totals)
-    pieces = pieces[: totals[0]]
-    traced = pieces[(pieces[:, _PIECE["given"]] == 0) & (pieces[:, _PIECE["points"]] >= 3)]
-    sizes = np.unique(traced[:, _PIECE["points"]])
+    return DensePaths(given.points[keep], counted[given.starts])
+
+
+def _basis_table(pieces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The bases (:func:`_basis`) of every size of piece traced within its hull, one after
+    another — each dense point's first control point ``(r,)`` and weights ``(r, 4)`` — with
+    each such piece's first row of them written into its :data:`_BASIS` column."""
+    traced = (pieces[:, _GIVEN] == 0) & (pieces[:, _POINTS] >= 3)
+    sizes = np.unique(pieces[traced, _POINTS])
     bases = [_basis(int(k)) for k in sizes]
-    rows = np.zeros(int(sizes.max()) + 1 if sizes.size else 1, dtype=np.int64)
-    rows[sizes] = np.cumsum([0, *(first.size for first, _ in bases[:-1])]) if bases else 0
-    pieces[:, _PIECE["basis"]] = rows[np.minimum(pieces[:, _PIECE["points"]], rows.size - 1)]
-    first = np.concatenate([first for first, _ in bases]) if bases else np.zeros(0, dtype=np.int64)
-    weights = np.concatenate([weights for _, weights in bases]) if bases else np.zeros((0, 4))
-    dense = np.empty((totals[1], 3))
-    _traced(given.points, kept.points, pieces, first, weights, dense)
-    return DensePaths(dense, np.append(pieces[:, _PIECE["dense"]], totals[1])), bounds
+    rows = np.zeros(sizes.size + 1, dtype=np.int64)
+    np.cumsum(np.array([first.size for first, _ in bases], dtype=np.int64), out=rows[1:])
+    pieces[traced, _BASIS] = rows[np.searchsorted(sizes, pieces[traced, _POINTS])]
+    first = np.concatenate([np.zeros(0, dtype=np.int64), *(first for first, _ in bases)])
+    return first, np.concatenate([np.zeros((0, 4)), *(weights for _, weights in bases)])
 
 
-#: Columns of a piece's row in :func:`traced_within`: as given (1, fewer than three distinct
+#: Columns of a piece's row in :func:`traced_within`: as given (1: fewer than three distinct
 #: points) or of the kept points (0), its first row and number of points there, its first
-#: dense row, its basis's first row.
-_PIECE = {"given": 0, "first": 1, "points": 2, "dense": 3, "basis": 4}
+#: dense row, its basis's first row (:func:`_basis_table`).
+_GIVEN, _FIRST, _POINTS, _DENSE, _BASIS = range(5)
+_COLUMNS = 5
 
 
 @numba.njit([numba.void(_IN1, _INDEX, _INDEX, numba.int64[:, ::1], numba.int64[::1], numba.int64[::1])], cache=True, error_model="numpy")
 def _cut_at_reversals(angles, kept, given, pieces, bounds, totals):  # noqa: ANN001, ANN202
-    """Each path's pieces (rows of :data:`_PIECE`): the path as given when fewer than three
+    """Each path's pieces (rows of :data:`_GIVEN` … :data:`_BASIS`): the path as given when fewer than three
     of its points are kept, else its kept points cut where they turn by
     :data:`motor.signing.lmp.REVERSAL_ANGLE` or more; ``totals``: the pieces and their
     dense points."""
@@ -257,7 +275,7 @@ def _cut_at_reversals(angles, kept, given, pieces, bounds, totals):  # noqa: ANN
         bounds[p] = count
         first, end = kept[p], kept[p + 1]
         if end - first < 3:
-            pieces[count, 0], pieces[count, 1], pieces[count, 2], pieces[count, 3] = 1, given[p], given[p + 1] - given[p], rows
+            pieces[count, _GIVEN], pieces[count, _FIRST], pieces[count, _POINTS], pieces[count, _DENSE] = 1, given[p], given[p + 1] - given[p], rows
             rows += given[p + 1] - given[p]
             count += 1
             continue
@@ -265,7 +283,7 @@ def _cut_at_reversals(angles, kept, given, pieces, bounds, totals):  # noqa: ANN
         for i in range(first + 1, end):
             if i == end - 1 or angles[i] >= REVERSAL_ANGLE:
                 k = i - cut + 1
-                pieces[count, 0], pieces[count, 1], pieces[count, 2], pieces[count, 3] = 0, cut, k, rows
+                pieces[count, _GIVEN], pieces[count, _FIRST], pieces[count, _POINTS], pieces[count, _DENSE] = 0, cut, k, rows
                 rows += k if k < 3 else PATH_DENSITY * (k - 1) + 1
                 count += 1
                 cut = i
@@ -390,14 +408,14 @@ def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
 
 @numba.njit([numba.void(_IN2, _IN2, _INDEX2, _INDEX, _IN2, numba.float64[:, ::1])], cache=True, error_model="numpy")
 def _traced(given, kept, pieces, first, weights, dense):  # noqa: ANN001, ANN202
-    """Into ``dense``: each piece (rows of :data:`_PIECE`) of fewer than three points or as
+    """Into ``dense``: each piece (rows of :data:`_GIVEN` … :data:`_BASIS`) of fewer than three points or as
     given copied, each other one traced within its hull — its first point, then each
     dense point as the sum from zero over the basis's ``min(4, k)`` weights of the control
     points from ``first`` on, in the weights' order, the last point exactly the piece's last."""
     for q in range(pieces.shape[0]):
-        start, k, at, basis = pieces[q, 1], pieces[q, 2], pieces[q, 3], pieces[q, 4]
-        source = given if pieces[q, 0] == 1 else kept
-        if pieces[q, 0] == 1 or k < 3:
+        start, k, at, basis = pieces[q, _FIRST], pieces[q, _POINTS], pieces[q, _DENSE], pieces[q, _BASIS]
+        source = given if pieces[q, _GIVEN] == 1 else kept
+        if pieces[q, _GIVEN] == 1 or k < 3:
             for i in range(k):
                 for c in range(3):
                     dense[at + i, c] = source[start + i, c]
