@@ -39,7 +39,7 @@ from motor.signing.lmp import (
     stopping_length,
     stopping_times,
 )
-from motor.signing.law_time import DensePaths
+from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.trajectory.spline import HOLD_LENGTH
 
 #: Turning angles below this product of adjacent chord lengths count as zero (a hold), as
@@ -53,10 +53,30 @@ _INDEX2 = numba.types.Array(numba.int64, 2, "C", readonly=True)
 
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
-    """:func:`motor.signing.lmp.stopping_length` of every path."""
-    pieces = smooth_pieces_many(paths, through=False)
-    lengths = iter(polyline_lengths([piece for split in pieces for piece in split]))
-    return [float(np.sum(np.sqrt([float(next(lengths)) for _ in split])) ** 2) for split in pieces]
+    """:func:`motor.signing.lmp.stopping_length` (m) of every path ``(m, 3)``, each distinct
+    path's pieces traced at once (:func:`traced_within`)."""
+    distinct, twins = distinct_paths([np.asarray(path, dtype=float) for path in paths])
+    pieces, bounds = traced_within(distinct)
+    return stopping_of(pieces.lengths(), bounds)[twins].tolist()
+
+
+def stopping_of(lengths: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    """The stopping length ``(Σ √lengthᵢ)²`` (m) of each path of pieces ``lengths`` (m),
+    path ``i``'s at ``bounds[i]:bounds[i + 1]``, with
+    :func:`motor.signing.lmp.stopping_length`'s arithmetic: numpy's pairwise sum, then
+    ``pow`` (numpy's scalar ``**``), not a product."""
+    roots = np.empty(bounds.size - 1)
+    _root_sums(np.ascontiguousarray(lengths, dtype=float), np.ascontiguousarray(bounds, dtype=np.int64), roots)
+    return np.float_power(roots, 2.0)
+
+
+@numba.njit([numba.void(_IN1, _INDEX, numba.float64[::1])], cache=True, error_model="numpy")
+def _root_sums(lengths, bounds, out):  # noqa: ANN001, ANN202
+    """Per path of pieces ``bounds[i]:bounds[i + 1]``: the sum of the square roots of their
+    lengths, in numpy's pairwise order."""
+    roots = np.sqrt(lengths)
+    for path in range(bounds.size - 1):
+        out[path] = pairwise_sum(roots, bounds[path], bounds[path + 1] - bounds[path])
 
 
 def stopping_length_of(points: np.ndarray) -> float:
@@ -460,4 +480,4 @@ def _law_fractions_many(paths: Sequence[np.ndarray]) -> list[np.ndarray]:
 def load_kernels() -> None:
     """Run this module's compiled loops once (they load when the module is imported):
     :func:`motor.compiled.warm_up`."""
-    traced_within([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])
+    stopping_lengths([np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.01, 0.01, 0.0]])])

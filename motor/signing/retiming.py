@@ -26,9 +26,8 @@ import numba
 import numpy as np
 
 from motor.body.avatar import ARMS
-from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
-from motor.signing.path_batch import distinct_paths, traced_within
+from motor.signing.path_batch import distinct_paths, stopping_of, traced_within
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.trajectory.biocontrol import shortest_duration, shortest_durations
 
@@ -81,11 +80,9 @@ def timing_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     pieces, bounds = traced_within(distinct)
     factors = np.empty(pieces.starts.size - 1)
     _law_factors(pieces.arc, pieces.law_fractions(), pieces.starts, factors)
-    roots, largest = np.empty(len(distinct)), np.empty(len(distinct))
-    _per_path(pieces.lengths(), factors, bounds, roots, largest)
-    stopping = np.float_power(roots, 2.0)  # numpy's scalar ``**``: pow, not a product
-    timed = np.where(stopping <= 0.0, 0.0, stopping * largest)
-    return timed[twins].tolist()
+    stopping = stopping_of(pieces.lengths(), bounds)
+    largest = np.maximum.reduceat(factors, bounds[:-1]) if len(distinct) else np.ones(0)  # every path has a piece
+    return np.where(stopping <= 0.0, 0.0, stopping * largest)[twins].tolist()
 
 
 @numba.njit([numba.void(_IN1, _IN1, _INDEX, _OUT1)], cache=True, error_model="numpy")
@@ -102,18 +99,6 @@ def _law_factors(arc, fractions, starts, out):  # noqa: ANN001, ANN202
             spent = fractions[i + 1] - fractions[i]
             if spent > _MOVING:
                 out[p] = max(out[p], (arc[i + 1] - arc[i]) / arc[last] / spent)
-
-
-@numba.njit([numba.void(_IN1, _IN1, _INDEX, _OUT1, _OUT1)], cache=True, error_model="numpy")
-def _per_path(lengths, factors, bounds, roots, largest):  # noqa: ANN001, ANN202
-    """Per path of pieces ``bounds[i]:bounds[i + 1]``: the sum of the square roots of their
-    lengths (in numpy's pairwise order) and the largest of 1 and their law factors."""
-    root = np.sqrt(lengths)
-    for path in range(bounds.size - 1):
-        roots[path] = pairwise_sum(root, bounds[path], bounds[path + 1] - bounds[path])
-        largest[path] = 1.0
-        for piece in range(bounds[path], bounds[path + 1]):
-            largest[path] = max(largest[path], factors[piece])
 
 
 def needed_duration(move: Move) -> float:

@@ -22,7 +22,7 @@ LOOPS = [
     (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"), (cheapest_swivel, "_cheapest_rows"), (path_batch, "_traced"), (path_batch, "_cut_at_reversals"),
     (given_swivel, "_posed_rows"), (shape, "_hand_rows"),
     (law_time, "_chords_and_arcs"), (law_time, "_chord_sums"), (law_time, "_turning_cosines"), (law_time, "_curvature_and_grids"),
-    (law_time, "_kernel_exponents"), (law_time, "_smoothed"), (law_time, "_law_time"), (retiming, "_law_factors"), (retiming, "_per_path"),
+    (law_time, "_kernel_exponents"), (law_time, "_smoothed"), (law_time, "_law_time"), (retiming, "_law_factors"), (path_batch, "_root_sums"),
 ]  # fmt: skip
 
 
