@@ -24,6 +24,7 @@ import numpy as np
 from motor.signing.lmp import LAW_SMOOTHING, _SAME
 from motor.trajectory.power_law import EXPONENT, clamped_curvature
 from motor.trajectory.spline import _HOLD
+
 #: Truncation of the Gaussian kernel in standard deviations (``gaussian_filter1d``'s default).
 _TRUNCATE = 4.0
 #: numpy's pairwise summation: blocks summed in eight lanes, and up to this many at once.

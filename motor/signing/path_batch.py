@@ -29,6 +29,7 @@ import numba
 import numpy as np
 from scipy.interpolate import BSpline
 
+from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import (
     PATH_DENSITY,
     REVERSAL_ANGLE,
@@ -39,12 +40,7 @@ from motor.signing.lmp import (
     stopping_length,
     stopping_times,
 )
-from motor.signing.law_time import DensePaths, pairwise_sum
-from motor.trajectory.spline import HOLD_LENGTH
-
-#: Turning angles below this product of adjacent chord lengths count as zero (a hold), as
-#: in :func:`motor.trajectory.spline.turning_angles`.
-_HOLD = 1e-9
+from motor.trajectory.spline import _HOLD, HOLD_LENGTH
 
 _IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
 _IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
