@@ -267,17 +267,16 @@ def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius,
         low, high = (elbow[0].min(), elbow[1].min(), elbow[2].min()), (elbow[0].max(), elbow[1].max(), elbow[2].max())
         whole = not _finite((natural[i], *s, *w, *m, *c, *low, *high))
         least = math.inf
-        for j in range(count):
-            costs[j] = natural_cost(turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
-            known[j] = True
+        known[:] = True
         cell = int(first) % count - 1
         for k in range(width):
             cell = cell + 1 if cell + 1 < count else 0
             cell_of[k], window[cell], known[cell] = cell, k, False
             distance[k], load[k] = natural_cost(psi[k] - natural[i]), -1.0
             whole |= distance[k] != distance[k]
-        for j in range(count):
+        for j in range(count):  # the candidates beyond the window cost their distance and OUTSIDE
             if known[j]:
+                costs[j] = natural_cost(turn_remainder(candidates[j] - natural[i] + np.pi) - np.pi) + OUTSIDE
                 least = min(least, costs[j])
         row_meets(s, w, low, high, segments, boxes, meets)
         _by_distance(distance, order)

@@ -22,6 +22,7 @@ from motor.body.collision import outside_torso
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+from motor.signing.spreading import spread_along_chains
 
 #: Shortest path length that counts as a movement, metres.
 _SAME = 1e-6
@@ -49,22 +50,8 @@ CROSS_STEPS = 16
 REFINE_SPACING = 0.03
 
 
-#: Arc length (m) over which a point's displacement out of the body or into reach is
-#: shared with its neighbours (wide enough that a circle or a short line needing to move
-#: moves nearly whole: at 8 cm circles came out dented, and the audit's 200 sampled
-#: signs had 7 wrist speed steps at such dents; at 24 cm, 1), the rounds of that sharing, the most neighbours on either
-#: side that one point's displacement reaches, and the Gaussian weight below which it
-#: reaches no farther (see :func:`_spread`).
-SPREAD = 0.24
-
-
+#: Rounds of sharing a displacement along a chain (see :func:`clear_paths`).
 SPREAD_ROUNDS = 8
-
-
-SPREAD_WINDOW = 48
-
-
-SPREAD_CUT = 1e-4
 
 
 #: Rows per IK call when checking many positions: the cost per row of the vectorized IK
@@ -231,8 +218,8 @@ def clear_paths(
     the unreachable core around the shoulder). Points are not moved one by one — a path
     whose points each stepped aside on their own would zigzag, and the hand would jerk
     along it — but by a displacement that varies smoothly along the path: what each
-    point needs is spread over its neighbours within :data:`SPREAD` metres of arc
-    (:func:`_spread`), for :data:`SPREAD_ROUNDS` rounds, each checking only the points
+    point needs is spread over its neighbours within ``SPREAD`` metres of arc
+    (:func:`motor.signing.spreading.spread_along_chains`), for :data:`SPREAD_ROUNDS` rounds, each checking only the points
     that moved; a last check moves whatever still needs it. A short path whose points all
     need about the same thus moves whole, keeping its shape. Paths of one ``chains``
     number ``(len(paths),)``, in order, are one hand's consecutive moves (each starting
@@ -261,7 +248,7 @@ def clear_paths(
         cleared, moved, _ = _clear_points(avatar, arm, points, turns, checked, across)
         if not moved.any():
             break
-        shift = _spread(cleared - points, arc, chain, ~mask) * mask[:, None]
+        shift = spread_along_chains(cleared - points, arc, chain, ~mask) * mask[:, None]
         points = points + shift
         checked = mask & np.any(np.abs(shift) > 1e-12, axis=1)
     points = _clear_points(avatar, arm, points, turns, checked, across)[0]
@@ -302,53 +289,6 @@ def _chain_arc(points: np.ndarray, owner: np.ndarray, chain: np.ndarray) -> np.n
     table = np.zeros((len(first), int(sizes.max())))
     table[row, column] = step
     return np.cumsum(table, axis=1)[row, column]
-
-
-def _spread(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
-    """Displacements ``(n, 3)`` that vary smoothly along each chain: every point's
-    ``need`` spread over the points of its chain within :data:`SPREAD` metres of arc with
-    a Gaussian weight (σ = SPREAD / 3), summed and divided by a smooth maximum of 1 and
-    the weight w of the needy points around, (w⁴ + 1)^¼ (a plain maximum has a kink where
-    w crosses 1, which bends a cleared line into a hook) — a lone needy point moves by what it needs and
-    its neighbours by less and less, a stretch of points needing the same moves by it.
-    ``anchored`` points ``(n,)`` stay: they count as needing no displacement, so the
-    displacement fades toward them (the rounds of :func:`clear_paths` make up the rest).
-
-    Only the chains with a point that needs something (or an anchored one) are computed:
-    every other point's displacement is 0, and a chain's sums read only its own points."""
-    involved = np.isin(chain, chain[np.any(need != 0.0, axis=1) | anchored])
-    if involved.all():
-        return _spread_chains(need, arc, chain, anchored)
-    spread = np.zeros_like(need)
-    if involved.any():
-        spread[involved] = _spread_chains(need[involved], arc[involved], chain[involved], anchored[involved])
-    return spread
-
-
-def _spread_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
-    """:func:`_spread` of points whose chains are all whole (each chain's points in a row)."""
-    sigma = SPREAD / 3.0
-    needy = (np.any(np.abs(need) > 1e-12, axis=1) | anchored).astype(float)
-    total = need.copy()
-    weight = needy.copy()
-    count = len(arc)
-    for offset in range(1, SPREAD_WINDOW + 1):
-        if offset >= count:
-            break
-        same = chain[offset:] == chain[:-offset]
-        kernel = np.exp(-0.5 * ((arc[offset:] - arc[:-offset]) / sigma) ** 2)
-        kernel = np.where(same & (kernel > SPREAD_CUT), kernel, 0.0)  # each chain alone as in a collection
-        if not np.any(kernel):
-            break
-        total[offset:] += kernel[:, None] * need[:-offset]
-        total[:-offset] += kernel[:, None] * need[offset:]
-        weight[offset:] += kernel * needy[:-offset]
-        weight[:-offset] += kernel * needy[offset:]
-    spread = total / ((weight**4 + 1.0) ** 0.25)[:, None]
-    # a point repeated at the same arc (where one move ends and the next starts) moves as
-    # its first copy, bit for bit (the sums above add its neighbours in another order)
-    repeated = np.concatenate([[False], (chain[1:] == chain[:-1]) & (arc[1:] == arc[:-1])])
-    return spread[np.maximum.accumulate(np.where(repeated, 0, np.arange(count)))]
 
 
 def _clear_points(

@@ -22,11 +22,13 @@ from motor.signing import path_shapes, planning
 from motor.signing.lmp import stopping_length
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
-from motor.signing.reach import _spread, _spread_chains, path_shift, path_shifts
+from motor.signing.reach import path_shift, path_shifts
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
+from motor.signing.spreading import _spread_chains, spread_along_chains
 from motor.trajectory.biocontrol import MANNERS, shortest_duration, shortest_durations
 from mura.hamnosys import hamnosys_string, parse_hamnosys
 from mura.sigml import parse_sigml
+from tests.perf_equivalence import plain_spread
 
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
 #: Every how many signs of each corpus the real cases take.
@@ -118,23 +120,45 @@ def test_retimed_plans_equal_plans_retimed_one_by_one(drafts):
             assert [(m.start, m.end) for m in a.moves[key]] == [(m.start, m.end) for m in moves], (b.gloss, key)
 
 
-@pytest.mark.parametrize("seed", [1, 2, 3])
-def test_spreading_only_the_chains_that_need_it_changes_no_displacement(seed):
+def synthetic_chains(seed: int, dense: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Synthetic chains (labelled synthetic: random arcs and needs, seeded), some needing
-    nothing, some needing less than the threshold of a needy point, some anchored."""
+    nothing, some needing less than the threshold of a needy point, some anchored, with a
+    point repeated where one move ends and the next starts; ``dense``: points a few
+    millimetres apart in long chains, so that a need reaches past the window of
+    neighbours, as in a corpus's wrist paths."""
     rng = np.random.default_rng(seed)
-    sizes = rng.integers(1, 40, 30)
+    sizes = rng.integers(60, 200, 12) if dense else rng.integers(1, 40, 30)
     chain = np.repeat(np.arange(sizes.size), sizes)
-    arc = np.concatenate([np.cumsum(rng.uniform(0.0, 0.03, size)) for size in sizes])
-    arc[5] = arc[4]  # a point repeated where one move ends and the next starts
+    arc = np.concatenate([np.cumsum(rng.uniform(0.0, 0.006 if dense else 0.03, size)) for size in sizes])
+    arc[5] = arc[4]
     need = rng.normal(0.0, 0.02, (chain.size, 3)) * (rng.random(chain.size) < 0.2)[:, None]
     need[chain % 3 == 0] = 0.0
     need[chain == 4] = 1e-13  # below the needy threshold, still spread
     anchored = (chain == 6) & (rng.random(chain.size) < 0.5)
-    plain = _spread_chains(need, arc, chain, anchored)
-    fast = _spread(need, arc, chain, anchored)
-    assert fast.tobytes() == plain.tobytes()
+    return need, arc, chain, anchored
+
+
+@pytest.mark.parametrize("dense", [False, True], ids=["sparse", "dense"])
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_spreading_only_the_chains_that_need_it_changes_no_displacement(seed, dense):
+    need, arc, chain, anchored = synthetic_chains(seed, dense)
+    whole = _spread_chains(need, arc, chain, anchored)
+    fast = spread_along_chains(need, arc, chain, anchored)
+    assert fast.tobytes() == whole.tobytes()
     assert np.any(fast[chain == 4] != 0.0) and np.all(fast[chain == 3] == 0.0)
+
+
+@pytest.mark.parametrize("dense", [False, True], ids=["sparse", "dense"])
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_compiled_spreading_adds_as_the_numpy_passes(seed, dense):
+    need, arc, chain, anchored = synthetic_chains(seed, dense)
+    assert _spread_chains(need, arc, chain, anchored).tobytes() == plain_spread.spread_chains(need, arc, chain, anchored).tobytes()
+
+
+def test_a_chain_of_one_point_and_no_points_spread_nothing_else():
+    one = _spread_chains(np.array([[0.01, 0.0, 0.0]]), np.zeros(1), np.zeros(1, dtype=np.int64), np.zeros(1, dtype=bool))
+    assert one.tolist() == plain_spread.spread_chains(np.array([[0.01, 0.0, 0.0]]), np.zeros(1), np.zeros(1, dtype=np.int64), np.zeros(1, dtype=bool)).tolist()
+    assert spread_along_chains(np.zeros((0, 3)), np.zeros(0), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=bool)).shape == (0, 3)
 
 
 def test_one_path_stopping_length_of_real_paths_equals_the_plain_one(real_paths):
