@@ -17,7 +17,8 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement, natural_swivel
-from motor.arm.clearance import ArmSegments, arm_capsules, candidate_depth, candidate_penalty, obstacle_table, row_meets, segment_table, upright_obstacles
+from motor.arm.candidate_clearance import candidate_depth, candidate_penalty, row_meets
+from motor.arm.clearance import ArmSegments, arm_capsules, obstacle_table, segment_table, upright_obstacles
 from motor.arm.swivel_cost import (
     CANDIDATES,
     OUTSIDE,
@@ -236,7 +237,7 @@ _IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
 def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius, down, out, constants, limits, candidates, segments, kinds, parameters, boxes, in_trunk, swivels, elbows, depth):  # noqa: ANN001, ANN202, E501
     """:func:`cheapest_swivels` per frame ``i``: every candidate's cost as
     :func:`motor.arm.swivel_cost.candidate_costs` sums it, with the body's clearance penalty
-    (:func:`motor.arm.clearance.candidate_penalty`) for the window's candidates (their
+    (:func:`motor.arm.candidate_clearance.candidate_penalty`) for the window's candidates (their
     elbows placed on the circle here, :func:`_window_of`), measured lazily — by
     increasing distance cost from the natural swivel, until that alone exceeds the least
     cost found; the wrist's load only for those, and the penalty only where the two do
@@ -245,7 +246,7 @@ def _cheapest_rows(natural, hands, shoulder, wrist, circle_axis, center, radius,
     the three. A frame with a NaN input has every candidate measured: ``np.argmin`` then
     picks the first NaN. Where ``depth`` has rows, the elbow at the chosen swivel
     (:meth:`motor.arm.chain.ElbowCircle.elbow`) goes into ``elbows`` and how deep the arm
-    then enters the body (:func:`motor.arm.clearance.candidate_depth`, before its floor at 0) into ``depth``."""
+    then enters the body (:func:`motor.arm.candidate_clearance.candidate_depth`, before its floor at 0) into ``depth``."""
     count, width = candidates.size, 2 * WINDOW + 1
     loaded = hands.shape[0] != 0
     fixed = wrist_constants(constants)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost
+from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, swivel, swivel_cost
 from motor.body import distance
 from motor.body.avatar import load_avatar
 from motor.hand import shape
@@ -18,7 +18,7 @@ from motor.compiled import warm_up
 LOOPS = [
     (quat, "_multiply_rows"), (quat, "_rotate_rows"), (quat, "_cross_rows"), (quat, "_normalize_rows"),
     (distance, "_closest_loop"), (distance, "_segments_loop"), (distance, "_point_segment_loop"), (distance, "_volume_loop"),
-    (clearance, "_clearance_rows"), (clearance, "_charge_trunk"), (swivel, "_cost_to_go"),
+    (candidate_clearance, "clearance_rows"), (candidate_clearance, "charge_trunk"), (swivel, "_cost_to_go"),
     (swivel_cost, "_wrist_rows"), (swivel_cost, "_cost_rows"), (cheapest_swivel, "_cheapest_rows"), (path_batch, "_traced"), (path_batch, "_cut_at_reversals"),
     (given_swivel, "_posed_rows"), (shape, "_hand_rows"),
     (law_time, "_chords_and_arcs"), (law_time, "_chord_sums"), (law_time, "_turning_cosines"), (law_time, "_curvature_and_grids"),
