@@ -19,10 +19,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from motor.arm.wrist_position import WristPositionLMP  # noqa: E402
-from motor.body.avatar import (
-    AVATAR_SIDE,  # noqa: E402
-    Avatar,  # noqa: E402
-)
+from motor.body.avatar import Avatar  # noqa: E402
+from motor.body.conventions import AVATAR_SIDE  # noqa: E402
 from motor.body.kinematics import forward_kinematics  # noqa: E402
 from motor.motion import Motion  # noqa: E402
 from motor.program.gesture import MotorProgram  # noqa: E402

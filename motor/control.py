@@ -65,7 +65,8 @@ from motor.neck.control import NeckControl
 from motor.neck import gaze as neck_gaze
 from motor.neck.lexemes import head_lexeme
 from motor.neck.planning import NeckPlanner
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.body.collision import hand_push_out_of_torso, hand_separation, hands_may_meet, kept_out_of_torso, separate_hands
 from motor.body.hands_apart import eased_separation, reach_frames
 from motor.hand.shape import hand_rotations

@@ -38,7 +38,8 @@ from agent.export.gltf import motion_model, write_motion_glb
 from agent.export.html import write_html
 from agent.export.page_model import page_model
 from agent.export.staging import Staging
-from motor.body.avatar import DEFAULT_AVATAR, Avatar, load_avatar
+from motor.body.avatar import Avatar, load_avatar
+from motor.body.conventions import DEFAULT_AVATAR
 from motor.motion import Motion
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_signs

@@ -15,7 +15,8 @@ from pathlib import Path
 from agent.commands.table import SUMMARIES
 from agent.export.gltf import write_avatar_glb
 from agent.export.staging import staged_text
-from motor.body.avatar import BUILT_AVATAR_DIR, AvatarError, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import BUILT_AVATAR_DIR, AvatarError
 from motor.body.definition import Definition
 
 #: Where the wheel is cached between builds.

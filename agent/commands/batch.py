@@ -17,7 +17,8 @@ from agent.batch.items import read_corpus
 from agent.batch.render import DEFAULT_TIME_LIMIT, RenderOptions
 from agent.commands.options import add_lexicon_option, add_limit_option, limits_from
 from agent.commands.table import SUMMARIES
-from motor.body.avatar import DEFAULT_AVATAR, AvatarError, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import DEFAULT_AVATAR, AvatarError
 from mura.lexicon import load_lexicons
 from mura.limits import LimitError
 

@@ -12,7 +12,7 @@ from agent.commands.options import add_limit_option, limits_from, refuse
 from agent.commands.render import render_one
 from agent.commands.table import SUMMARIES
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import DEFAULT_AVATAR, AvatarError
+from motor.body.conventions import DEFAULT_AVATAR, AvatarError
 from mura.limits import LimitError
 from mura.resources import SPECS_DIR
 from tts import SpeechError

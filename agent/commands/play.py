@@ -22,7 +22,7 @@ from agent.live_server import LiveServer
 from agent.performance import PerformanceError, rest_motion
 from agent.signals import signals_deferred
 from blackboard.events import Event, FramesReady, SpeechStarted
-from motor.body.avatar import AvatarError
+from motor.body.conventions import AvatarError
 from mura.errors import SpecError
 from mura.limits import LimitError
 from tts import SpeechError

@@ -17,7 +17,8 @@ from agent.sources import read_utterance
 from blackboard.clock import VirtualClock
 from blackboard.scheduler import Scheduler, SchedulerConfig
 from motor.arm.wrist_position import WristPositionLMP
-from motor.body.avatar import AvatarError, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import AvatarError
 from motor.control import MotorControl
 from motor.program.gesture import MotorProgram
 from mura.errors import SpecError

@@ -21,7 +21,7 @@ from agent.commands.options import add_lexicon_option, add_limit_option, describ
 from agent.commands.table import SUMMARIES
 from agent.export.names import OutputPlan
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import DEFAULT_AVATAR, AvatarError
+from motor.body.conventions import DEFAULT_AVATAR, AvatarError
 from mura.errors import SpecError
 from mura.limits import LimitError
 from tts import SpeechError

@@ -17,7 +17,7 @@ from agent.commands.render import add_agent_options
 from agent.agent import Agent
 from agent.commands.table import SUMMARIES
 from agent.serve.server import RealizerServer
-from motor.body.avatar import AvatarError
+from motor.body.conventions import AvatarError
 from tts import SpeechError
 
 

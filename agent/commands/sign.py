@@ -43,7 +43,8 @@ from agent.export.html import write_html
 from agent.export.names import OutputNameError, OutputPlan
 from agent.export.page_model import page_model
 from agent.export.staging import OutputFolderError, StagedRun
-from motor.body.avatar import DEFAULT_AVATAR, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import DEFAULT_AVATAR
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_signs
 from motor.signing.sequence import SignedMotion, realize_signs

@@ -28,7 +28,8 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.arm.reach_turn import TURN_JOINTS
-from motor.body.avatar import HAND_JOINTS, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import HAND_JOINTS
 from motor.arm.candidate_clearance import (
     CLEARANCE,
     CONTACT_PENALTY,

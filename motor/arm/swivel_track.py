@@ -33,7 +33,8 @@ import numpy as np
 
 from motor.arm.ik import CANDIDATES, track_costs
 from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 
 #: Period of the grid, seconds.
 SWIVEL_PERIOD = 0.125

@@ -34,7 +34,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from motor.arm.bowed_way import SAMPLES, bowed_trajectory, find_bow
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.program.lmp import Channel, ChannelState, TimePegs, check_activation
 from motor.trajectory.speed_budget import CEILING, budget
 from motor.trajectory.spline import (

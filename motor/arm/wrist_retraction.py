@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor.arm.bowed_way import SAMPLES, Bow, bow, find_bow
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.program.lmp import ChannelState, RetractionLMP, VectorKeyframes
 
 

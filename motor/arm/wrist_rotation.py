@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor.arm.hand_turn import turn_vector
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.program.lmp import (
     Channel,
     ChannelState,

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from motor.body.avatar import AVATAR_DIR, SIDES
+from motor.body.conventions import AVATAR_DIR, SIDES
 from motor.body.volumes import CHEST_FROM, CHEST_JOINT, FOREARM_SHARE, SHOULDER_SHARE
 
 #: The reference avatar whose joint limits, finger calibration, thumb postures and grid

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from motor.body.avatar import AvatarError
+from motor.body.conventions import AvatarError
 from motor.body.definition import Body, Definition, Skin, derive_definition
 from motor.body.rest_pose import normalised_rest
 

@@ -13,7 +13,7 @@ with σ the splay axis (normal to the palm), β the bend axis, λ the hand's lon
 
 Parameter layout (:data:`PARAMETER_COUNT` = 26):
 
-* ``[0:7]`` weights of the thumb postures of :data:`motor.body.avatar.THUMB_POSTURES` (sum 1);
+* ``[0:7]`` weights of the thumb postures of :data:`motor.body.conventions.THUMB_POSTURES` (sum 1);
 * ``[7]`` how much an explicit thumb bending overrides the posture's hinges, ``[8:10]`` that
   bending (middle, end) as proportions of the thumb's maximum bend;
 * ``[10 + 4k : 14 + 4k]`` for long finger k (index, middle, ring, pinky): base bend,
@@ -30,13 +30,8 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.body.avatar import (
-    LONG_FINGERS,
-    THUMB_POSTURES,
-    Avatar,
-    FingerCalibration,
-    HandFrame,
-)
+from motor.body.avatar import Avatar, FingerCalibration, HandFrame
+from motor.body.conventions import LONG_FINGERS, THUMB_POSTURES
 from mura.errors import SpecError
 from mura.values import (
     BASIC_HANDSHAPES,

@@ -60,7 +60,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from motor.arm.wrist_path import uncrowded_placement
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.body.locations import resolve_location
 from motor.face.planning import FACE_SLOTS
 from motor.hand.shape import handshape_params

@@ -29,7 +29,8 @@ from motor.arm.wrist_path import followable, uncrowded_placement
 from motor.arm.wrist_retraction import WristRetractionLMP
 from motor.arm.wrist_position import WristPositionLMP, preparation_timing
 from motor.arm.wrist_rotation import HandRetractionLMP, WristRotationLMP
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.hand.lmp import HandShapeLMP
 from motor.hand.shape import handshape_params
 from motor.program.fragment import (

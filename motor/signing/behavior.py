@@ -20,7 +20,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.program.fragment import PlanningError
 from motor.program.gesture import (
     GestureDemands,

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from motor.body.avatar import ARMS
+from motor.body.conventions import ARMS
 from motor.signing.lmp import Move
 
 

@@ -94,7 +94,8 @@ from typing import TypeVar
 import numpy as np
 
 from motor import quaternion as quat
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.body.collision import kept_out_of_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import resolve_location

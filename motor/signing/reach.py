@@ -17,7 +17,8 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.arm.ik import ArmReach, arm_reach
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.body.collision import outside_torso
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move

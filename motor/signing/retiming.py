@@ -25,7 +25,7 @@ from dataclasses import replace
 import numba
 import numpy as np
 
-from motor.body.avatar import ARMS
+from motor.body.conventions import ARMS
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
 from motor.signing.path_batch import distinct_paths, stopping_of, traced_within
 from motor.signing.plan import SignPlan, SignPlanningError

@@ -31,7 +31,8 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.arm.hand_turn import takes_long_way, turn_way
-from motor.body.avatar import ARMS, AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.body.collision import joint_placement, posed_capsule, to_rest
 from motor.body.distance import capsule_distance
 from motor.body.kinematics import Pose, forward_kinematics

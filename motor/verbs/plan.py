@@ -30,7 +30,8 @@ from collections.abc import Mapping
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from motor.body.avatar import AVATAR_SIDE, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import AVATAR_SIDE
 from motor.hand.shape import handshape_params
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError

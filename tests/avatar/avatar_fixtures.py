@@ -10,7 +10,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from agent.export.gltf import read_glb
-from motor.body.avatar import BUILT_AVATAR_DIR
+from motor.body.conventions import BUILT_AVATAR_DIR
 from motor.body.humanoid import VRM_TO_HANIM
 
 BUILT_GLB = BUILT_AVATAR_DIR / "makehuman.glb"

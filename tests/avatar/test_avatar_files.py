@@ -14,7 +14,8 @@ from scipy.spatial.transform import Rotation
 from agent.agent import Agent
 from agent.cli import main
 from agent.export.gltf import motion_model, write_motion_glb
-from motor.body.avatar import AvatarError, load_avatar, required_joints
+from motor.body.avatar import load_avatar
+from motor.body.conventions import AvatarError, required_joints
 from motor.body.humanoid import HumanoidError, read_humanoid
 
 REPO = Path(__file__).resolve().parents[2]

@@ -15,7 +15,7 @@ import pytest
 from batch_helpers import SIGNS, sigml
 
 from agent.cli import main
-from motor.body.avatar import BUILT_AVATAR_DIR
+from motor.body.conventions import BUILT_AVATAR_DIR
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "viewer"))
 from headless_chromium import Browser, find_chromium  # noqa: E402  (the viewer tests' browser driver)

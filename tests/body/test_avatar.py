@@ -9,7 +9,8 @@ from typing import Any, Callable
 import numpy as np
 import pytest
 
-from motor.body.avatar import AVATAR_DIR, AvatarError, load_avatar, required_joints
+from motor.body.avatar import load_avatar
+from motor.body.conventions import AVATAR_DIR, AvatarError, required_joints
 
 
 def test_shipped_avatars_have_a_full_skeleton(avatar):

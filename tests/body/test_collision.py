@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.body.avatar import AVATAR_DIR, AvatarError, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import AVATAR_DIR, AvatarError
 from motor.body.collision import (
     HAND_BAND,
     SOFT_BAND,

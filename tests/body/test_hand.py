@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.body.avatar import LONG_FINGERS
+from motor.body.conventions import LONG_FINGERS
 from motor.body.kinematics import Pose, forward_kinematics, identity_rotations
 from motor.hand.shape import PARAMETER_COUNT, hand_rotations, handshape_params
 from mura.errors import SpecError

@@ -8,7 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from motor import quaternion as quat
-from motor.body.avatar import LONG_FINGERS, Avatar
+from motor.body.avatar import Avatar
+from motor.body.conventions import LONG_FINGERS
 from motor.hand.shape import _CMC_MAX, _TOWARD_THUMB, FINGER_START, thumb_angles, thumb_axes
 
 

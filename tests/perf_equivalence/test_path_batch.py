@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from motor.body.avatar import ARMS, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import ARMS
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous

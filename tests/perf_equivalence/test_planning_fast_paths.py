@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from motor.body.avatar import ARMS, load_avatar
+from motor.body.avatar import load_avatar
+from motor.body.conventions import ARMS
 from motor.signing import path_shapes, planning
 from motor.signing.lmp import stopping_length
 from motor.signing.path_batch import stopping_length_of

@@ -13,7 +13,7 @@ from headless_chromium import Browser
 from matplotlib.image import imread
 
 from agent.agent import Agent
-from motor.body.avatar import BUILT_AVATAR_DIR
+from motor.body.conventions import BUILT_AVATAR_DIR
 
 REPO = Path(__file__).resolve().parents[2]
 UTTERANCE = REPO / "specs" / "utterances" / "fig2_take_this_bar.xml"

@@ -12,7 +12,7 @@ from headless_chromium import Browser
 from matplotlib.image import imread
 
 from agent.agent import Agent
-from motor.body.avatar import BUILT_AVATAR_DIR
+from motor.body.conventions import BUILT_AVATAR_DIR
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "avatar"))
 from avatar_fixtures import make_vrm, read_glb  # noqa: E402  (the avatar tests' fixture maker)
