@@ -28,9 +28,9 @@ CLAVICLE_REACH = (0.65, 1.05)
 
 #: Soechting & Flanders (1989) as used by Koga et al. (1994): degrees and centimetres of
 #: a 60 cm arm. Upper-arm elevation from the vertical and yaw from straight ahead.
-_ELEVATION = (-4.0, 1.10, 0.90)  # constant, per cm distance, per degree target elevation
-_YAW = (13.2, 0.86, 0.11)  # constant, per degree azimuth, per degree target elevation
-_MODEL_ARM_CM = 60.0
+ELEVATION_MODEL = (-4.0, 1.10, 0.90)  # constant, per cm distance, per degree target elevation
+YAW_MODEL = (13.2, 0.86, 0.11)  # constant, per degree azimuth, per degree target elevation
+MODEL_ARM_CM = 60.0
 #: Direction (avatar frame) toward which swivel 0 points the elbow: down and back, blended
 #: into forward as the arm rises (its axis' upward component from the first value to
 #: the second), so that the reference is never near the arm's axis where a hand goes
@@ -142,13 +142,13 @@ class ElbowCircle:
     def of(chain: ArmChain, shoulder: np.ndarray, targets: np.ndarray, torso_q: np.ndarray | None) -> ElbowCircle:
         """The circles for wrist ``targets (n, 3)``; a target out of reach is replaced by
         the nearest reachable point on the line from the shoulder — eased in within
-        :data:`REACH_EASE` of the arm's length, which it never quite reaches (:func:`_short_of`)."""
+        :data:`REACH_EASE` of the arm's length, which it never quite reaches (:func:`short_of`)."""
         upper, fore = chain.upper, chain.fore
         reach = targets - shoulder
         distance = quat.norm(reach)
         fallback = _turned(torso_q, np.array([0.0, -1.0, 0.0]))
         axis = np.where(distance[:, None] > 1e-9, reach / np.maximum(distance, 1e-12)[:, None], fallback)
-        reached = np.maximum(_short_of(distance, farthest_reach(chain)), nearest_reach(chain))
+        reached = np.maximum(short_of(distance, farthest_reach(chain)), nearest_reach(chain))
         cos_flexion = (reached**2 - upper**2 - fore**2) / (2.0 * upper * fore)
         flexion = np.arccos(np.minimum(np.maximum(cos_flexion, -1.0), 1.0))
         cos_shoulder = np.minimum(np.maximum((upper**2 + reached**2 - fore**2) / (2.0 * upper * reached), -1.0), 1.0)
@@ -205,12 +205,12 @@ def nearest_reach(chain: ArmChain) -> float:
 
 def exact_reach(chain: ArmChain) -> float:
     """The farthest shoulder-to-wrist distance (m) the arm reaches exactly, where its reach
-    starts to ease (:func:`_short_of`): what planners place their paths within, so that
+    starts to ease (:func:`short_of`): what planners place their paths within, so that
     the arm follows them as planned."""
     return farthest_reach(chain) - 2.0 * REACH_EASE
 
 
-def _short_of(distance: np.ndarray, farthest: float) -> np.ndarray:
+def short_of(distance: np.ndarray, farthest: float) -> np.ndarray:
     """Shoulder-to-wrist distances kept short of ``farthest``: unchanged up to
     ``farthest - 2 REACH_EASE``, beyond it rising with a C² ease (tanh: equal in value,
     slope and curvature at the knee) toward ``farthest - REACH_EASE``."""
@@ -224,11 +224,11 @@ def natural_swivel(chain: ArmChain, circle: ElbowCircle, targets: np.ndarray, to
     shoulder = circle.shoulder
     local = targets - shoulder if torso_q is None else quat.rotate(quat.conjugate(torso_q), targets - shoulder)
     lateral = chain.side_sign * local[:, 0]
-    distance_cm = quat.norm(local) / (chain.upper + chain.fore) * _MODEL_ARM_CM
+    distance_cm = quat.norm(local) / (chain.upper + chain.fore) * MODEL_ARM_CM
     target_elevation = np.degrees(np.arctan2(local[:, 1], np.hypot(lateral, local[:, 2])))
     azimuth = np.degrees(np.arctan2(lateral, local[:, 2]))
-    elevation = np.radians(np.minimum(np.maximum(_ELEVATION[0] + _ELEVATION[1] * distance_cm + _ELEVATION[2] * target_elevation, 0.0), 170.0))
-    yaw = np.radians(_YAW[0] + _YAW[1] * azimuth + _YAW[2] * target_elevation)
+    elevation = np.radians(np.minimum(np.maximum(ELEVATION_MODEL[0] + ELEVATION_MODEL[1] * distance_cm + ELEVATION_MODEL[2] * target_elevation, 0.0), 170.0))
+    yaw = np.radians(YAW_MODEL[0] + YAW_MODEL[1] * azimuth + YAW_MODEL[2] * target_elevation)
     upper_dir = np.stack(
         (chain.side_sign * np.sin(elevation) * np.sin(yaw), -np.cos(elevation), np.sin(elevation) * np.cos(yaw)), axis=-1
     )

@@ -36,6 +36,7 @@ from motor.arm.chain import ArmChain, ArmPlacement, ElbowCircle, natural_swivel,
 from motor.arm.clearance import ArmSegments, arm_capsules, arm_segments, clearance
 from motor.arm.cheapest_swivel import cheapest_reach, cheapest_swivel
 from motor.arm.swivel_cost import CANDIDATES, SWIVEL_STEP, beyond_penalties, body_penalties, candidate_costs, candidate_elbows, wrist_state
+from motor.arm.upright_placement import upright_placement
 from motor.body.avatar import Avatar
 from motor.body.distance import components
 
@@ -162,11 +163,9 @@ def arm_reach(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotatio
     """:func:`solve_arm`'s ``wrist``, ``shortfall`` and ``penetration`` (the same numbers)
     without the joint rotations and the hand's twist, which a reach check does not read:
     planning checks a quarter of a million wrist positions of a corpus this way."""
-    setup = place_arm(avatar, side, wrist_targets, hand_rotations)
-    circle = setup.circle
-    natural = natural_swivel(setup.chain, circle, setup.targets, setup.torso_q)
+    setup, natural = upright_placement(avatar, side, wrist_targets, hand_rotations)
     _, _, depth = cheapest_reach(avatar, setup, natural)
-    return ArmReach(circle.wrist, circle.shortfall, depth)
+    return ArmReach(setup.circle.wrist, setup.circle.shortfall, depth)
 
 
 def _body_depth(avatar: Avatar, setup: ArmPlacement, elbow: np.ndarray) -> np.ndarray:

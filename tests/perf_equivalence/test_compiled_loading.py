@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, swivel, swivel_cost
+from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, swivel, swivel_cost, upright_placement
 from motor.body import distance
 from motor.body.avatar import load_avatar
 from motor.hand import shape
@@ -24,6 +24,7 @@ LOOPS = [
     (law_time, "_chords_and_arcs"), (law_time, "_chord_sums"), (law_time, "_turning_cosines"), (law_time, "_curvature_and_grids"),
     (law_time, "_kernel_exponents"), (law_time, "_smoothed"), (law_time, "_law_time"), (retiming, "_law_factors"), (path_batch, "_root_sums"),
     (spreading, "_near_pairs"), (spreading, "_add_weighted"),
+    (upright_placement, "_clavicle_rows"), (upright_placement, "_circle_rows"), (upright_placement, "_swivel_sides"),
 ]  # fmt: skip
 
 
