@@ -26,13 +26,13 @@ from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost, upright_placement
 from motor.body import distance
 from motor.hand import shape
-from motor.signing import law_time, path_batch, retiming, spreading
+from motor.signing import law_time, path_batch, reach, retiming, spreading
 
 
 def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, reach):
         module.load_kernels()
     return time.perf_counter() - started

@@ -11,8 +11,10 @@ arm and round.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
+import numba
 import numpy as np
 
 from motor import quaternion as quat
@@ -311,27 +313,57 @@ def _clear_points(
 
 def path_shifts(moved: list[np.ndarray], original: list[np.ndarray]) -> np.ndarray:
     """:func:`path_shift` of every pair of paths ``(m_k, 3)``, ``(n_k, 3)`` ``(k,)``, m, in
-    a few vectorized passes over all the pairs of a moved point and a chord of its original
-    path (tens of thousands per corpus): each value with :func:`path_shift`'s arithmetic.
-    A one-point original is a chord from the point to itself, whose nearest point is it."""
+    one compiled pass over every moved point and every chord of its original path (tens of
+    thousands per corpus), each value with :func:`path_shift`'s arithmetic (its dot
+    products summed as ``np.einsum`` sums three terms: the first and last, then the
+    middle). A one-point original is a chord from the point to itself, whose nearest point
+    is it."""
     if not moved:
         return np.zeros(0)
-    chords = [max(len(path) - 1, 1) for path in original]
-    starts = np.concatenate([path if len(path) == 1 else path[:-1] for path in original])
-    ends = np.concatenate([path if len(path) == 1 else path[1:] for path in original])
-    points = np.concatenate(moved)
-    counts = np.array([len(path) for path in moved])
-    # every moved point of a path with every chord of its original, point by point
-    pairs = np.repeat(np.array(chords), counts)
-    point = np.repeat(np.arange(len(points)), pairs)
-    first_chord = np.repeat(np.cumsum(chords) - chords, counts)
-    chord = np.repeat(first_chord - np.cumsum(pairs) + pairs, pairs) + np.arange(pairs.sum())
-    a, along = starts[chord], ends[chord] - starts[chord]
-    lengths = np.maximum(np.einsum("ij,ij->i", along, along), 1e-18)
-    t = np.clip(np.einsum("ij,ij->i", points[point] - a, along) / lengths, 0.0, 1.0)
-    distance = np.linalg.norm(points[point] - (a + t[:, None] * along), axis=1)
-    nearest = np.minimum.reduceat(distance, np.cumsum(pairs) - pairs)
-    return np.maximum.reduceat(nearest, np.cumsum(counts) - counts)
+    points = np.ascontiguousarray(np.concatenate(moved), dtype=float)
+    polylines = np.ascontiguousarray(np.concatenate(original), dtype=float)
+    counts = np.array([[len(a), len(b)] for a, b in zip(moved, original)], dtype=np.int64)
+    shifts = np.empty(len(moved))
+    _shift_rows(points, polylines, counts, shifts)
+    return shifts
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _dot(x0, x1, x2, y0, y1, y2):  # noqa: ANN001, ANN202
+    """A dot product of three terms as ``np.einsum`` sums them."""
+    return (x0 * y0 + x2 * y2) + x1 * y1
+
+
+@numba.njit(
+    [numba.void(numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 2, "C", readonly=True), numba.float64[::1])],
+    cache=True,
+    error_model="numpy",
+)
+def _shift_rows(points, polylines, counts, shifts):  # noqa: ANN001, ANN202
+    """Into ``shifts``: per pair ``k`` of a moved path (``counts[k, 0]`` rows of ``points``)
+    and its original (``counts[k, 1]`` rows of ``polylines``), the farthest of the moved
+    points from the nearest chord."""
+    point, vertex = 0, 0
+    for k in range(counts.shape[0]):
+        size, corners = counts[k, 0], counts[k, 1]
+        chords = max(corners - 1, 1)
+        worst = 0.0
+        for p in range(point, point + size):
+            nearest = 0.0
+            for c in range(chords):
+                a = vertex + c
+                b = a if corners == 1 else a + 1
+                ax, ay, az = polylines[a, 0], polylines[a, 1], polylines[a, 2]
+                lx, ly, lz = polylines[b, 0] - ax, polylines[b, 1] - ay, polylines[b, 2] - az
+                length = max(_dot(lx, ly, lz, lx, ly, lz), 1e-18)
+                t = min(max(_dot(points[p, 0] - ax, points[p, 1] - ay, points[p, 2] - az, lx, ly, lz) / length, 0.0), 1.0)
+                gx, gy, gz = points[p, 0] - (ax + t * lx), points[p, 1] - (ay + t * ly), points[p, 2] - (az + t * lz)
+                distance = math.sqrt((gx * gx + gy * gy) + gz * gz)
+                nearest = distance if c == 0 else min(nearest, distance)
+            worst = nearest if p == point else max(worst, nearest)
+        shifts[k] = worst
+        point += size
+        vertex += corners
 
 
 def path_shift(moved: np.ndarray, original: np.ndarray) -> float:
@@ -426,3 +458,9 @@ def arc_fractions(points: np.ndarray) -> np.ndarray:
     lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
     return lengths / lengths[-1] if lengths[-1] > _SAME else np.linspace(0.0, 1.0, len(points))
 
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loop once (it loads when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    path_shifts([np.zeros((1, 3))], [np.zeros((2, 3))])
