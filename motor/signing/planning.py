@@ -85,6 +85,7 @@ for bit (``tests/signing_speed``, ``tests/perf_equivalence/test_planning_fast_pa
 from __future__ import annotations
 
 import gc
+import math
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
@@ -221,6 +222,9 @@ class _Change:
     path: np.ndarray | None = None
     rotations: np.ndarray | None = None
     shapes: np.ndarray | None = None
+    #: Whether ``path`` is a straight line of evenly spaced points (:func:`line`, or its
+    #: displacements mirrored or translated): no reversal, its stopping length at most its chord.
+    straight: bool = False
 
 
 @dataclass(eq=False)
@@ -708,7 +712,8 @@ class _SignCompiler:
         else:
             self.note(f"slot {leaf.slot} is not realized by the hands")
             return _Step(0.0, manner, {})
-        return _Step(max(movement_duration(kind, manner), self.shortest(changes, profile)), profile, changes)
+        duration = movement_duration(kind, manner)
+        return _Step(max(duration, self.shortest(changes, profile, duration)), profile, changes)
 
     def meet_halfway(self, arm: str, segment: Segment) -> bool:
         """Whether the dominant hand's move onto the other hand meets it halfway: under
@@ -727,12 +732,27 @@ class _SignCompiler:
         shift = np.array([-0.5 * (change.hand.location[0] + other.location[0]), 0.0, 0.0])
         path = change.path + arc_fractions(change.path)[:, None] * shift
         moved = other.at(other.location + shift)
-        return {arm: replace(change, hand=change.hand.at(path[-1]), path=path), self.other: _Change(moved, path=line(other.location, moved.location))}
+        return {
+            arm: replace(change, hand=change.hand.at(path[-1]), path=path, straight=False),
+            self.other: _Change(moved, path=line(other.location, moved.location), straight=True),
+        }
 
-    def shortest(self, changes: Mapping[str, _Change], manner: str) -> float:
+    def shortest(self, changes: Mapping[str, _Change], manner: str, floor: float) -> float:
         """The least time (s) the hands' paths need within the speed budget of ``manner``
-        (stopping at each reversal: :func:`motor.signing.lmp.stopping_length`)."""
-        paths = [change.path for change in changes.values() if change.path is not None and len(change.path) > 1]
+        (stopping at each reversal: :func:`motor.signing.lmp.stopping_length`), where it
+        may exceed ``floor`` (s), the time the leaf takes anyway.
+
+        When memoizing, a straight path whose chord needs no more than ``floor`` is not
+        measured: it is one piece (no reversal), and the B-spline traced within it is no
+        longer than its polyline, which is its chord, so its stopping length needs no
+        more either (:func:`_chord_bound` adds a margin for the rounding). The leaf's
+        duration, the greater of ``floor`` and this, is the same."""
+        memoize = self.geometry.memoize
+        paths = [
+            change.path for change in changes.values()
+            if change.path is not None and len(change.path) > 1
+            and not (memoize and change.straight and shortest_duration(_chord_bound(change.path), manner) <= floor)
+        ]  # fmt: skip
         return max((shortest_duration(self.geometry.stopping_length(path), manner) for path in paths), default=0.0)
 
     def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
@@ -748,6 +768,7 @@ class _SignCompiler:
         else:
             end = start
         kind = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}[segment.kind]
+        straight = False
         if segment.kind is SegmentKind.CIRCLE:
             points = circle(start, segment, self.arm_length)
         elif segment.kind is SegmentKind.CURVE and np.linalg.norm(end - start) > _SAME:
@@ -758,6 +779,7 @@ class _SignCompiler:
             if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
             points = line(start, end)
+            straight = True
         if manner == "sudden_stop":
             profile = "sudden_stop"
         elif segment.kind is SegmentKind.CIRCLE:
@@ -766,7 +788,7 @@ class _SignCompiler:
             profile = "hard_contact"
         else:
             profile = manner
-        return _Change(hand.at(points[-1]), path=points), kind, profile
+        return _Change(hand.at(points[-1]), path=points, straight=straight), kind, profile
 
     def follower_path(self, arm: str, hand: _Hand, lead: _Change, lead_hand: _Hand) -> _Change:
         """The non-dominant hand's path under symmetry: the dominant's displacements
@@ -776,7 +798,7 @@ class _SignCompiler:
         if self.alternating:
             displacement = -displacement
         path = hand.location + displacement
-        return _Change(hand.at(path[-1]), path=path)
+        return _Change(hand.at(path[-1]), path=path, straight=lead.straight)
 
     def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
         """A change of shape or orientation (``replace``) or a local movement in place."""
@@ -977,6 +999,13 @@ def _close(a: np.ndarray, b: np.ndarray) -> bool:
     if a is b:
         return True
     return all(abs(x - y) <= 1e-8 + 1e-5 * abs(y) for x, y in zip(a.tolist(), b.tolist()))
+
+
+def _chord_bound(path: np.ndarray) -> float:
+    """An upper bound (m) of the stopping length of a straight path ``(m, 3)``: its chord
+    with a relative margin of 1e-6 and an absolute one of 1e-9 m, far above the rounding
+    of the lengths summed along its points and its traced B-spline (~1e-15 m)."""
+    return math.dist(path[0].tolist(), path[-1].tolist()) * (1.0 + 1e-6) + 1e-9
 
 
 def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:

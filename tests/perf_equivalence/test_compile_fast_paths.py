@@ -1,0 +1,62 @@
+"""Sign compiling's shortcuts rest on facts the plain computation bears out.
+
+A leaf's duration is the greater of its movement's duration and the time its paths need
+(their stopping lengths); a straight path is not measured when its chord, with a margin,
+needs no more (:meth:`motor.signing.planning._SignCompiler.shortest`). That holds if a
+straight path's stopping length never exceeds :func:`motor.signing.planning._chord_bound`:
+checked here on straight paths (labelled synthetic) of every kind the compiler draws.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from motor.signing.lmp import stopping_length
+from motor.signing.path_batch import stopping_length_of
+from motor.signing.path_shapes import line
+from motor.signing.planning import _chord_bound
+from motor.trajectory.spline import HOLD_LENGTH
+from motor.trajectory.symmetry import mirror_directions
+from mura.constraints import Symmetry
+
+START = np.array([0.1, 1.2, 0.3])
+#: Straight paths by kind: (start, end) of a :func:`line`, and how the path is then moved
+#: (as :meth:`~motor.signing.planning._SignCompiler.follower_path` moves a lead's path).
+STRAIGHT_CASES = {
+    "small move": (START, START + [0.0, 0.05, 0.0], None),
+    "normal move": (START, START + [0.09, -0.12, 0.04], None),
+    "long move": (START, START + [-0.6, 0.4, 0.5], None),
+    "across the body": ([0.35, 1.1, 0.25], [-0.35, 1.1, 0.25], None),
+    "one coordinate still": (START, START + [0.0, 0.0, 0.15], None),
+    "steps at the hold length": (START, START + [7.0 * HOLD_LENGTH, 0.0, 0.0], None),
+    "steps below the hold length": (START, START + [3.0 * HOLD_LENGTH, 1e-9, 0.0], None),
+    "no move": (START, START, None),
+    "mirrored": (START, START + [0.09, -0.12, 0.04], "lr"),
+    "mirrored alternating": (START, START + [0.2, 0.1, -0.05], "alternating"),
+    "translated": (START, START + [-0.1, 0.2, 0.1], "par"),
+}
+
+
+def _straight(case: str) -> np.ndarray:
+    start, end, moved = STRAIGHT_CASES[case]
+    path = line(np.asarray(start, dtype=float), np.asarray(end, dtype=float))
+    if moved is None:
+        return path
+    planes = frozenset() if moved == "par" else frozenset({"S"})
+    displacement = mirror_directions(path - path[0], Symmetry(planes, "path"))
+    if moved == "alternating":
+        displacement = -displacement
+    return np.array([-0.2, 1.0, 0.35]) + displacement
+
+
+@pytest.mark.parametrize("case", STRAIGHT_CASES)
+def test_a_straight_paths_stopping_length_is_within_its_chord_bound(case):
+    path = _straight(case)
+    assert stopping_length_of(path) == stopping_length(path) <= _chord_bound(path)
+
+
+def test_the_chord_bound_is_close_to_the_stopping_length_of_a_straight_path():
+    """The bound is no blunter than its margin: a straight path's stopping length is its chord."""
+    path = _straight("normal move")
+    assert stopping_length(path) == pytest.approx(_chord_bound(path), rel=1e-5)
