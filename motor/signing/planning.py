@@ -172,12 +172,6 @@ _PALM = BodySite("palm", proximity="touch")
 _Result = TypeVar("_Result")
 
 
-
-
-
-
-
-
 @dataclass(frozen=True, eq=False)
 class _Hand:
     """A hand's state while planning: palm-centre location, EFD and palm vectors, shape."""
@@ -321,8 +315,6 @@ def _attempt(sign: Sign, work: Callable[[], _Result]) -> _Result | SignPlanningE
         return error
     except (SpecError, ValueError, KeyError) as error:
         return SignPlanningError(f"sign {sign.gloss!r}: {error}")
-
-
 
 
 class _SignCompiler:
@@ -888,13 +880,6 @@ class _SignCompiler:
         return self._offsets[key]
 
 
-
-
-
-
-
-
-
 @dataclass(frozen=True, eq=False)
 class _Layout:
     """A sign's hands before their plan: first postures, and per hand and move the palm
@@ -1015,25 +1000,3 @@ def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
         pass_start + pass_end - move.end, pass_start + pass_end - move.start, "targetted",
         move.locations[::-1], move.rotations[::-1], move.shapes[::-1],
     )
-
-
-
-
-#: The sample numbers of a straight path as :func:`numpy.linspace` counts them, a column.
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
