@@ -174,26 +174,29 @@ _Result = TypeVar("_Result")
 
 @dataclass(frozen=True, eq=False)
 class _Hand:
-    """A hand's state while planning: palm-centre location, EFD and palm vectors, shape."""
+    """A hand's state while planning: palm-centre location, EFD and palm vectors, shape;
+    ``rotations`` holds its global rotation by side once a memoizing compiler has asked for
+    it (:meth:`_SignCompiler.rotation`), shared with the copies that keep its fingers and palm."""
 
     location: np.ndarray
     fingers: np.ndarray
     palm: np.ndarray
     shape: HandShape
     params: np.ndarray
+    rotations: dict[str, np.ndarray]
 
     def at(self, location: np.ndarray) -> _Hand:
         """The same hand with its palm centre at ``location`` (``dataclasses.replace``
         without its overhead: planning moves hands tens of thousands of times)."""
-        return _Hand(location, self.fingers, self.palm, self.shape, self.params)
+        return _Hand(location, self.fingers, self.palm, self.shape, self.params, self.rotations)
 
     def turned(self, fingers: np.ndarray, palm: np.ndarray) -> _Hand:
         """The same hand with its extended fingers and palm along ``fingers``, ``palm`` (as :meth:`at`)."""
-        return _Hand(self.location, fingers, palm, self.shape, self.params)
+        return _Hand(self.location, fingers, palm, self.shape, self.params, {})
 
     def shaped(self, shape: HandShape, params: np.ndarray) -> _Hand:
         """The same hand in another shape, ``params`` its joint parameters (as :meth:`at`)."""
-        return _Hand(self.location, self.fingers, self.palm, shape, params)
+        return _Hand(self.location, self.fingers, self.palm, shape, params, self.rotations)
 
 
 @dataclass(frozen=True, eq=False)
@@ -444,7 +447,7 @@ class _SignCompiler:
         fingers = np.asarray(posture.ext_finger.vector if posture.ext_finger else NEUTRAL_FINGERS, dtype=float)
         palm = self.palm_vector(arm, fingers, posture.palm)
         params = self.geometry.params(shape)
-        hand = _Hand(np.zeros(3), fingers, palm, shape, params)
+        hand = _Hand(np.zeros(3), fingers, palm, shape, params, {})
         return hand.at(self.locate(arm, posture.location, hand, other) + self.part_to_palm(arm, hand, posture.location))
 
     def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
@@ -523,7 +526,15 @@ class _SignCompiler:
     # -- the hand's geometry -------------------------------------------------------------
 
     def rotation(self, arm: str, hand: _Hand) -> np.ndarray:
-        return self.geometry.rotation(AVATAR_SIDE[arm], hand.fingers, hand.palm)
+        """The hand's global rotation ``(4,)`` (:meth:`HandGeometry.rotation`); when
+        memoizing, kept on the hand, which a sign asks about again and again."""
+        side = AVATAR_SIDE[arm]
+        known = hand.rotations.get(side)
+        if known is None:
+            known = self.geometry.rotation(side, hand.fingers, hand.palm)
+            if self.geometry.memoize:
+                hand.rotations[side] = known
+        return known
 
     def offset(self, arm: str, hand: _Hand, site: BodySite) -> np.ndarray:
         """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
