@@ -79,6 +79,30 @@ class HandGeometry:
             lambda: hand_rotations_from_vectors(self.avatar, side, fingers[None], palm[None])[0],
         )
 
+    def prefetch_rotations(self, fingers: np.ndarray, palms: np.ndarray) -> None:
+        """Compute the :meth:`rotation` of every row pair of ``fingers`` and ``palms``
+        ``(n, 3)`` not yet known, on both sides, in one vectorized pass per side (a
+        collection of signs writes a few thousand pairs); every operation of
+        :func:`~motor.arm.hand_orientation.hand_rotations_from_vectors` is row by row, so
+        the answers are those of :meth:`rotation`, bit for bit. A pass that fails (a zero
+        vector) leaves its pairs to be computed when asked. Does nothing without ``memoize``."""
+        if not self.memoize:
+            return
+        for side in ("l", "r"):
+            wanted = {}
+            for finger, palm in zip(fingers, palms):
+                key = ("rotation", side, finger.tobytes(), palm.tobytes())
+                if key not in self._memo:
+                    wanted[key] = (finger, palm)
+            if not wanted:
+                continue
+            try:
+                rotations = hand_rotations_from_vectors(self.avatar, side, np.array([f for f, _ in wanted.values()]), np.array([p for _, p in wanted.values()]))
+            except ValueError:
+                continue
+            rotations.setflags(write=False)
+            self._memo.update(zip(wanted, rotations))
+
     def params(self, shape: HandShape) -> np.ndarray:
         """Joint parameters of a hand shape (:func:`motor.hand.shape.handshape_params`)."""
         return self._recall(("params", shape), lambda: handshape_params(shape))

@@ -103,6 +103,7 @@ from motor.body.locations import resolve_location
 from motor.hand.shape import played
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
 from motor.signing.lmp import Move
+from motor.signing.orientations import written_orientations
 from motor.signing.path_shapes import SIZE_FRACTIONS, circle, curve, line, unit
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions, arc_fractions_of_paths, within_reach_all
@@ -289,9 +290,12 @@ def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCom
     """Every sign compiled into hand moves, in rounds: a sign that asks for an arm pose or
     a site offset not yet known is set aside, the round's requests of all signs are
     computed in one vectorized pass, and the signs set aside are compiled again (a sign
-    asking for k such answers in turn takes k + 1 rounds)."""
+    asking for k such answers in turn takes k + 1 rounds). The rotations of the hand
+    orientations the signs write are computed first, all at once
+    (:mod:`motor.signing.orientations`)."""
     compiled: list[_SignCompiler | SignPlanningError | None] = [None] * len(signs)
     waiting = list(range(len(signs)))
+    geometry.prefetch_rotations(*written_orientations(signs, [NEUTRAL_FINGERS], [(1.0, 0.0, 0.0)]))
     geometry.deferring = geometry.memoize
     try:
         while waiting:

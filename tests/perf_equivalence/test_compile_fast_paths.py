@@ -5,6 +5,11 @@ A leaf's duration is the greater of its movement's duration and the time its pat
 needs no more (:meth:`motor.signing.planning._SignCompiler.shortest`). That holds if a
 straight path's stopping length never exceeds :func:`motor.signing.planning._chord_bound`:
 checked here on straight paths (labelled synthetic) of every kind the compiler draws.
+
+The rotations of the hand orientations a collection writes are computed in one
+vectorized pass (:meth:`motor.signing.hand_geometry.HandGeometry.prefetch_rotations`):
+each equals the one computed alone, checked on a table of orientations (labelled
+synthetic) among many others, and on those the corpora write.
 """
 
 from __future__ import annotations
@@ -12,14 +17,19 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from motor.body.avatar import load_avatar
+from motor.signing.hand_geometry import HandGeometry
 from motor.signing.lmp import stopping_length
+from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
 from motor.signing.planning import _chord_bound
 from motor.trajectory.spline import HOLD_LENGTH
 from motor.trajectory.symmetry import mirror_directions
 from mura.constraints import Symmetry
+from mura.sigml import parse_sigml
 
+CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
 START = np.array([0.1, 1.2, 0.3])
 #: Straight paths by kind: (start, end) of a :func:`line`, and how the path is then moved
 #: (as :meth:`~motor.signing.planning._SignCompiler.follower_path` moves a lead's path).
@@ -60,3 +70,46 @@ def test_the_chord_bound_is_close_to_the_stopping_length_of_a_straight_path():
     """The bound is no blunter than its margin: a straight path's stopping length is its chord."""
     path = _straight("normal move")
     assert stopping_length(path) == pytest.approx(_chord_bound(path), rel=1e-5)
+
+
+#: Hand orientations (extended fingers, palm), labelled synthetic: ordinary, the palm
+#: along the fingers (the parallel conventions), diagonal, mirrored with a −0, unnormalized.
+ORIENTATION_CASES = {
+    "fingers out, palm down": ((0.0, 0.0, 1.0), (0.0, -1.0, 0.0)),
+    "fingers up, palm left": ((0.0, 1.0, 0.0), (1.0, 0.0, 0.0)),
+    "palm along the fingers": ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0)),
+    "palm against the fingers": ((1.0, 0.0, 0.0), (-1.0, 0.0, 0.0)),
+    "diagonal": ((0.7071067811865476, 0.0, 0.7071067811865476), (0.0, -0.7071067811865476, 0.7071067811865476)),
+    "mirrored zero": ((-0.0, 0.0, 1.0), (-1.0, 0.0, 0.0)),
+    "unnormalized": ((0.0, 2.0, 0.5), (0.3, 0.0, -4.0)),
+}
+
+
+@pytest.mark.parametrize("case", ORIENTATION_CASES)
+def test_a_prefetched_rotation_equals_one_computed_alone(case):
+    avatar = load_avatar("max")
+    fingers, palm = (np.array(vector) for vector in ORIENTATION_CASES[case])
+    others = np.random.default_rng(len(case)).normal(size=(2, 40, 3))  # among many others
+    fast = HandGeometry(avatar)
+    fast.prefetch_rotations(np.vstack([others[0], fingers]), np.vstack([others[1], palm]))
+    plain = HandGeometry(avatar, memoize=False)
+    for side in ("l", "r"):
+        assert fast._memo[("rotation", side, fingers.tobytes(), palm.tobytes())].tobytes() == plain.rotation(side, fingers, palm).tobytes()
+
+
+def test_prefetched_rotations_of_the_corpora_equal_those_computed_alone(shared):
+    signs = [sign for name in CORPORA for sign in parse_sigml((shared / "corpora" / "sigml" / name).read_bytes(), file=name).signs]
+    fingers, palms = written_orientations(signs, [(0.0, 0.0, 1.0)], [(1.0, 0.0, 0.0)])
+    avatar = load_avatar("max")
+    fast = HandGeometry(avatar)
+    fast.prefetch_rotations(fingers, palms)
+    plain = HandGeometry(avatar, memoize=False)
+    for side in ("l", "r"):
+        for finger, palm in zip(fingers[::7], palms[::7]):
+            assert fast._memo[("rotation", side, finger.tobytes(), palm.tobytes())].tobytes() == plain.rotation(side, finger, palm).tobytes()
+
+
+def test_written_orientations_keep_a_mirrored_zero_apart():
+    fingers, palms = written_orientations([], [(0.0, 0.0, 1.0)], [(1.0, 0.0, 0.0)])
+    assert {row.tobytes() for row in fingers} == {np.array(v).tobytes() for v in [(0.0, 0.0, 1.0), (-0.0, 0.0, 1.0)]}
+    assert len(fingers) == len(palms) == 4
