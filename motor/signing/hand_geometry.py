@@ -59,6 +59,7 @@ class HandGeometry:
         self._memo: dict[Hashable, object] = {}
         self._pending_offsets: list[tuple[str, BodySite, np.ndarray, np.ndarray]] = []
         self._pending_poses: dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._pending_palm_poses: list[tuple[np.ndarray, Hashable, tuple[str, np.ndarray, np.ndarray]]] = []
         self._alone: set[Hashable] = set()
 
     def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
@@ -205,6 +206,20 @@ class HandGeometry:
             raise GeometryPending(key)
         return self._recall(key, lambda: self._arm_pose(side, wrist, rotation, params))
 
+    def palm_pose(self, side: str, palm: np.ndarray, offset: tuple[str, BodySite, np.ndarray, np.ndarray], rotation: np.ndarray, params: np.ndarray) -> Pose:
+        """:meth:`arm_pose` of the hand in ``rotation`` ``(4,)`` and shape ``params`` with
+        the wrist at ``palm`` ``(3,)`` less the :meth:`site_offset` of ``offset`` (``(side,
+        site, rotation, params)``, the request the caller's offsets share). When deferring
+        and the offset is not known yet, both are noted at once: :meth:`resolve_pending`
+        computes the offset first, then the pose at the wrist it gives (the same
+        subtraction), so that a sign waits one round for both, not two."""
+        key = ("offset", *offset[:2], key_bytes(offset[2]), key_bytes(offset[3]))
+        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+            self._pending_offsets.append(offset)
+            self._pending_palm_poses.append((palm, key, (side, rotation, params)))
+            raise GeometryPending(key)
+        return self.arm_pose(side, palm - self.site_offset(*offset), rotation, params)
+
     def resolve_pending(self) -> bool:
         """Compute every noted site offset and arm pose: one forward-kinematics pass per
         side and site for the offsets (:meth:`prefetch_site_offsets`), one IK and one
@@ -216,6 +231,14 @@ class HandGeometry:
         noted = bool(self._pending_offsets or self._pending_poses)
         self.prefetch_site_offsets(self._pending_offsets)
         self._pending_offsets = []
+        for palm, offset_key, (side, rotation, params) in self._pending_palm_poses:
+            offset = self._memo.get(offset_key)
+            if offset is not None:  # else its pass failed: the sign asks again and fails alone
+                wrist = palm - offset
+                key = ("arm_pose", side, key_bytes(wrist), key_bytes(rotation), key_bytes(params))
+                if key not in self._memo and key not in self._alone:
+                    self._pending_poses[key] = (side, wrist, rotation, params)
+        self._pending_palm_poses = []
         by_side: dict[str, dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]]] = {}
         for key, request in self._pending_poses.items():
             by_side.setdefault(request[0], {})[key] = request

@@ -290,7 +290,8 @@ def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCom
     """Every sign compiled into hand moves, in rounds: a sign that asks for an arm pose or
     a site offset not yet known is set aside, the round's requests of all signs are
     computed in one vectorized pass, and the signs set aside are compiled again (a sign
-    asking for k such answers in turn takes k + 1 rounds). The rotations of the hand
+    asking for k such answers in turn takes k + 1 rounds; offsets asked together, and an
+    arm pose with the wrist offset it needs, count as one). The rotations of the hand
     orientations the signs write are computed first, all at once
     (:mod:`motor.signing.orientations`)."""
     compiled: list[_SignCompiler | SignPlanningError | None] = [None] * len(signs)
@@ -565,8 +566,11 @@ class _SignCompiler:
         return hand.location - self.offset(arm, hand, _PALM)
 
     def arm_pose(self, arm: str, hand: _Hand) -> Pose:
-        """The whole body with this arm in the hand's posture (rest elsewhere), one frame."""
-        return self.geometry.arm_pose(AVATAR_SIDE[arm], self.wrist(arm, hand), self.rotation(arm, hand), hand.params)
+        """The whole body with this arm in the hand's posture (rest elsewhere), one frame:
+        :meth:`HandGeometry.palm_pose` of the wrist under the palm (:meth:`wrist`)."""
+        rotation = self.rotation(arm, hand)
+        offset = self.offset_request(arm, rotation, hand.params, _PALM)
+        return self.geometry.palm_pose(AVATAR_SIDE[arm], hand.location, offset, rotation, hand.params)
 
     def pose(self, arm: str, hand: _Hand) -> HandPose:
         return HandPose(self.wrist(arm, hand), self.rotation(arm, hand).copy(), hand.params.copy())
