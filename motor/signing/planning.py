@@ -168,6 +168,10 @@ PASSIVE_POSTURE = HandPosture(
 #: HamNoSys manners to (duration manner, profile manner) of the biocontrol tables.
 MANNERS: dict[str, str] = {"targetted": "targetted", "fast": "fast", "slow": "slow", "tense": "tense", "halt": "sudden_stop", "rest": "sudden_stop"}
 _SAME = 1e-6
+#: The movement kind (:data:`motor.trajectory.biocontrol.MOVEMENT_KIND_DURATION`) of each segment kind.
+_KINDS = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}
+_NEUTRAL_LEFT = replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
+_SAGITTAL = Symmetry(frozenset({"S"}), "SymMS")
 _CHANNELS = ("wrist_position", "hand_rotation", "handshape")
 _PALM = BodySite("palm", proximity="touch")
 _Result = TypeVar("_Result")
@@ -342,7 +346,7 @@ class _SignCompiler:
         self.alternating = bool(symmetry and symmetry.alternating)
         planes = frozenset() if symmetry is None or symmetry.kind == "par" else symmetry.planes | {"S"}
         self.path_mirror = Symmetry(planes, "path")
-        self.sagittal = Symmetry(frozenset({"S"}), "SymMS")
+        self.sagittal = _SAGITTAL
         self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
         self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
         self.start: dict[str, _Hand] = {}
@@ -465,8 +469,7 @@ class _SignCompiler:
         return direction
 
     def neutral(self, arm: str) -> np.ndarray:
-        location = NEUTRAL_LOCATION if arm == "right" else replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
-        return self.geometry.location(location, AVATAR_SIDE[arm])
+        return self.geometry.location(NEUTRAL_LOCATION if arm == "right" else _NEUTRAL_LEFT, AVATAR_SIDE[arm])
 
     def locate(self, arm: str, location: Location | None, hand: _Hand, other: _Hand | None, here: np.ndarray | None = None) -> np.ndarray:
         """Palm-centre point ``(3,)`` for ``location`` (see the module docstring)."""
@@ -791,7 +794,7 @@ class _SignCompiler:
             end = start + unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
         else:
             end = start
-        kind = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}[segment.kind]
+        kind = _KINDS[segment.kind]
         straight = False
         if segment.kind is SegmentKind.CIRCLE:
             points = circle(start, segment, self.arm_length)
@@ -800,7 +803,7 @@ class _SignCompiler:
             if note:
                 self.note(note)
         else:
-            if np.linalg.norm(end - start) <= _SAME and segment.shape not in (None, "nomotion"):
+            if segment.shape not in (None, "nomotion") and np.linalg.norm(end - start) <= _SAME:
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
             points = line(start, end)
             straight = True
