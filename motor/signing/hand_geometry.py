@@ -132,22 +132,18 @@ class HandGeometry:
             raise GeometryPending(key)
         return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
 
-    def ask_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
-        """Ask for the :meth:`site_offset` of several ``(side, site, rotation, params)``
-        at once, ahead of asking for each: when deferring, every one not yet known is
-        noted and :class:`GeometryPending` raised if there was one, so that a sign needing
-        several independent offsets is set aside for one round, not one round each;
-        otherwise nothing (each is computed when asked)."""
+    def expect_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
+        """Note the :meth:`site_offset` of each ``(side, site, rotation, params)`` a caller
+        is about to ask for: when deferring, every one not yet known is computed by the
+        next :meth:`resolve_pending` (the first one asked for still raises
+        :class:`GeometryPending`), so that a sign needing several independent offsets, or
+        an arm pose beside them, is set aside for one round, not one round each."""
         if not (self.memoize and self.deferring):
             return
-        missing = []
         for side, site, rotation, params in requests:
             key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
             if key not in self._memo and key not in self._alone:
-                missing.append((side, site, rotation, params))
-        if missing:
-            self._pending_offsets.extend(missing)
-            raise GeometryPending(missing)
+                self._pending_offsets.append((side, site, rotation, params))
 
     def _site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         avatar = self.avatar

@@ -516,7 +516,7 @@ class _SignCompiler:
         other_site = hand_site(constellation.nondominant, constellation.contact)
         own_site = hand_site(constellation.dominant, "touch")
         dominant = self.hands[self.dominant]
-        self.ask_offsets(
+        self.expect_offsets(
             ([(self.other, other, _PALM)] if is_hand_site(other_site) else [])
             + [(self.dominant, dominant, _PALM)]
             + ([(self.dominant, dominant, own_site)] if is_hand_site(own_site) else [])
@@ -548,11 +548,11 @@ class _SignCompiler:
         """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
         return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
 
-    def ask_offsets(self, wanted: Sequence[tuple[str, _Hand, BodySite]]) -> None:
-        """Ask for the :meth:`offset` of each ``(arm, hand, site)`` before they are used
-        one by one, in the order they will be, so that a sign compiled in rounds waits one
-        round for all of them (:meth:`HandGeometry.ask_site_offsets`)."""
-        self.geometry.ask_site_offsets([self.offset_request(arm, self.rotation(arm, hand), hand.params, site) for arm, hand, site in wanted])
+    def expect_offsets(self, wanted: Sequence[tuple[str, _Hand, BodySite]]) -> None:
+        """Note the :meth:`offset` of each ``(arm, hand, site)`` the sign is about to ask
+        for, in the order it will (:meth:`offset_request`), so that a sign compiled in
+        rounds waits one round for all of them (:meth:`HandGeometry.expect_site_offsets`)."""
+        self.geometry.expect_site_offsets([self.offset_request(arm, self.rotation(arm, hand), hand.params, site) for arm, hand, site in wanted])
 
     def part_to_palm(self, arm: str, hand: _Hand, location: Location | None) -> np.ndarray:
         """From the part of the hand a location puts at its site (``hand_part``: HamNoSys'
@@ -562,7 +562,7 @@ class _SignCompiler:
         if part is None or not is_hand_site(part) or part.site == _PALM.site:
             return np.zeros(3)
         site = replace(normalized(part), proximity=_PALM.proximity)
-        self.ask_offsets([(arm, hand, _PALM), (arm, hand, site)])
+        self.expect_offsets([(arm, hand, _PALM), (arm, hand, site)])
         return self.offset(arm, hand, _PALM) - self.offset(arm, hand, site)
 
     def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
