@@ -409,9 +409,9 @@ class _SignCompiler:
         sign = self.sign
         dominant = sign.posture
         leaves = iter_leaves(sign.movement) if sign.movement is not None else ()
-        touched = on_other_hand(dominant.location) or any(on_other_hand(leaf_location(leaf)) for leaf in leaves)
-        needs_base = sign.two_handed or touched
-        if needs_base:
+        # the other hand takes part, as a passive base if the dominant hand touches it (a
+        # two-handed sign's leaves are not searched for that)
+        if sign.two_handed or on_other_hand(dominant.location) or any(on_other_hand(leaf_location(leaf)) for leaf in leaves):
             self.hands[self.other] = self.other_hand()
         self.hands[self.dominant] = self.hand_from(self.dominant, dominant, self.hands.get(self.other))
         if sign.constellation is not None and self.other in self.hands:
