@@ -351,6 +351,7 @@ class _SignCompiler:
         self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
         self.start: dict[str, _Hand] = {}
         self.static = False
+        self._palm_requests: list[tuple[str, BodySite, np.ndarray, np.ndarray]] | None = None
 
     def note(self, message: str) -> None:
         self.warnings.append(f"{self.sign.gloss}: {message}")
@@ -372,17 +373,16 @@ class _SignCompiler:
         return self
 
     def palm_offset_requests(self) -> list[tuple[str, BodySite, np.ndarray, np.ndarray]]:
-        """The wrist-to-palm offsets :meth:`plan` will ask for, as ``(side, site,
-        rotation, params)``, in the order it asks, so that they can be computed for the
-        whole collection at once."""
-        requests = []
-        for arm, hand in self.start.items():
-            requests.append(self.offset_request(arm, self.rotation(arm, hand), hand.params, _PALM))
-        for arm in self.start:
-            for move in self.moves.get(arm, []):
-                requests.append(self.offset_request(arm, move.rotations[0], move.shapes[0], _PALM))
-                requests.append(self.offset_request(arm, move.rotations[-1], move.shapes[-1], _PALM))
-        return requests
+        """The wrist-to-palm offsets :meth:`layout` takes, as ``(side, site, rotation,
+        params)``: each first posture's, then per hand and move those of its first and last
+        postures; made once, so that they can be computed for the whole collection at once."""
+        if self._palm_requests is None:
+            self._palm_requests = [self.offset_request(arm, self.rotation(arm, hand), hand.params, _PALM) for arm, hand in self.start.items()]
+            for arm in self.start:
+                for move in self.moves.get(arm, []):
+                    self._palm_requests.append(self.offset_request(arm, move.rotations[0], move.shapes[0], _PALM))
+                    self._palm_requests.append(self.offset_request(arm, move.rotations[-1], move.shapes[-1], _PALM))
+        return self._palm_requests
 
     def plan(self) -> SignPlan:
         """The sign's plan from its compiled hand moves (the second half of planning)."""
@@ -390,9 +390,10 @@ class _SignCompiler:
 
     def layout(self) -> _Layout:
         """Each hand's first posture and, per move, its palm path with the offsets from the
-        wrist to the palm in the move's first and last postures."""
-        first = {arm: self.pose(arm, hand) for arm, hand in self.start.items()}
-        return _Layout(first, {arm: self.palm_paths(arm) for arm in first})
+        wrist to the palm in the move's first and last postures (:meth:`palm_offset_requests`)."""
+        offsets = iter([self.geometry.site_offset(*request) for request in self.palm_offset_requests()])
+        first = {arm: self.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
+        return _Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
 
     def plan_from(self, layout: _Layout) -> SignPlan:
         """The plan of a layout whose wrists are kept out of the torso."""
@@ -565,18 +566,16 @@ class _SignCompiler:
         self.expect_offsets([(arm, hand, _PALM), (arm, hand, site)])
         return self.offset(arm, hand, _PALM) - self.offset(arm, hand, site)
 
-    def wrist(self, arm: str, hand: _Hand) -> np.ndarray:
-        return hand.location - self.offset(arm, hand, _PALM)
-
     def arm_pose(self, arm: str, hand: _Hand) -> Pose:
         """The whole body with this arm in the hand's posture (rest elsewhere), one frame:
-        :meth:`HandGeometry.palm_pose` of the wrist under the palm (:meth:`wrist`)."""
+        :meth:`HandGeometry.palm_pose` of the wrist under the palm."""
         rotation = self.rotation(arm, hand)
         offset = self.offset_request(arm, rotation, hand.params, _PALM)
         return self.geometry.palm_pose(AVATAR_SIDE[arm], hand.location, offset, rotation, hand.params)
 
-    def pose(self, arm: str, hand: _Hand) -> HandPose:
-        return HandPose(self.wrist(arm, hand), self.rotation(arm, hand).copy(), hand.params.copy())
+    def pose(self, arm: str, hand: _Hand, palm_offset: np.ndarray) -> HandPose:
+        """The hand's posture with the wrist at its palm centre less ``palm_offset`` ``(3,)``."""
+        return HandPose(hand.location - palm_offset, self.rotation(arm, hand).copy(), hand.params.copy())
 
     # -- the movement tree ---------------------------------------------------------------
 
@@ -876,18 +875,6 @@ class _SignCompiler:
         return _Change(hand, shapes=np.stack([hand.params, first, second, first, hand.params]))
 
     # -- from hand moves to channel moves ------------------------------------------------
-
-    def palm_paths(self, arm: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-        """Per move of the hand: its palm path ``(m, 3)`` and the wrist-to-palm offsets
-        ``(3,)`` of its first and last postures."""
-        return [
-            (
-                move.locations,
-                self.offset_of(arm, move.rotations[0], move.shapes[0], _PALM),
-                self.offset_of(arm, move.rotations[-1], move.shapes[-1], _PALM),
-            )
-            for move in self.moves.get(arm, [])
-        ]
 
     def channel_moves(self, layout: _Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
         result: dict[tuple[str, str], tuple[Move, ...]] = {}
