@@ -678,7 +678,7 @@ class _SignCompiler:
         for arm, ms in moves.items():
             shift = 0.0 if offset is None else offset.get(arm, 0.0)
             self.moves.setdefault(arm, []).extend(
-                replace(m, start=m.start - origin + self.clock, end=m.end - origin + self.clock, locations=m.locations + shift) for m in ms
+                _HandMove(m.start - origin + self.clock, m.end - origin + self.clock, m.manner, m.locations + shift, m.rotations, m.shapes) for m in ms
             )
         self.clock += length
 
