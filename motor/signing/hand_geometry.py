@@ -158,11 +158,18 @@ class HandGeometry:
         """Compute the :meth:`site_offset` of every ``(side, site, rotation, params)``
         not yet known in one forward-kinematics pass per side and site (a collection of
         signs asks for thousands); each row's arithmetic is that of :meth:`site_offset`,
-        so the answers are the same, bit for bit. Does nothing without ``memoize``."""
+        so the answers are the same, bit for bit. A request that is the very same tuple as
+        one before (a sign asks for one posture's offset again and again) is looked at once.
+        Does nothing without ``memoize``."""
         if not self.memoize:
             return
         missing: dict[tuple[str, BodySite], dict[Hashable, tuple[np.ndarray, np.ndarray]]] = {}
-        for side, site, rotation, params in requests:
+        seen: set[int] = set()  # ids of the requests, which the sequence keeps alive meanwhile
+        for request in requests:
+            if id(request) in seen:
+                continue
+            seen.add(id(request))
+            side, site, rotation, params = request
             key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
             if key not in self._memo:
                 missing.setdefault((side, site), {})[key] = (rotation, params)
