@@ -132,6 +132,18 @@ class HandGeometry:
             raise GeometryPending(key)
         return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
 
+    def site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> list[np.ndarray]:
+        """The :meth:`site_offset` of each ``(side, site, rotation, params)``, in order;
+        when memoizing, a request that is the very same tuple as one before (a sign asks
+        for one posture's offset again and again) is answered once."""
+        if not self.memoize:
+            return [self.site_offset(*request) for request in requests]
+        answers: dict[int, np.ndarray] = {}  # by the ids of the requests, which the sequence keeps alive meanwhile
+        for request in requests:
+            if id(request) not in answers:
+                answers[id(request)] = self.site_offset(*request)
+        return [answers[id(request)] for request in requests]
+
     def expect_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
         """Note the :meth:`site_offset` of each ``(side, site, rotation, params)`` a caller
         is about to ask for: when deferring, every one not yet known is computed by the

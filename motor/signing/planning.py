@@ -391,7 +391,7 @@ class _SignCompiler:
     def layout(self) -> _Layout:
         """Each hand's first posture and, per move, its palm path with the offsets from the
         wrist to the palm in the move's first and last postures (:meth:`palm_offset_requests`)."""
-        offsets = iter([self.geometry.site_offset(*request) for request in self.palm_offset_requests()])
+        offsets = iter(self.geometry.site_offsets(self.palm_offset_requests()))
         first = {arm: self.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
         return _Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
 
