@@ -932,15 +932,22 @@ def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
         return list(layouts)
     placed = kept_out_of_torso(avatar, np.concatenate(points))
     hands = iter(placed[: len(points) - bool(moves)])
-    paths = iter(np.split(placed[len(points) - bool(moves) :], np.cumsum(counts)[:-1]) if moves else ())
+    paths = iter(_split(placed[len(points) - bool(moves) :], counts) if moves else ())
     return [
         _Layout(
-            {arm: replace(pose, wrist=next(hands)) for arm, pose in layout.first.items()},
+            {arm: HandPose(next(hands), pose.rotation, pose.shape) for arm, pose in layout.first.items()},
             layout.palms,
             {arm: [next(paths) for _ in palms] for arm, palms in layout.palms.items()},
         )
         for layout in layouts
     ]
+
+
+def _split(rows: np.ndarray, counts: list[int]) -> list[np.ndarray]:
+    """``rows`` cut into consecutive runs of ``counts`` rows, views (as :func:`numpy.split`
+    at the cumulative counts gives them, without its overhead per piece)."""
+    ends = np.cumsum(counts).tolist()
+    return [rows[start:end] for start, end in zip([0, *ends[:-1]], ends)]
 
 
 def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:

@@ -1,4 +1,4 @@
-"""Sign compiling's shortcuts rest on facts the plain computation bears out.
+"""Sign compiling's and placing's shortcuts rest on facts the plain computation bears out.
 
 A leaf's duration is the greater of its movement's duration and the time its paths need
 (their stopping lengths); a straight path is not measured when its chord, with a margin,
@@ -9,7 +9,8 @@ checked here on straight paths (labelled synthetic) of every kind the compiler d
 The rotations of the hand orientations a collection writes are computed in one
 vectorized pass (:meth:`motor.signing.hand_geometry.HandGeometry.prefetch_rotations`):
 each equals the one computed alone, checked on a table of orientations (labelled
-synthetic) among many others, and on those the corpora write.
+synthetic) among many others, and on those the corpora write. The placed wrist rows are
+cut into moves as :func:`numpy.split` cuts them.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from motor.signing.lmp import stopping_length
 from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
-from motor.signing.planning import _chord_bound
+from motor.signing.planning import _chord_bound, _split
 from motor.trajectory.spline import HOLD_LENGTH
 from motor.trajectory.symmetry import mirror_directions
 from mura.constraints import Symmetry
@@ -113,3 +114,16 @@ def test_written_orientations_keep_a_mirrored_zero_apart():
     fingers, palms = written_orientations([], [(0.0, 0.0, 1.0)], [(1.0, 0.0, 0.0)])
     assert {row.tobytes() for row in fingers} == {np.array(v).tobytes() for v in [(0.0, 0.0, 1.0), (-0.0, 0.0, 1.0)]}
     assert len(fingers) == len(palms) == 4
+
+
+#: Runs of rows (counts), labelled synthetic: one run, many, runs of one row, a long one.
+SPLIT_CASES = {"one run": [8], "many runs": [8, 8, 33, 7, 8], "runs of one row": [1, 1, 1], "a long run": [2, 300, 2]}
+
+
+@pytest.mark.parametrize("case", SPLIT_CASES)
+def test_placed_rows_are_cut_as_numpy_split_cuts_them(case):
+    counts = SPLIT_CASES[case]
+    rows = np.random.default_rng(len(case)).normal(size=(sum(counts), 3))
+    fast = _split(rows, counts)
+    plain = np.split(rows, np.cumsum(counts)[:-1])
+    assert [(piece.shape, piece.tobytes()) for piece in fast] == [(piece.shape, piece.tobytes()) for piece in plain]
