@@ -53,7 +53,7 @@ parallel as it says, for that part; ``neutralspace`` is neutral space.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
 :data:`motor.body.collision.TORSO_MARGIN`), or behind it, are first eased out of it as the
-motor control eases every frame (:func:`kept_out_of_torso`: continuous across the torso's
+motor control eases every frame (:func:`motor.body.collision.kept_out_of_torso`: continuous across the torso's
 top and bottom, where a push onto the front surface alone would make a path step out by
 the torso's depth in one sample), then cleared as paths (:func:`motor.signing.reach.clear_paths`,
 whose pushes are shared smoothly along each hand's moves so that a circle or a line keeps
@@ -75,7 +75,7 @@ the other hand, wrist-to-site offsets) is computed for all of them together in v
 rounds (:class:`motor.signing.hand_geometry.HandGeometry`, which also remembers hand
 rotations, shapes, rest locations and the stopping lengths of paths for the collection);
 then the wrist offsets of all moves, then every move's wrist path and every wrist kept out
-of the torso in one pass (:func:`_placed`), then the reach of every distinct wrist position
+of the torso in one pass (:func:`motor.signing.layout.placed`), then the reach of every distinct wrist position
 of the collection (:func:`motor.signing.reach.within_reach_all`), then the timing lengths
 of all wrist moves for the retiming (:func:`motor.signing.retiming.timing_lengths`); the
 garbage collector waits meanwhile. The plans are those of planning each sign alone, bit
@@ -97,16 +97,16 @@ import numpy as np
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.conventions import AVATAR_SIDE
-from motor.body.collision import kept_out_of_torso
 from motor.body.kinematics import Pose
 from motor.body.locations import resolve_location
 from motor.hand.shape import played
 from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
+from motor.signing.layout import Layout, placed
 from motor.signing.lmp import Move
 from motor.signing.orientations import written_orientations
 from motor.signing.path_shapes import SIZE_FRACTIONS, circle, curve, line, unit
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import arc_fractions, arc_fractions_of_paths, within_reach_all
+from motor.signing.reach import arc_fractions, within_reach_all
 from motor.signing.retiming import retimed_all
 from motor.signing.sites import (
     hand_site,
@@ -386,16 +386,16 @@ class _SignCompiler:
 
     def plan(self) -> SignPlan:
         """The sign's plan from its compiled hand moves (the second half of planning)."""
-        return self.plan_from(_placed(self.avatar, [self.layout()])[0])
+        return self.plan_from(placed(self.avatar, [self.layout()])[0])
 
-    def layout(self) -> _Layout:
+    def layout(self) -> Layout:
         """Each hand's first posture and, per move, its palm path with the offsets from the
         wrist to the palm in the move's first and last postures (:meth:`palm_offset_requests`)."""
         offsets = iter(self.geometry.site_offsets(self.palm_offset_requests()))
         first = {arm: self.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
-        return _Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
+        return Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
 
-    def plan_from(self, layout: _Layout) -> SignPlan:
+    def plan_from(self, layout: Layout) -> SignPlan:
         """The plan of a layout whose wrists are kept out of the torso."""
         moves = self.channel_moves(layout)
         return SignPlan(self.sign.gloss, self.clock, layout.first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
@@ -876,7 +876,7 @@ class _SignCompiler:
 
     # -- from hand moves to channel moves ------------------------------------------------
 
-    def channel_moves(self, layout: _Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
+    def channel_moves(self, layout: Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
         result: dict[tuple[str, str], tuple[Move, ...]] = {}
         for arm in layout.first:
             moves = self.moves.get(arm, [])
@@ -902,68 +902,20 @@ class _SignCompiler:
         return self._offsets[key]
 
 
-@dataclass(frozen=True, eq=False)
-class _Layout:
-    """A sign's hands before their plan: first postures, and per hand and move the palm
-    path ``(m, 3)`` with the wrist-to-palm offsets ``(3,)`` of its first and last postures
-    (metres); once placed (:func:`_placed`), ``wrists`` holds each move's wrist path."""
-
-    first: dict[str, HandPose]
-    palms: dict[str, list[tuple[np.ndarray, np.ndarray, np.ndarray]]]
-    wrists: dict[str, list[np.ndarray]] | None = None
-
-
-def _placed(avatar: Avatar, layouts: Sequence[_Layout]) -> list[_Layout]:
-    """The layouts with their wrist paths — each palm path less the offset to the palm,
-    blended from the first posture's to the last's by the fraction of the way
-    (:func:`motor.signing.reach.arc_fractions`) — and every wrist position, first postures
-    too, eased out of the torso (:func:`kept_out_of_torso`, continuous in the position); all the moves of all the layouts
-    in one pass, each row's arithmetic that of a move alone."""
-    moves = [move for layout in layouts for palms in layout.palms.values() for move in palms]
-    points = [pose.wrist[None] for layout in layouts for pose in layout.first.values()]
-    if moves:
-        counts = [len(palm) for palm, _, _ in moves]
-        fractions = arc_fractions_of_paths([palm for palm, _, _ in moves])[:, None]
-        start = np.repeat(np.array([offset for _, offset, _ in moves]), counts, axis=0)
-        end = np.repeat(np.array([offset for _, _, offset in moves]), counts, axis=0)
-        wrists = np.concatenate([palm for palm, _, _ in moves]) - ((1.0 - fractions) * start + fractions * end)
-        points.append(wrists)
-    if not points:
-        return list(layouts)
-    placed = kept_out_of_torso(avatar, np.concatenate(points))
-    hands = iter(placed[: len(points) - bool(moves)])
-    paths = iter(_split(placed[len(points) - bool(moves) :], counts) if moves else ())
-    return [
-        _Layout(
-            {arm: HandPose(next(hands), pose.rotation, pose.shape) for arm, pose in layout.first.items()},
-            layout.palms,
-            {arm: [next(paths) for _ in palms] for arm, palms in layout.palms.items()},
-        )
-        for layout in layouts
-    ]
-
-
-def _split(rows: np.ndarray, counts: list[int]) -> list[np.ndarray]:
-    """``rows`` cut into consecutive runs of ``counts`` rows, views (as :func:`numpy.split`
-    at the cumulative counts gives them, without its overhead per piece)."""
-    ends = np.cumsum(counts).tolist()
-    return [rows[start:end] for start, end in zip([0, *ends[:-1]], ends)]
-
-
 def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
     """The plan of every compiled sign (:meth:`_SignCompiler.plan`), the wrists of all of
     them kept out of the torso in one pass; a sign whose layout fails is planned alone,
     where it fails with its own error."""
-    layouts: dict[int, _Layout] = {}
+    layouts: dict[int, Layout] = {}
     for index, sign in enumerate(compiled):
         if isinstance(sign, _SignCompiler):
             layout = _attempt(sign.sign, sign.layout)
-            if isinstance(layout, _Layout):
+            if isinstance(layout, Layout):
                 layouts[index] = layout
-    placed = dict(zip(layouts, _placed(avatar, list(layouts.values()))))
+    wrists = dict(zip(layouts, placed(avatar, list(layouts.values()))))
     return [
         c if isinstance(c, SignPlanningError)
-        else _attempt(c.sign, partial(c.plan_from, placed[index])) if index in placed
+        else _attempt(c.sign, partial(c.plan_from, wrists[index])) if index in wrists
         else _attempt(c.sign, c.plan)
         for index, c in enumerate(compiled)
     ]  # fmt: skip

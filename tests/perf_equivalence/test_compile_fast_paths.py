@@ -24,7 +24,8 @@ from motor.signing.lmp import stopping_length
 from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
-from motor.signing.planning import _chord_bound, _split
+from motor.signing.layout import _split
+from motor.signing.planning import _chord_bound
 from motor.trajectory.spline import HOLD_LENGTH
 from motor.trajectory.symmetry import mirror_directions
 from mura.constraints import Symmetry
