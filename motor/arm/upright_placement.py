@@ -42,7 +42,6 @@ from motor.body.avatar import Avatar
 
 _IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
 _IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_OUT1 = numba.float64[::1]
 _OUT2 = numba.float64[:, ::1]
 
 
