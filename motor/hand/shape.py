@@ -30,7 +30,7 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.body.avatar import Avatar, FingerCalibration, HandFrame
+from motor.body.avatar import Avatar
 from motor.body.conventions import LONG_FINGERS, THUMB_POSTURES
 from mura.errors import SpecError
 from mura.values import (
