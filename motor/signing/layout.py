@@ -17,7 +17,7 @@ import numpy as np
 from motor.body.avatar import Avatar
 from motor.body.collision import kept_out_of_torso
 from motor.signing.plan import HandPose
-from motor.signing.reach import arc_fractions_of_paths
+from motor.signing.reach import arc_fractions_of_paths, split_runs
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,7 +50,7 @@ def placed(avatar: Avatar, layouts: Sequence[Layout]) -> list[Layout]:
         return list(layouts)
     eased = kept_out_of_torso(avatar, np.concatenate(points))
     hands = iter(eased[: len(points) - bool(moves)])
-    paths = iter(_split(eased[len(points) - bool(moves) :], counts) if moves else ())
+    paths = iter(split_runs(eased[len(points) - bool(moves) :], counts) if moves else ())
     return [
         Layout(
             {arm: HandPose(next(hands), pose.rotation, pose.shape) for arm, pose in layout.first.items()},
@@ -59,10 +59,3 @@ def placed(avatar: Avatar, layouts: Sequence[Layout]) -> list[Layout]:
         )
         for layout in layouts
     ]
-
-
-def _split(rows: np.ndarray, counts: list[int]) -> list[np.ndarray]:
-    """``rows`` cut into consecutive runs of ``counts`` rows, views (as :func:`numpy.split`
-    at the cumulative counts gives them, without its overhead per piece)."""
-    ends = np.cumsum(counts).tolist()
-    return [rows[start:end] for start, end in zip([0, *ends[:-1]], ends)]

@@ -12,6 +12,7 @@ arm and round.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numba
@@ -256,7 +257,7 @@ def clear_paths(
         checked = mask & np.any(np.abs(shift) > 1e-12, axis=1)
     points = _clear_points(avatar, arm, points, turns, checked, across)[0]
     total = int(np.any(np.abs(points - original) > 1e-9, axis=1).sum())
-    return [points[start:end].copy() for start, end in _bounds(lengths)], total  # each path its own array
+    return [piece.copy() for piece in split_runs(points, lengths)], total  # each path its own array
 
 
 def _refined(points: np.ndarray, turns: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -404,7 +405,7 @@ def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> li
     following = np.where(single, 0, index + 1)
     turns = quat.slerp(flat_keys[base + index], flat_keys[base + following], position - index)
     turns[single] = flat_keys[base[single]]
-    return [turns[start:end] for start, end in _bounds(counts)]
+    return split_runs(turns, counts)
 
 
 def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
@@ -431,11 +432,11 @@ def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
     return fractions
 
 
-def _bounds(counts: np.ndarray) -> list[tuple[int, int]]:
-    """Where each of consecutive pieces ``counts`` long starts and ends in their
-    concatenation (``np.split``'s pieces, without its per-piece cost)."""
+def split_runs(rows: np.ndarray, counts: Sequence[int] | np.ndarray) -> list[np.ndarray]:
+    """``rows`` cut into consecutive runs of ``counts`` rows, views (as :func:`numpy.split`
+    at the cumulative counts gives them, without its overhead per piece)."""
     ends = np.cumsum(counts).tolist()
-    return list(zip([0, *ends[:-1]], ends))
+    return [rows[start:end] for start, end in zip([0, *ends[:-1]], ends)]
 
 
 def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray:

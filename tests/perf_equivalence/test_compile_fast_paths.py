@@ -24,8 +24,8 @@ from motor.signing.lmp import stopping_length
 from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
-from motor.signing.layout import _split
 from motor.signing.planning import _chord_bound
+from motor.signing.reach import split_runs
 from motor.trajectory.spline import HOLD_LENGTH
 from motor.trajectory.symmetry import mirror_directions
 from mura.constraints import Symmetry
@@ -125,6 +125,6 @@ SPLIT_CASES = {"one run": [8], "many runs": [8, 8, 33, 7, 8], "runs of one row":
 def test_placed_rows_are_cut_as_numpy_split_cuts_them(case):
     counts = SPLIT_CASES[case]
     rows = np.random.default_rng(len(case)).normal(size=(sum(counts), 3))
-    fast = _split(rows, counts)
+    fast = split_runs(rows, counts)
     plain = np.split(rows, np.cumsum(counts)[:-1])
     assert [(piece.shape, piece.tobytes()) for piece in fast] == [(piece.shape, piece.tobytes()) for piece in plain]
