@@ -21,14 +21,14 @@ import math
 import numba
 import numpy as np
 
+from motor.kernel_types import READ2, WRITE2
+
 IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
 
 #: Compiled once, cached on disk; division by zero gives inf or nan as in numpy. The
 #: loops' signatures are stated (rows read-only, so that read-only views need no second
 #: compilation), which compiles or loads them when this module is imported.
-_ROWS = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_OUT = numba.float64[:, ::1]
-_products = numba.njit([numba.void(_ROWS, _ROWS, _OUT)], cache=True, error_model="numpy")
+_products = numba.njit([numba.void(READ2, READ2, WRITE2)], cache=True, error_model="numpy")
 
 
 def _result(*parts: np.ndarray, size: int) -> np.ndarray:
@@ -118,7 +118,7 @@ def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
         out[i, 0], out[i, 1], out[i, 2] = crossed(u[j, 0], u[j, 1], u[j, 2], v[k, 0], v[k, 1], v[k, 2])
 
 
-@numba.njit([numba.void(_ROWS, _OUT)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, WRITE2)], cache=True, error_model="numpy")
 def _normalize_rows(q, out):  # noqa: ANN001, ANN202
     for i in range(out.shape[0]):
         square = 0.0

@@ -20,6 +20,7 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.distance import volume_distance
+from motor.kernel_types import READ2, READ3, READ_FLAGS1, READ_INTS1, WRITE2
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
 CLEARANCE = 0.01
@@ -33,7 +34,6 @@ CONTACT_PENALTY = 50.0
 #: Tolerating a few millimetres keeps the cost of arms that merely touch as it was.
 PENETRATION_PENALTY = 300.0
 TOLERATED_DEPTH = 0.005
-
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -57,7 +57,7 @@ def _boxes_meet(low, high, box):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(numba.float64[:, ::1], numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.float64, 2, "C", readonly=True))],
+    [numba.void(WRITE2, READ2, READ2)],
     cache=True,
     error_model="numpy",
 )
@@ -120,14 +120,8 @@ def _misses(box, grow, ax, ay, az, bx, by, bz):  # noqa: ANN001, ANN202
     )  # fmt: skip
 
 
-_IN1, _IN2, _IN3 = (numba.types.Array(numba.float64, d, "C", readonly=True) for d in (1, 2, 3))
-_FLAGS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
-_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_SUMS = numba.float64[:, ::1]
-
-
 @numba.njit(
-    [numba.void(_IN2, _IN2, _IN2, _IN2, _IN2, _IN2, _IN2, numba.boolean, _IN2, _KINDS, _IN2, _IN3, _FLAGS, _SUMS, _SUMS, _SUMS, _SUMS)],
+    [numba.void(READ2, READ2, READ2, READ2, READ2, READ2, READ2, numba.boolean, READ2, READ_INTS1, READ2, READ3, READ_FLAGS1, WRITE2, WRITE2, WRITE2, WRITE2)],
     cache=True,
     error_model="numpy",
 )

@@ -35,14 +35,12 @@ from motor.arm.swivel_cost import (
     wrist_load,
 )
 from motor.body.avatar import Avatar
+from motor.kernel_types import READ1, READ2, READ3, READ_FLAGS1, READ_INTS1, WRITE1, WRITE2
 
 #: The cells whose swivels' cosines and sines the search looks up (:func:`_cell_turns`):
 #: those of natural swivels within two turns of the candidates'.
 _FIRST_CELL = -2 * len(CANDIDATES)
 _CELL_COUNT = 5 * len(CANDIDATES)
-
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
 
 
 def cheapest_swivel(avatar: Avatar, placement: ArmPlacement, other: ArmSegments | None = None) -> np.ndarray:
@@ -224,13 +222,8 @@ def _window_of(i, natural, center, radius, down, out, turns, psi, elbow, radial)
     return first
 
 
-_BOOLS = numba.types.Array(numba.boolean, 1, "C", readonly=True)
-_KINDS = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_IN3 = numba.types.Array(numba.float64, 3, "C", readonly=True)
-
-
 @numba.njit(
-    [numba.void(_IN1, *(_IN2,) * 4, _IN2, _IN1, _IN2, _IN2, _IN1, _IN1, _IN1, _IN2, _KINDS, _IN2, _IN3, _BOOLS, numba.float64[::1], numba.float64[:, ::1], numba.float64[::1])],
+    [numba.void(READ1, *(READ2,) * 4, READ2, READ1, READ2, READ2, READ1, READ1, READ1, READ2, READ_INTS1, READ2, READ3, READ_FLAGS1, WRITE1, WRITE2, WRITE1)],
     cache=True,
     error_model="numpy",
 )

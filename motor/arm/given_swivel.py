@@ -26,10 +26,8 @@ from motor import quaternion as quat
 from motor.arm.chain import CLAVICLE_REACH, DOWN_BACK, RAISED, REACH_EASE, arm_chain, farthest_reach, nearest_reach
 from motor.arm.ik import SURE_SWING
 from motor.body.avatar import Avatar, check_side
+from motor.kernel_types import READ1, READ2, WRITE3
 
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_OUT3 = numba.float64[:, :, ::1]
 
 #: Rows of the chain's vector table (:func:`_chain_tables`).
 _CLAVICLE, _SC_POSITION, _UPPER_REST, _HINGE_REST, _REST_NORMAL, _PRONATION, _FLEXION, _DEVIATION = range(8)
@@ -177,7 +175,7 @@ def _from_matrix(m00, m01, m02, m10, m11, m12, m20, m21, m22):  # noqa: ANN001, 
     return _normalized4(x, y, z, w)
 
 
-@numba.njit([numba.void(_IN2, _IN2, _IN1, _IN2, _IN2, _IN2, _IN1, _OUT3)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ2, READ1, READ2, READ2, READ2, READ1, WRITE3)], cache=True, error_model="numpy")
 def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars, out):  # noqa: ANN001, ANN202, PLR0915
     side_sign, upper = scalars[_SIDE_SIGN], scalars[_UPPER]
     low_reach, high_reach = CLAVICLE_REACH

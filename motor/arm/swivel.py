@@ -17,6 +17,7 @@ import numba
 import numpy as np
 
 from motor.arm.swivel_cost import parabola_offset
+from motor.kernel_types import READ2, READ_INTS1, WRITE2
 from motor.program.lmp import TimePegs, VectorKeyframeLMP
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
 
@@ -33,7 +34,6 @@ class SwivelLMP(VectorKeyframeLMP):
         time_profile: TimeProfile | str | None = None,
     ) -> None:
         super().__init__((side, "swivel"), pegs, np.asarray(angles, dtype=float), key_times, time_profile or minimum_jerk())
-
 
 
 #: Swivel track (see :func:`smooth_swivels`): cost of changing the swivel between two
@@ -133,8 +133,8 @@ def _wrapped(value: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(
-    [numba.float64[:, ::1](numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 1, "C", readonly=True),
-                           numba.types.Array(numba.float64, 2, "C", readonly=True), numba.int64)],
+    [WRITE2(READ2, READ_INTS1,
+                           READ2, numba.int64)],
     cache=True,
     error_model="numpy",
 )  # fmt: skip

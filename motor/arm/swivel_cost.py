@@ -31,6 +31,7 @@ from motor.arm.chain import ArmPlacement
 from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance, penetration_penalty
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
+from motor.kernel_types import READ1, READ2, WRITE2
 
 #: Candidate swivels (radians): the whole circle in steps of :data:`SWIVEL_STEP`.
 SWIVEL_STEP = float(np.deg2rad(10.0))
@@ -236,11 +237,6 @@ def _cross(u: np.ndarray, v: np.ndarray) -> tuple[float, float, float]:
     return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
 
 
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_OUT2 = numba.float64[:, ::1]
-
-
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def hand_matrix(hands, i):  # noqa: ANN001, ANN202
     """The rotation matrix of the hand quaternion ``hands[i]``, row by row."""
@@ -298,7 +294,7 @@ def wrist_constants(constants):  # noqa: ANN001, ANN202
             constants[7], constants[8], constants[9], constants[10], constants[11], constants[12], constants[13])  # fmt: skip
 
 
-@numba.njit([numba.void(*(_IN2,) * 9, _IN1, *(_OUT2,) * 4)], cache=True, error_model="numpy")
+@numba.njit([numba.void(*(READ2,) * 9, READ1, *(WRITE2,) * 4)], cache=True, error_model="numpy")
 def _wrist_rows(hands, wrist, circle_axis, ex, ey, ez, rx, ry, rz, constants, flexion, deviation, twist, swing):  # noqa: ANN001, ANN202
     """:func:`wrist_state` per frame ``i`` and candidate ``k`` (:func:`wrist_angles`)."""
     fixed = wrist_constants(constants)
@@ -356,7 +352,7 @@ def _paid(penalty, nearby, i, k, cell):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(_IN1, *(_IN2,) * 5, *(_IN2,) * 2, *(_IN2,) * 6, _IN1, _IN1, _IN1, _OUT2)],
+    [numba.void(READ1, *(READ2,) * 5, *(READ2,) * 2, *(READ2,) * 6, READ1, READ1, READ1, WRITE2)],
     cache=True,
     error_model="numpy",
 )

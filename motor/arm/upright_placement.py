@@ -39,10 +39,7 @@ from motor.arm.chain import (
     short_of,
 )
 from motor.body.avatar import Avatar
-
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_OUT2 = numba.float64[:, ::1]
+from motor.kernel_types import READ1, READ2, WRITE2, WRITE3
 
 
 def upright_placement(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray | None = None) -> tuple[ArmPlacement, np.ndarray]:
@@ -90,7 +87,7 @@ def _length(x, y, z):  # noqa: ANN001, ANN202
     return math.sqrt((x * x + y * y) + z * z)
 
 
-@numba.njit([numba.void(_IN2, _IN1, _IN1, _IN1, numba.float64, numba.float64, numba.float64, _OUT2, _OUT2)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ1, READ1, READ1, numba.float64, numba.float64, numba.float64, WRITE2, WRITE2)], cache=True, error_model="numpy")
 def _clavicle_rows(targets, sc_position, base, clavicle, clavicle_length, arm, clavicle_max, clavicle_local, shoulder):  # noqa: ANN001, ANN202
     """:func:`motor.arm.chain.clavicle_rotation` (upright) per row into ``clavicle_local
     (n, 4)``, and the shoulder it places ``(n, 3)``; ``base``: the sternoclavicular joint
@@ -114,7 +111,7 @@ def _clavicle_rows(targets, sc_position, base, clavicle, clavicle_length, arm, c
         shoulder[i, 0], shoulder[i, 1], shoulder[i, 2] = sc_position[0] + px, sc_position[1] + py, sc_position[2] + pz
 
 
-@numba.njit([numba.void(_IN2, _IN1, _IN1, _IN2, _IN1, numba.float64, _OUT2, numba.float64[:, :, ::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ1, READ1, READ2, READ1, numba.float64, WRITE2, WRITE3)], cache=True, error_model="numpy")
 def _circle_rows(reach, distance, reached, shoulder, lengths, side_sign, columns, vectors):  # noqa: ANN001, ANN202
     """:class:`motor.arm.chain.ElbowCircle` ``of`` (upright) per row, from the reach from
     the shoulder, its length and the length reached: into ``columns`` the cosines of the
@@ -166,7 +163,7 @@ def _circle_rows(reach, distance, reached, shoulder, lengths, side_sign, columns
         columns[5, i] = d / arm * MODEL_ARM_CM
 
 
-@numba.njit([numba.void(_IN1, _IN1, _IN1, _IN1, _IN2, _IN2, _IN2, _IN2, numba.float64, numba.float64, _OUT2)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ1, READ1, READ1, READ2, READ2, READ2, READ2, numba.float64, numba.float64, WRITE2)], cache=True, error_model="numpy")
 def _swivel_sides(sin_elevation, cos_elevation, sin_yaw, cos_yaw, shoulder, center, down, out, upper, side_sign, along):  # noqa: ANN001, ANN202
     """Into ``along (2, n)``: how far the elbow the model predicts (the upper arm at its
     elevation and yaw, :func:`motor.arm.chain.natural_swivel`) lies from the circle's

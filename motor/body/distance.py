@@ -29,6 +29,7 @@ import numba
 import numpy as np
 
 from motor.body.volumes import Capsule, Ellipsoid, Volume
+from motor.kernel_types import READ1, READ2, WRITE1
 
 #: Squared lengths (m²) and denominators below which a segment counts as a point.
 _TINY = 1e-12
@@ -48,9 +49,6 @@ Components = tuple[np.ndarray, np.ndarray, np.ndarray]
 #: loops' signatures are stated (inputs read-only), which compiles or loads them when
 #: this module is imported; the scalar kernels they call are compiled with them.
 _compiled = numba.njit(cache=True, error_model="numpy")
-_ENDS = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_ROW = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_OUT = numba.float64[::1]
 
 
 def components(v: np.ndarray) -> Components:
@@ -175,19 +173,19 @@ def _row12(ends, i):  # noqa: ANN001, ANN202
             ends[6, i], ends[7, i], ends[8, i], ends[9, i], ends[10, i], ends[11, i])  # fmt: skip
 
 
-@numba.njit([numba.void(_ENDS, _OUT, _OUT)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, WRITE1, WRITE1)], cache=True, error_model="numpy")
 def _closest_loop(ends, s, t):  # noqa: ANN001, ANN202
     for i in range(s.size):
         s[i], t[i] = _closest(*_row12(ends, i))
 
 
-@numba.njit([numba.void(_ENDS, _OUT)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, WRITE1)], cache=True, error_model="numpy")
 def _segments_loop(ends, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = _segments_apart(*_row12(ends, i))
 
 
-@numba.njit([numba.void(_ENDS, _OUT)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, WRITE1)], cache=True, error_model="numpy")
 def _point_segment_loop(ends, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = _point_segment(ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i], ends[7, i], ends[8, i])
@@ -225,7 +223,7 @@ def volume_distance(kind, p, ax, ay, az, bx, by, bz, radius):  # noqa: ANN001, A
     return _cylinder(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius
 
 
-@numba.njit([numba.void(_ENDS, numba.int64, _ROW, _OUT)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, numba.int64, READ1, WRITE1)], cache=True, error_model="numpy")
 def _volume_loop(ends, kind, p, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
         out[i] = volume_distance(kind, p, ends[0, i], ends[1, i], ends[2, i], ends[3, i], ends[4, i], ends[5, i], ends[6, i])

@@ -32,6 +32,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.conventions import LONG_FINGERS, THUMB_POSTURES
+from motor.kernel_types import READ2, WRITE3
 from mura.errors import SpecError
 from mura.values import (
     BASIC_HANDSHAPES,
@@ -238,10 +239,7 @@ def _hand_tables(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray]:
     return axes, fingers
 
 
-_ROWS = numba.types.Array(numba.float64, 2, "C", readonly=True)
-
-
-@numba.njit([numba.void(_ROWS, _ROWS, _ROWS, _ROWS, numba.float64[:, :, ::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ2, READ2, READ2, WRITE3)], cache=True, error_model="numpy")
 def _hand_rows(params, angles, axes, fingers, out):  # noqa: ANN001, ANN202
     about = quat.about_axis
     splay_x, splay_y, splay_z = axes[_SPLAY, 0], axes[_SPLAY, 1], axes[_SPLAY, 2]

@@ -21,6 +21,7 @@ from collections.abc import Sequence
 import numba
 import numpy as np
 
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1
 from motor.signing.lmp import LAW_SMOOTHING, _SAME
 from motor.trajectory.power_law import EXPONENT, clamped_curvature
 from motor.trajectory.spline import _HOLD
@@ -30,11 +31,6 @@ _TRUNCATE = 4.0
 #: numpy's pairwise summation: blocks summed in eight lanes, and up to this many at once.
 _PAIRWISE_BLOCK = 128
 
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_INDEX = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_OUT1 = numba.float64[::1]
-_COUNT = numba.int64[::1]
 _jit = numba.njit(cache=True, error_model="numpy")
 
 
@@ -94,7 +90,7 @@ class DensePaths:
         return np.split(values, self.starts[1:-1])
 
 
-@numba.njit([numba.void(_IN2, _INDEX, _OUT1, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ_INTS1, WRITE1, WRITE1)], cache=True, error_model="numpy")
 def _chords_and_arcs(points, starts, chords, arc):  # noqa: ANN001, ANN202
     """Each path's chord norms (``np.linalg.norm``'s sum of squares) and their running sum."""
     for p in range(starts.size - 1):
@@ -136,13 +132,13 @@ def pairwise_sum(values, first, n):  # noqa: ANN001, ANN202
     return pairwise_sum(values, first, half) + pairwise_sum(values, first + half, n - half)
 
 
-@numba.njit([numba.void(_IN1, _INDEX, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ_INTS1, WRITE1)], cache=True, error_model="numpy")
 def _chord_sums(chords, starts, out):  # noqa: ANN001, ANN202
     for p in range(starts.size - 1):
         out[p] = pairwise_sum(chords, starts[p], max(starts[p + 1] - starts[p] - 1, 0))
 
 
-@numba.njit([numba.void(_IN2, _INDEX, _IN1, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ_INTS1, READ1, WRITE1)], cache=True, error_model="numpy")
 def _turning_cosines(points, starts, chords, cosines):  # noqa: ANN001, ANN202
     """The cosine of the turn at each interior point (``einsum``'s dot product over the
     norms' product, 1 at a hold, clipped to [-1, 1]); 1 at each path's ends."""
@@ -160,7 +156,7 @@ def _turning_cosines(points, starts, chords, cosines):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(_IN1, _IN1, _IN1, _INDEX, _OUT1, numba.float64[:, ::1], _COUNT, _COUNT)], cache=True, error_model="numpy"
+    [numba.void(READ1, READ1, READ1, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1, WRITE_INTS1)], cache=True, error_model="numpy"
 )
 def _curvature_and_grids(angles, chords, arc, starts, curvature, grids, counts, radii):  # noqa: ANN001, ANN202
     """Each path's curvature (turn over the mean of the adjacent chords, the ends as their
@@ -188,7 +184,7 @@ def _curvature_and_grids(angles, chords, arc, starts, curvature, grids, counts, 
         radii[p] = int(_TRUNCATE * sigma + 0.5)
 
 
-@numba.njit([numba.void(_IN2, _INDEX, _INDEX, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ_INTS1, READ_INTS1, WRITE1)], cache=True, error_model="numpy")
 def _kernel_exponents(grids, radii, kernels, out):  # noqa: ANN001, ANN202
     """The Gaussian kernel's exponents ``−½ / σ² · k²`` for ``k = −r … r`` of each path."""
     for p in range(radii.size):
@@ -226,7 +222,7 @@ def _interp(x, count, xp, fp, first, end, out, at):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(_IN1, _IN1, _INDEX, _IN2, _INDEX, _INDEX, _INDEX, _IN1, _OUT1)], cache=True, error_model="numpy"
+    [numba.void(READ1, READ1, READ_INTS1, READ2, READ_INTS1, READ_INTS1, READ_INTS1, READ1, WRITE1)], cache=True, error_model="numpy"
 )
 def _smoothed(arc, log_curvature, starts, grids, counts, radii, kernels, phi, out):  # noqa: ANN001, ANN202
     """Each path's log curvature interpolated onto its grid, smoothed there (scipy's
@@ -254,7 +250,7 @@ def _smoothed(arc, log_curvature, starts, grids, counts, radii, kernels, phi, ou
         _interp(arc[first:end], end - first, grid, smooth, 0, count, out, first)
 
 
-@numba.njit([numba.void(_IN1, _IN1, _INDEX, _INDEX, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ1, READ_INTS1, READ_INTS1, WRITE1)], cache=True, error_model="numpy")
 def _law_time(density, chords, starts, counts, out):  # noqa: ANN001, ANN202
     """Each path's law time (the trapezoid sum of the density over its chords) as a share
     of its total; evenly spaced (``np.linspace``'s) on a path of no length."""

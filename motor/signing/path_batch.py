@@ -29,6 +29,7 @@ import numba
 import numpy as np
 from scipy.interpolate import BSpline
 
+from motor.kernel_types import READ1, READ2, READ_INTS1, READ_INTS2, WRITE1, WRITE2, WRITE_INTS1
 from motor.signing.law_time import DensePaths, pairwise_sum
 from motor.signing.lmp import (
     PATH_DENSITY,
@@ -41,11 +42,6 @@ from motor.signing.lmp import (
     stopping_times,
 )
 from motor.trajectory.spline import _HOLD, HOLD_LENGTH
-
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_INDEX = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_INDEX2 = numba.types.Array(numba.int64, 2, "C", readonly=True)
 
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
@@ -66,7 +62,7 @@ def stopping_of(lengths: np.ndarray, bounds: np.ndarray) -> np.ndarray:
     return np.float_power(roots, 2.0)
 
 
-@numba.njit([numba.void(_IN1, _INDEX, numba.float64[::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ_INTS1, WRITE1)], cache=True, error_model="numpy")
 def _root_sums(lengths, bounds, out):  # noqa: ANN001, ANN202
     """Per path of pieces ``bounds[i]:bounds[i + 1]``: the sum of the square roots of their
     lengths, in numpy's pairwise order."""
@@ -280,7 +276,7 @@ _GIVEN, _FIRST, _POINTS, _DENSE, _BASIS = range(5)
 _COLUMNS = 5
 
 
-@numba.njit([numba.void(_IN1, _INDEX, _INDEX, numba.int64[:, ::1], numba.int64[::1], numba.int64[::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ_INTS1, READ_INTS1, numba.int64[:, ::1], WRITE_INTS1, WRITE_INTS1)], cache=True, error_model="numpy")
 def _cut_at_reversals(angles, kept, given, pieces, bounds, totals):  # noqa: ANN001, ANN202
     """Each path's pieces (rows of :data:`_GIVEN` … :data:`_BASIS`): the path as given when fewer than three
     of its points are kept, else its kept points cut where they turn by
@@ -422,7 +418,7 @@ def _basis(k: int) -> tuple[np.ndarray, np.ndarray]:
     return first, weights
 
 
-@numba.njit([numba.void(_IN2, _IN2, _INDEX2, _INDEX, _IN2, numba.float64[:, ::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ2, READ2, READ_INTS2, READ_INTS1, READ2, WRITE2)], cache=True, error_model="numpy")
 def _traced(given, kept, pieces, first, weights, dense):  # noqa: ANN001, ANN202
     """Into ``dense``: each piece (rows of :data:`_GIVEN` … :data:`_BASIS`) of fewer than three points or as
     given copied, each other one traced within its hull — its first point, then each

@@ -23,6 +23,7 @@ from motor.arm.ik import ArmReach, arm_reach
 from motor.body.avatar import Avatar
 from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.body.collision import outside_torso
+from motor.kernel_types import READ2, READ_INTS2, WRITE1
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
@@ -336,7 +337,7 @@ def _dot(x0, x1, x2, y0, y1, y2):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.float64, 2, "C", readonly=True), numba.types.Array(numba.int64, 2, "C", readonly=True), numba.float64[::1])],
+    [numba.void(READ2, READ2, READ_INTS2, WRITE1)],
     cache=True,
     error_model="numpy",
 )
@@ -385,7 +386,6 @@ def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
     position = np.clip(fractions, 0.0, 1.0) * (len(keys) - 1)
     index = np.minimum(position.astype(int), len(keys) - 2)
     return quat.slerp(keys[index], keys[index + 1], position - index)
-
 
 
 def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> list[np.ndarray]:
@@ -458,7 +458,6 @@ def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray
 def arc_fractions(points: np.ndarray) -> np.ndarray:
     lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
     return lengths / lengths[-1] if lengths[-1] > _SAME else np.linspace(0.0, 1.0, len(points))
-
 
 
 def load_kernels() -> None:

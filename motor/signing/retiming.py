@@ -26,6 +26,7 @@ import numba
 import numpy as np
 
 from motor.body.conventions import ARMS
+from motor.kernel_types import READ1, READ_INTS1, WRITE1
 from motor.signing.lmp import Move, law_fractions, smooth_pieces, stopping_length
 from motor.signing.path_batch import distinct_paths, stopping_of, traced_within
 from motor.signing.plan import SignPlan, SignPlanningError
@@ -37,10 +38,6 @@ _MEASURED = 1e-3
 _SLACK = 1e-6
 #: Law time (share of the piece's) below which a stretch of a piece counts as not spent.
 _MOVING = 1e-12
-
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_INDEX = numba.types.Array(numba.int64, 1, "C", readonly=True)
-_OUT1 = numba.float64[::1]
 
 
 def law_factor(values: np.ndarray) -> float:
@@ -85,7 +82,7 @@ def timing_lengths(paths: Sequence[np.ndarray]) -> list[float]:
     return np.where(stopping <= 0.0, 0.0, stopping * largest)[twins].tolist()
 
 
-@numba.njit([numba.void(_IN1, _IN1, _INDEX, _OUT1)], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ1, READ_INTS1, WRITE1)], cache=True, error_model="numpy")
 def _law_factors(arc, fractions, starts, out):  # noqa: ANN001, ANN202
     """Each piece's share of the law factor (:func:`law_factor`'s loop body; 1 for a piece
     of fewer than three points or shorter than :data:`_MEASURED`) from the arc length and

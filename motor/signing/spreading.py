@@ -20,6 +20,8 @@ import math
 import numba
 import numpy as np
 
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1
+
 #: Arc length (m) over which a point's displacement out of the body or into reach is
 #: shared with its neighbours (wide enough that a circle or a short line needing to move
 #: moves nearly whole: at 8 cm circles came out dented, and the audit's 200 sampled
@@ -36,10 +38,6 @@ _SIGMA = SPREAD / 3.0
 _REACH = 1.01 * _SIGMA * math.sqrt(-2.0 * math.log(SPREAD_CUT))
 #: A need smaller than this (m, in every coordinate) makes a point count as not needy.
 _NEEDY = 1e-12
-
-_IN1 = numba.types.Array(numba.float64, 1, "C", readonly=True)
-_IN2 = numba.types.Array(numba.float64, 2, "C", readonly=True)
-_INTS = numba.types.Array(numba.int64, 1, "C", readonly=True)
 
 
 def spread_along_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
@@ -84,7 +82,7 @@ def _spread_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchore
     return spread[np.maximum.accumulate(np.where(repeated, 0, np.arange(len(arc))))]
 
 
-@numba.njit([numba.int64(_IN1, _INTS, numba.float64, numba.int64[::1], numba.int64[::1])], cache=True, error_model="numpy")
+@numba.njit([numba.int64(READ1, READ_INTS1, numba.float64, WRITE_INTS1, WRITE_INTS1)], cache=True, error_model="numpy")
 def _near_pairs(arc, chain, reach, offsets, lower):  # noqa: ANN001, ANN202
     """Into ``lower``: the first point of every pair of points ``offset`` apart
     (1 … :data:`SPREAD_WINDOW`) in one chain and less than ``reach`` metres of arc apart,
@@ -104,7 +102,7 @@ def _near_pairs(arc, chain, reach, offsets, lower):  # noqa: ANN001, ANN202
     return found
 
 
-@numba.njit([numba.void(_IN1, _INTS, _INTS, _IN2, _IN1, numba.float64[:, ::1], numba.float64[::1])], cache=True, error_model="numpy")
+@numba.njit([numba.void(READ1, READ_INTS1, READ_INTS1, READ2, READ1, WRITE2, WRITE1)], cache=True, error_model="numpy")
 def _add_weighted(weight, lower, offsets, need, needy, total, sums):  # noqa: ANN001, ANN202
     """Into ``total (n, 3)`` and ``sums (n,)``: for every pair of points ``o`` apart, its
     ``weight`` (0 for the pairs not listed) times the need, and the neediness, of the other

@@ -1,0 +1,20 @@
+"""The array types compiled kernels state in their signatures, stated once.
+
+Every loop compiled with numba (:mod:`motor.compiled` loads them) declares the one
+signature it takes, so that a process loads it from the cache at import and never
+compiles it in the middle of an utterance. Its inputs are read-only C-contiguous arrays
+(what a broadcast or a frozen table is), its outputs writable C-contiguous ones.
+"""
+
+from __future__ import annotations
+
+import numba
+
+#: Read-only C-contiguous float64 arrays of one, two and three dimensions.
+READ1, READ2, READ3 = (numba.types.Array(numba.float64, dims, "C", readonly=True) for dims in (1, 2, 3))
+#: Read-only C-contiguous int64 arrays (indices, counts, kinds) and booleans (flags).
+READ_INTS1, READ_INTS2 = (numba.types.Array(numba.int64, dims, "C", readonly=True) for dims in (1, 2))
+READ_FLAGS1 = numba.types.Array(numba.boolean, 1, "C", readonly=True)
+#: Writable C-contiguous float64 arrays of one, two and three dimensions, and int64 rows.
+WRITE1, WRITE2, WRITE3 = numba.float64[::1], numba.float64[:, ::1], numba.float64[:, :, ::1]
+WRITE_INTS1 = numba.int64[::1]
