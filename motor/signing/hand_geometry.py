@@ -62,6 +62,11 @@ class HandGeometry:
         self._pending_palm_poses: list[tuple[np.ndarray, Hashable, tuple[str, np.ndarray, np.ndarray]]] = []
         self._alone: set[Hashable] = set()
 
+    def _unknown(self, key: Hashable) -> bool:
+        """Whether a memoizing geometry neither knows ``key`` nor has given up computing it
+        with others (:attr:`_alone`): a deferring caller then notes it for the next round."""
+        return self.memoize and key not in self._memo and key not in self._alone
+
     def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
         if not self.memoize:
             return compute()
@@ -126,8 +131,8 @@ class HandGeometry:
     def site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
         """From the wrist to ``site`` of the hand on ``side`` ``(3,)`` m, for the hand's
         global ``rotation`` ``(4,)`` and shape ``params``, the rest of the body at rest."""
-        key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
-        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+        key = _offset_key(side, site, rotation, params)
+        if self.deferring and self._unknown(key):
             self._pending_offsets.append((side, site, rotation, params))
             raise GeometryPending(key)
         return self._recall(key, lambda: self._site_offset(side, site, rotation, params))
@@ -153,8 +158,8 @@ class HandGeometry:
         if not (self.memoize and self.deferring):
             return
         for side, site, rotation, params in requests:
-            key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
-            if key not in self._memo and key not in self._alone:
+            key = _offset_key(side, site, rotation, params)
+            if self._unknown(key):
                 self._pending_offsets.append((side, site, rotation, params))
 
     def _site_offset(self, side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> np.ndarray:
@@ -182,7 +187,7 @@ class HandGeometry:
                 continue
             seen.add(id(request))
             side, site, rotation, params = request
-            key = ("offset", side, site, key_bytes(rotation), key_bytes(params))
+            key = _offset_key(side, site, rotation, params)
             if key not in self._memo:
                 missing.setdefault((side, site), {})[key] = (rotation, params)
         for (side, site), wanted in missing.items():
@@ -215,8 +220,8 @@ class HandGeometry:
     def arm_pose(self, side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> Pose:
         """The whole body, one frame, with the arm on ``side`` reaching ``wrist`` ``(3,)``
         with the hand in ``rotation`` ``(4,)`` and shape ``params``; rest elsewhere."""
-        key = ("arm_pose", side, key_bytes(wrist), key_bytes(rotation), key_bytes(params))
-        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+        key = _pose_key(side, wrist, rotation, params)
+        if self.deferring and self._unknown(key):
             self._pending_poses[key] = (side, wrist, rotation, params)
             raise GeometryPending(key)
         return self._recall(key, lambda: self._arm_pose(side, wrist, rotation, params))
@@ -228,8 +233,8 @@ class HandGeometry:
         and the offset is not known yet, both are noted at once: :meth:`resolve_pending`
         computes the offset first, then the pose at the wrist it gives (the same
         subtraction), so that a sign waits one round for both, not two."""
-        key = ("offset", *offset[:2], key_bytes(offset[2]), key_bytes(offset[3]))
-        if self.memoize and self.deferring and key not in self._memo and key not in self._alone:
+        key = _offset_key(*offset)
+        if self.deferring and self._unknown(key):
             self._pending_offsets.append(offset)
             self._pending_palm_poses.append((palm, key, (side, rotation, params)))
             raise GeometryPending(key)
@@ -250,8 +255,8 @@ class HandGeometry:
             offset = self._memo.get(offset_key)
             if offset is not None:  # else its pass failed: the sign asks again and fails alone
                 wrist = palm - offset
-                key = ("arm_pose", side, key_bytes(wrist), key_bytes(rotation), key_bytes(params))
-                if key not in self._memo and key not in self._alone:
+                key = _pose_key(side, wrist, rotation, params)
+                if self._unknown(key):
                     self._pending_poses[key] = (side, wrist, rotation, params)
         self._pending_palm_poses = []
         by_side: dict[str, dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]]] = {}
@@ -281,6 +286,16 @@ class HandGeometry:
         rotations[0, avatar.arm_joints(side)] = solution.rotations[0]
         rotations[0, avatar.hand_joints(side)] = self.finger_rotations(side, params)
         return forward_kinematics(avatar, rotations)
+
+
+def _offset_key(side: str, site: BodySite, rotation: np.ndarray, params: np.ndarray) -> tuple:
+    """The memo key of a :meth:`HandGeometry.site_offset`."""
+    return ("offset", side, site, key_bytes(rotation), key_bytes(params))
+
+
+def _pose_key(side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.ndarray) -> tuple:
+    """The memo key of a :meth:`HandGeometry.arm_pose`."""
+    return ("arm_pose", side, key_bytes(wrist), key_bytes(rotation), key_bytes(params))
 
 
 def key_bytes(values: np.ndarray) -> bytes:
