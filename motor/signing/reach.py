@@ -89,26 +89,32 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             continue
         turns = rotations_along_paths(keys, points)
         # a hand's first posture and moves in one sign are one chain: they still meet once cleared
-        chains = np.repeat(np.arange(len(owners)), [count for _, count in owners])
+        counts = [count for _, count in owners]
+        chains = np.repeat(np.arange(len(owners)), counts)
         cleared, _ = clear_paths(avatar, arm, points, turns, chains=chains)
-        pieces = iter(cleared)
-        moved = np.flatnonzero(_changed(cleared, points)).tolist()
+        changed = _changed(cleared, points)
+        moved = np.flatnonzero(changed)
         shifts = np.zeros(len(points))
         shifts[moved] = path_shifts([cleared[index] for index in moved], [points[index] for index in moved])
-        shifts_of = iter(shifts.tolist())
-        for plan, count in owners:
+        starts = np.cumsum(counts) - counts
+        noted = shifts > REACH_NOTE_THRESHOLD
+        for (plan, count), start, notes, largest in zip(
+            owners, starts.tolist(), np.add.reduceat(noted, starts).tolist(), np.maximum.reduceat(shifts, starts).tolist()
+        ):
             record = fixed[id(plan)]
-            parts = [next(pieces) for _ in range(count)]
-            changed = [shift for shift in (next(shifts_of) for _ in range(count)) if shift > REACH_NOTE_THRESHOLD]
-            if changed:
+            if notes:
                 record["notes"].append(
-                    f"{plan.gloss}: {len(changed)} path(s) of the {arm} hand moved within reach or out of the body, "
-                    f"by up to {100.0 * max(changed):.1f} cm"
+                    f"{plan.gloss}: {notes} path(s) of the {arm} hand moved within reach or out of the body, "
+                    f"by up to {100.0 * largest:.1f} cm"
                 )
             first = plan.first[arm]
-            record["first"][arm] = HandPose(parts[0][0], first.rotation, first.shape)
+            record["first"][arm] = HandPose(cleared[start][0], first.rotation, first.shape)
             moves = plan.moves[(arm, "wrist_position")]
-            record["moves"][(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, v) for m, v in zip(moves, parts[1:]))
+            # a path the check left as it was, bit for bit, keeps its move
+            record["moves"][(arm, "wrist_position")] = tuple(
+                Move(m.start, m.end, m.manner, values) if again else m
+                for m, values, again in zip(moves, cleared[start + 1 : start + count], changed[start + 1 : start + count].tolist())
+            )
     return [
         draft if not isinstance(draft, SignPlan) else replace(
             draft, first=fixed[id(draft)]["first"], moves=fixed[id(draft)]["moves"],
@@ -441,14 +447,16 @@ def split_runs(rows: np.ndarray, counts: Sequence[int] | np.ndarray) -> list[np.
 
 def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray:
     """Which paths ``(n_k, 3)`` differ from their originals ``(m_k, 3)`` ``(k,)``: in length
-    (points were inserted) or in any coordinate (``!=``, as ``np.array_equal`` compares)."""
+    (points were inserted) or in any coordinate, bit for bit (a zero that changed its sign
+    counts: a path found the same is kept as it was)."""
     lengths = np.array([len(path) for path in paths])
     changed = lengths != np.array([len(path) for path in originals])
     kept = np.flatnonzero(~changed)
     if kept.size == 0:
         return changed
     counts = lengths[kept]
-    differs = np.any(np.concatenate([paths[k] for k in kept]) != np.concatenate([originals[k] for k in kept]), axis=1)
+    bits = [np.concatenate([group[k] for k in kept]).astype(float, copy=False).view(np.int64) for group in (paths, originals)]
+    differs = np.any(bits[0] != bits[1], axis=1)
     starts = np.cumsum(counts) - counts
     nonempty = counts > 0
     changed[kept[nonempty]] = np.logical_or.reduceat(differs, starts[nonempty])
