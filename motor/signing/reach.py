@@ -27,7 +27,7 @@ from motor.kernel_types import READ2, READ_INTS2, WRITE1
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.spreading import spread_along_chains
+from motor.signing.spreading import any_coordinate, spread_along_chains
 
 #: Shortest path length that counts as a movement, metres.
 _SAME = 1e-6
@@ -261,9 +261,9 @@ def clear_paths(
             break
         shift = spread_along_chains(cleared - points, arc, chain, ~mask) * mask[:, None]
         points = points + shift
-        checked = mask & np.any(np.abs(shift) > 1e-12, axis=1)
+        checked = mask & any_coordinate(np.abs(shift) > 1e-12)
     points = _clear_points(avatar, arm, points, turns, checked, across)[0]
-    total = int(np.any(np.abs(points - original) > 1e-9, axis=1).sum())
+    total = int(any_coordinate(np.abs(points - original) > 1e-9).sum())
     return [piece.copy() for piece in split_runs(points, lengths)], total  # each path its own array
 
 
@@ -311,7 +311,7 @@ def _clear_points(
         return points, np.zeros(len(points), dtype=bool), 0
     clear = hands_clear_of_torso(avatar, AVATAR_SIDE[arm], outside_torso(avatar, chosen), turns[mask])
     fixed = within_reach(avatar, arm, clear, turns[mask], across=across)[0]
-    changed = np.any(np.abs(fixed - chosen) > 1e-9, axis=1)
+    changed = any_coordinate(np.abs(fixed - chosen) > 1e-9)
     points = points.copy()
     points[mask] = fixed
     moved = np.zeros(len(points), dtype=bool)
@@ -456,7 +456,7 @@ def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray
         return changed
     counts = lengths[kept]
     bits = [np.concatenate([group[k] for k in kept]).astype(float, copy=False).view(np.int64) for group in (paths, originals)]
-    differs = np.any(bits[0] != bits[1], axis=1)
+    differs = any_coordinate(bits[0] != bits[1])
     starts = np.cumsum(counts) - counts
     nonempty = counts > 0
     changed[kept[nonempty]] = np.logical_or.reduceat(differs, starts[nonempty])

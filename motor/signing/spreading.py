@@ -53,7 +53,7 @@ def spread_along_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, an
 
     Only the chains with a point that needs something (or an anchored one) are computed:
     every other point's displacement is 0, and a chain's sums read only its own points."""
-    involved = np.isin(chain, chain[np.any(need != 0.0, axis=1) | anchored])
+    involved = np.isin(chain, chain[any_coordinate(need != 0.0) | anchored])
     if involved.all():
         return _spread_chains(need, arc, chain, anchored)
     spread = np.zeros_like(need)
@@ -62,11 +62,17 @@ def spread_along_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, an
     return spread
 
 
+def any_coordinate(flags: np.ndarray) -> np.ndarray:
+    """Which rows of ``flags (n, 3)`` hold a True (``np.any(flags, axis=1)``): the three
+    columns or-ed, which costs a fifteenth of numpy's reduction over rows of three."""
+    return flags[:, 0] | flags[:, 1] | flags[:, 2]
+
+
 def _spread_chains(need: np.ndarray, arc: np.ndarray, chain: np.ndarray, anchored: np.ndarray) -> np.ndarray:
     """:func:`spread_along_chains` of points whose chains are all whole."""
     arc = np.ascontiguousarray(arc, dtype=float)
     chain = np.ascontiguousarray(chain, dtype=np.int64)
-    needy = (np.any(np.abs(need) > _NEEDY, axis=1) | anchored).astype(float)
+    needy = (any_coordinate(np.abs(need) > _NEEDY) | anchored).astype(float)
     offsets = np.zeros(SPREAD_WINDOW + 1, dtype=np.int64)
     lower = np.empty(len(arc) * min(SPREAD_WINDOW, max(len(arc) - 1, 0)), dtype=np.int64)
     lower = lower[: _near_pairs(arc, chain, _REACH, offsets, lower)]
