@@ -27,6 +27,7 @@ from motor.kernel_types import READ2, READ_INTS2, WRITE1
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+from motor.signing.repeats import first_of_repeats
 from motor.signing.spreading import any_coordinate, spread_along_chains
 
 #: Shortest path length that counts as a movement, metres.
@@ -148,8 +149,7 @@ def within_reach(
         fixed, moved, worst = _within_reach(avatar, arm, points, rotations, across)
         return fixed, int(moved.sum()), worst
     rows = points if rotations is None else np.concatenate([points, np.asarray(rotations, dtype=float)], axis=1)
-    keys = np.ascontiguousarray(rows).view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))[:, 0]
-    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    first, inverse = first_of_repeats(rows)
     turns = None if rotations is None else np.asarray(rotations, dtype=float)[first]
     fixed, moved, worst = _within_reach(avatar, arm, points[first], turns, across)
     return fixed[inverse], int(moved[inverse].sum()), worst
