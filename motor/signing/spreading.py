@@ -114,29 +114,26 @@ def _add_weighted(weight, lower, offsets, need, needy, total, sums):  # noqa: AN
     ``weight`` (0 for the pairs not listed) times the need, and the neediness, of the other
     point — as the pairwise numpy passes added them, offset by offset, every point's from
     the point ``o`` before it, then from the point ``o`` after it, up to the first offset
-    with no weight above 0 (zeros included: they decide the sign of a zero sum)."""
+    with no weight above 0 (zeros included: they decide the sign of a zero sum). One pass
+    per offset adds all four: a point gets its sum from before at the pair ending on it,
+    which comes before the pair starting on it."""
     n = needy.size
     for o in range(1, offsets.size):
         first, end = offsets[o - 1], offsets[o]
         if o >= n or not np.any(weight[first:end] > 0.0):
             return
-        for column in range(4):
-            p = first
-            for i in range(n - o):
-                k = 0.0
-                if p < end and lower[p] == i:
-                    k = weight[p]
-                    p += 1
-                if column == 0:
-                    for a in range(3):
-                        total[i + o, a] += k * need[i, a]
-                elif column == 1:
-                    for a in range(3):
-                        total[i, a] += k * need[i + o, a]
-                elif column == 2:
-                    sums[i + o] += k * needy[i]
-                else:
-                    sums[i] += k * needy[i + o]
+        p = first
+        for i in range(n - o):
+            k = 0.0
+            if p < end and lower[p] == i:
+                k = weight[p]
+                p += 1
+            for a in range(3):
+                total[i + o, a] += k * need[i, a]
+            for a in range(3):
+                total[i, a] += k * need[i + o, a]
+            sums[i + o] += k * needy[i]
+            sums[i] += k * needy[i + o]
 
 
 def load_kernels() -> None:
