@@ -88,15 +88,21 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
         if not points:
             continue
-        turns = rotations_along_paths(keys, points)
         # a hand's first posture and moves in one sign are one chain: they still meet once cleared
         counts = [count for _, count in owners]
+        lengths = np.array([len(path) for path in points])
+        original = np.concatenate(points, dtype=float)
         chains = np.repeat(np.arange(len(owners)), counts)
-        cleared, _ = clear_paths(avatar, arm, points, turns, chains=chains)
-        changed = _changed(cleared, points)
-        moved = np.flatnonzero(changed)
+        cleared, cleared_lengths, _ = _cleared_runs(avatar, arm, original, _rotations_along(keys, points), lengths, chains=chains)
+        changed = _changed_runs(cleared, cleared_lengths, original, lengths)
+        ends = np.cumsum(cleared_lengths)
+        # each changed path its own array; a path the check left as it was, bit for bit, keeps its move
+        pieces = {
+            index: cleared[end - size : end].copy()
+            for index, end, size in zip(np.flatnonzero(changed).tolist(), ends[changed].tolist(), cleared_lengths[changed].tolist())
+        }
         shifts = np.zeros(len(points))
-        shifts[moved] = path_shifts([cleared[index] for index in moved], [points[index] for index in moved])
+        shifts[changed] = path_shifts(list(pieces.values()), [points[index] for index in pieces])
         starts = np.cumsum(counts) - counts
         noted = shifts > REACH_NOTE_THRESHOLD
         for (plan, count), start, notes, largest in zip(
@@ -108,13 +114,12 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
                     f"{plan.gloss}: {notes} path(s) of the {arm} hand moved within reach or out of the body, "
                     f"by up to {100.0 * largest:.1f} cm"
                 )
-            first = plan.first[arm]
-            record["first"][arm] = HandPose(cleared[start][0], first.rotation, first.shape)
-            moves = plan.moves[(arm, "wrist_position")]
-            # a path the check left as it was, bit for bit, keeps its move
+            if start in pieces:
+                first = plan.first[arm]
+                record["first"][arm] = HandPose(pieces[start][0], first.rotation, first.shape)
             record["moves"][(arm, "wrist_position")] = tuple(
-                Move(m.start, m.end, m.manner, values) if again else m
-                for m, values, again in zip(moves, cleared[start + 1 : start + count], changed[start + 1 : start + count].tolist())
+                Move(m.start, m.end, m.manner, pieces[index]) if index in pieces else m
+                for index, m in enumerate(plan.moves[(arm, "wrist_position")], start + 1)
             )
     return [
         draft if not isinstance(draft, SignPlan) else replace(
@@ -241,9 +246,24 @@ def clear_paths(
     round is a few vectorized passes over the collection)."""
     if not paths:
         return [], 0
-    lengths = np.array([len(path) for path in paths])
-    points = np.concatenate([np.asarray(path, dtype=float).reshape(-1, 3) for path in paths])
-    turns = np.concatenate([np.asarray(turn, dtype=float).reshape(-1, 4) for turn in rotations])
+    points, turns = (np.concatenate(rows, dtype=float).reshape(-1, width) for rows, width in ((paths, 3), (rotations, 4)))
+    points, lengths, total = _cleared_runs(avatar, arm, points, turns, np.array([len(path) for path in paths]), keep_ends, chains, across)
+    return [piece.copy() for piece in split_runs(points, lengths)], total  # each path its own array
+
+
+def _cleared_runs(
+    avatar: Avatar,
+    arm: str,
+    points: np.ndarray,
+    turns: np.ndarray,
+    lengths: np.ndarray,
+    keep_ends: bool = False,
+    chains: np.ndarray | None = None,
+    across: bool = True,
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """:func:`clear_paths` of paths laid end to end: points ``(n, 3)`` and rotations
+    ``(n, 4)`` in runs ``lengths (k,)`` long. The cleared points laid end to end, the
+    runs' new lengths and how many points moved."""
     points, turns, lengths = _refined(points, turns, lengths)
     owner = np.repeat(np.arange(len(lengths)), lengths)
     chain = (np.arange(len(lengths)) if chains is None else np.asarray(chains))[owner]
@@ -263,8 +283,7 @@ def clear_paths(
         points = points + shift
         checked = mask & any_coordinate(np.abs(shift) > 1e-12)
     points = _clear_points(avatar, arm, points, turns, checked, across)[0]
-    total = int(any_coordinate(np.abs(points - original) > 1e-9).sum())
-    return [piece.copy() for piece in split_runs(points, lengths)], total  # each path its own array
+    return points, lengths, int(any_coordinate(np.abs(points - original) > 1e-9).sum())
 
 
 def _refined(points: np.ndarray, turns: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -399,6 +418,11 @@ def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> li
     the way (:func:`arc_fractions`) through its evenly spaced keys ``(m_k, 4)``
     (:func:`rotations_along`); a path of one point takes its only key. All paths in a few
     vectorized passes, each row computed as those functions compute it."""
+    return split_runs(_rotations_along(keys, paths), [len(path) for path in paths])
+
+
+def _rotations_along(keys: list[np.ndarray], paths: list[np.ndarray]) -> np.ndarray:
+    """:func:`rotations_along_paths` laid end to end ``(sum n_k, 4)``."""
     counts = np.array([len(path) for path in paths])
     key_counts = np.array([len(key) for key in keys])
     flat_keys = np.concatenate(keys)
@@ -411,7 +435,7 @@ def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> li
     following = np.where(single, 0, index + 1)
     turns = quat.slerp(flat_keys[base + index], flat_keys[base + following], position - index)
     turns[single] = flat_keys[base[single]]
-    return split_runs(turns, counts)
+    return turns
 
 
 def arc_fractions_of_paths(paths: list[np.ndarray]) -> np.ndarray:
@@ -445,21 +469,19 @@ def split_runs(rows: np.ndarray, counts: Sequence[int] | np.ndarray) -> list[np.
     return [rows[start:end] for start, end in zip([0, *ends[:-1]], ends)]
 
 
-def _changed(paths: list[np.ndarray], originals: list[np.ndarray]) -> np.ndarray:
-    """Which paths ``(n_k, 3)`` differ from their originals ``(m_k, 3)`` ``(k,)``: in length
-    (points were inserted) or in any coordinate, bit for bit (a zero that changed its sign
-    counts: a path found the same is kept as it was)."""
-    lengths = np.array([len(path) for path in paths])
-    changed = lengths != np.array([len(path) for path in originals])
-    kept = np.flatnonzero(~changed)
-    if kept.size == 0:
-        return changed
-    counts = lengths[kept]
-    bits = [np.concatenate([group[k] for k in kept]).astype(float, copy=False).view(np.int64) for group in (paths, originals)]
-    differs = any_coordinate(bits[0] != bits[1])
-    starts = np.cumsum(counts) - counts
-    nonempty = counts > 0
-    changed[kept[nonempty]] = np.logical_or.reduceat(differs, starts[nonempty])
+def _changed_runs(paths: np.ndarray, lengths: np.ndarray, originals: np.ndarray, original_lengths: np.ndarray) -> np.ndarray:
+    """Which paths laid end to end in ``paths (n, 3)``, runs ``lengths (k,)`` long, differ
+    from the originals laid end to end ``(m, 3)`` in runs ``original_lengths`` ``(k,)``:
+    in length (points were inserted) or in any coordinate, bit for bit (a zero that
+    changed its sign counts: a path found the same is kept as it was)."""
+    changed = lengths != original_lengths
+    same = ~changed
+    new, old = (rows[np.repeat(same, runs)].view(np.int64) for rows, runs in ((paths, lengths), (originals, original_lengths)))
+    differs = any_coordinate(new != old)
+    counts = lengths[same]
+    kept = np.flatnonzero(same)[counts > 0]
+    if kept.size:
+        changed[kept] = np.logical_or.reduceat(differs, (np.cumsum(counts) - counts)[counts > 0])
     return changed
 
 
