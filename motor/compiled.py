@@ -7,7 +7,8 @@ arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate 
 :mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
 rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull,
 :mod:`motor.signing.law_time`'s law time of many paths, :mod:`motor.signing.retiming`'s
-law factors and :mod:`motor.signing.repeats`' repeated postures) once per checkout and
+law factors, :mod:`motor.signing.repeats`' repeated postures and
+:mod:`motor.signing.reach_steps`' steps of the reach check) once per checkout and
 caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
@@ -26,13 +27,13 @@ from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost, upright_placement
 from motor.body import distance
 from motor.hand import shape
-from motor.signing import law_time, path_batch, reach, repeats, retiming, spreading
+from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
 
 
 def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel; returns the
     seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach):
+    for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach):
         module.load_kernels()
     return time.perf_counter() - started

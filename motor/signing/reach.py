@@ -27,6 +27,7 @@ from motor.kernel_types import READ2, READ_INTS2, WRITE1
 from motor.signing.hand_clearance import hands_clear_of_torso
 from motor.signing.lmp import Move
 from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+from motor.signing.reach_steps import reach_probes, reach_step
 from motor.signing.repeats import first_of_repeats
 from motor.signing.spreading import any_coordinate, spread_along_chains
 
@@ -163,11 +164,14 @@ def within_reach(
 def _within_reach(
     avatar: Avatar, arm: str, points: np.ndarray, rotations: np.ndarray | None, across: bool = True
 ) -> tuple[np.ndarray, np.ndarray, float]:
-    """:func:`within_reach` of every row: positions, which moved, the largest shortfall."""
+    """:func:`within_reach` of every row: positions, which moved, the largest shortfall.
+    Each step probes the open rows and moves them in compiled passes
+    (:mod:`motor.signing.reach_steps`)."""
     side = AVATAR_SIDE[arm]
     shoulder = avatar.rest_positions[avatar.joint_index(f"{side}_shoulder")]
     outward = np.array([-1.0 if arm == "right" else 1.0, 0.0, 1.0]) * CROSS_STEP
-    forward = np.array([0.0, 0.0, CROSS_STEP])
+    ahead = np.array([0.0, 0.0, CROSS_STEP]) / CROSS_STEP
+    limits = np.array([REACH_MARGIN, REACH_TOLERANCE, PENETRATION_TOLERANCE, CROSS_STEP, 0.5 * avatar.arm_length(side)])
     fixed = np.array(points, dtype=float)
     moved = np.zeros(len(fixed), dtype=bool)
     open_ = np.arange(len(fixed))
@@ -175,30 +179,12 @@ def _within_reach(
     for _ in range(CROSS_STEPS):
         if open_.size == 0:
             break
-        here = fixed[open_]
+        away, targets = reach_probes(fixed, open_, shoulder, REACH_MARGIN)
         turns = None if rotations is None else np.asarray(rotations)[open_]
-        away = here - shoulder
-        away /= np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-9)
         # beyond and short of each position, in the same IK calls
-        both = _solve_in_chunks(
-            avatar, side, np.concatenate([here + REACH_MARGIN * away, here - REACH_MARGIN * away]),
-            None if turns is None else np.concatenate([turns, turns]),
-        )
-        far, near = (ArmReach(*(column[rows] for column in both)) for rows in (slice(0, len(here)), slice(len(here), None)))
-        # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
-        outer = np.linalg.norm(here - shoulder, axis=1) > 0.5 * avatar.arm_length(side)
-        short = (far.shortfall > REACH_TOLERANCE) | (near.shortfall > REACH_TOLERANCE)
-        too_far = short & outer
-        too_near = short & ~outer
-        crossing = (np.maximum(far.penetration, near.penetration) > PENETRATION_TOLERANCE) & across
-        bad = too_far | too_near | crossing
-        worst = max(worst, float(np.max(far.shortfall - REACH_MARGIN, initial=0.0)))
-        here = np.where(too_far[:, None], far.wrist - REACH_MARGIN * away, here)
-        lacking = np.maximum(np.maximum(far.shortfall, near.shortfall), CROSS_STEP)
-        around = away + forward / CROSS_STEP
-        around /= np.maximum(np.linalg.norm(around, axis=1, keepdims=True), 1e-9)
-        here = here + (too_near * lacking)[:, None] * around + crossing[:, None] * outward
-        fixed[open_] = here
+        probed = _solve_in_chunks(avatar, side, targets, None if turns is None else np.concatenate([turns, turns]))
+        worst = max(worst, float(np.max(probed.shortfall[: open_.size] - REACH_MARGIN, initial=0.0)))
+        bad = reach_step(fixed, open_, away, probed, shoulder, limits, outward, ahead, across)
         moved[open_[bad]] = True
         open_ = open_[bad]
     return fixed, moved, max(worst, 0.0)

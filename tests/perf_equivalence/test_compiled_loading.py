@@ -12,7 +12,7 @@ from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, swivel
 from motor.body import distance
 from motor.body.avatar import load_avatar
 from motor.hand import shape
-from motor.signing import law_time, path_batch, reach, repeats, retiming, spreading
+from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
 from motor.compiled import warm_up
 
 LOOPS = [
@@ -24,6 +24,7 @@ LOOPS = [
     (law_time, "_chords_and_arcs"), (law_time, "_chord_sums"), (law_time, "_turning_cosines"), (law_time, "_curvature_and_grids"),
     (law_time, "_kernel_exponents"), (law_time, "_smoothed"), (law_time, "_law_time"), (retiming, "_law_factors"), (path_batch, "_root_sums"),
     (spreading, "_near_pairs"), (spreading, "_add_weighted"), (reach, "_shift_rows"), (repeats, "_group_rows"),
+    (reach_steps, "_probe_rows"), (reach_steps, "_step_rows"),
     (upright_placement, "_clavicle_rows"), (upright_placement, "_circle_rows"), (upright_placement, "_swivel_sides"),
 ]  # fmt: skip
 
