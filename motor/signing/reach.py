@@ -72,7 +72,8 @@ REACH_NOTE_THRESHOLD = 0.01
 
 
 def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
-    """Plans with every wrist position moved within reach (:func:`within_reach`)."""
+    """Plans with every wrist position moved within reach (:func:`within_reach`); a
+    path the check leaves as it was, bit for bit, keeps its move."""
     plans = [draft for draft in drafts if isinstance(draft, SignPlan)]
     fixed: dict[int, dict] = {id(plan): {"first": dict(plan.first), "moves": dict(plan.moves), "notes": []} for plan in plans}
     for arm in ARMS:
@@ -89,10 +90,10 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
             owners.append((plan, 1 + len(plan.moves[(arm, "wrist_position")])))
         if not points:
             continue
-        # a hand's first posture and moves in one sign are one chain: they still meet once cleared
         counts = [count for _, count in owners]
         lengths = np.array([len(path) for path in points])
         original = np.concatenate(points, dtype=float)
+        # a hand's first posture and moves in one sign are one chain: they still meet once cleared
         chains = np.repeat(np.arange(len(owners)), counts)
         cleared, cleared_lengths, _ = _cleared_runs(avatar, arm, original, _rotations_along(keys, points), lengths, chains=chains)
         changed = _changed_runs(cleared, cleared_lengths, original, lengths)
