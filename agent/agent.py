@@ -48,6 +48,7 @@ from blackboard.scheduler import (
     SchedulerConfig,
 )
 from motor.body.avatar import Avatar, load_avatar
+from motor.compiled import warm_up
 from motor.control import MotorControl
 from mura.bml import BmlBlock
 from mura.errors import SourceLocation, SpecError
@@ -196,6 +197,7 @@ class Agent:
     def _live_scheduler(self, audio: bool) -> tuple[Scheduler, InterruptibleSynthesizer]:
         with self._live_lock:
             if self._live is None:
+                warm_up()
                 self._live_tts = InterruptibleSynthesizer(self.tts)
                 self._live = Scheduler(self._live_tts, MotorControl(self.avatar, self.fps), WallClock(self._speedup), self.config)
                 for observer in self._observers:

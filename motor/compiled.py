@@ -14,9 +14,12 @@ caches it on disk
 Each kernel states its signature, so a process loads it from the cache when it imports
 the kernel's module — about 0.7 s in all, most of it numba's own start — never in the
 middle of an utterance: a realizer has them once it has imported the motor.
-:func:`warm_up` imports them all and runs each once (the speed benches call it before
-they time anything); the seconds it returns are what that cost in this process, near
-zero when the motor was imported already.
+:func:`warm_up` imports them all and runs each once, and computes the tables that depend
+on the model's constants alone — the manners' time profiles
+(:func:`motor.trajectory.biocontrol.load_profiles`: eight ODE integrations, about 0.3 s) —
+so that neither falls in the middle of the first utterance or sign: a live agent calls it
+when it opens its scheduler, the speed benches before they time anything. The seconds it
+returns are what that cost in this process, near zero when done already.
 """
 
 from __future__ import annotations
@@ -28,12 +31,14 @@ from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_c
 from motor.body import distance
 from motor.hand import shape
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
+from motor.trajectory import biocontrol
 
 
 def warm_up() -> float:
-    """Load (compiling where no cache holds them) every compiled kernel; returns the
-    seconds it took."""
+    """Load (compiling where no cache holds them) every compiled kernel and compute the
+    manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
     for module in (quaternion, distance, clearance, swivel, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach):
         module.load_kernels()
+    biocontrol.load_profiles()
     return time.perf_counter() - started

@@ -229,6 +229,14 @@ def profile(manner: str) -> TimeProfile:
     return integrate_manner(MANNERS[manner])
 
 
+def load_profiles() -> None:
+    """Integrate every manner's profile and its peaks now (:func:`profile`,
+    :func:`_profile_peaks`): eight integrations and fits, about 0.3 s, that would otherwise
+    fall on the first movement of each manner (:func:`motor.compiled.warm_up`)."""
+    for manner in MANNERS:
+        _profile_peaks(manner)
+
+
 @cache
 def minimum_jerk() -> TimeProfile:
     """The minimum-jerk ease ``10u³ − 15u⁴ + 6u⁵``: zero speed and acceleration at both ends."""

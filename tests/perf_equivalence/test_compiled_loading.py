@@ -14,6 +14,7 @@ from motor.body.avatar import load_avatar
 from motor.hand import shape
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
 from motor.compiled import warm_up
+from motor.trajectory import biocontrol
 
 LOOPS = [
     (quat, "_multiply_rows"), (quat, "_rotate_rows"), (quat, "_cross_rows"), (quat, "_normalize_rows"),
@@ -48,3 +49,8 @@ def test_read_only_strided_and_integer_inputs_need_no_other_compilation():
     assert shape.hand_rotations(load_avatar("max"), "l", np.broadcast_to(np.arange(26), (3, 26))[:, ::1]).shape == (3, 17, 4)
     assert given_swivel.arm_rotations(load_avatar("max"), "r", wrists, rows, np.zeros(5, dtype=np.int64), points, rows[:, ::-1]).shape == (5, 4, 4)
     assert all(len(getattr(module, name).signatures) == 1 for module, name in LOOPS)
+
+
+def test_warm_up_computes_every_manners_time_profile():
+    warm_up()
+    assert biocontrol.profile.cache_info().currsize >= len(biocontrol.MANNERS)
