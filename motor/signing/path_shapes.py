@@ -35,6 +35,7 @@ CIRCLE_POINTS = 32
 #: Minor over major semi-axis of an ellipse.
 ELLIPSE_RATIO = 0.55
 _SAMPLES = np.arange(PATH_POINTS, dtype=float).reshape(-1, 1)
+_FRACTIONS = _SAMPLES / (PATH_POINTS - 1)
 
 
 def line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
@@ -43,7 +44,7 @@ def line(start: np.ndarray, end: np.ndarray) -> np.ndarray:
     overhead: a collection of signs draws thousands of straight paths."""
     delta = end - start
     step = delta / (PATH_POINTS - 1)
-    points = (_SAMPLES / (PATH_POINTS - 1)) * delta if (step == 0).any() else _SAMPLES * step
+    points = _FRACTIONS * delta if 0.0 in step.tolist() else _SAMPLES * step
     points += start
     points[-1] = end
     return points
