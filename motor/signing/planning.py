@@ -90,6 +90,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from functools import partial
+from itertools import islice
 from typing import TypeVar
 
 import numpy as np
@@ -877,13 +878,16 @@ class _SignCompiler:
     # -- from hand moves to channel moves ------------------------------------------------
 
     def channel_moves(self, layout: Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
-        result: dict[tuple[str, str], tuple[Move, ...]] = {}
+        """Each hand's moves by channel: its placed wrist paths, its rotations, its shapes
+        (all the sign's moves made at once: :meth:`Move.many`)."""
+        channels: dict[tuple[str, str], list[tuple[float, float, str, np.ndarray]]] = {}
         for arm in layout.first:
             moves = self.moves.get(arm, [])
-            result[(arm, "wrist_position")] = tuple(Move(m.start, m.end, m.manner, w) for m, w in zip(moves, layout.wrists[arm]))
-            result[(arm, "hand_rotation")] = tuple(Move(m.start, m.end, m.manner, m.rotations) for m in moves)
-            result[(arm, "handshape")] = tuple(Move(m.start, m.end, m.manner, m.shapes) for m in moves)
-        return result
+            channels[(arm, "wrist_position")] = [(m.start, m.end, m.manner, w) for m, w in zip(moves, layout.wrists[arm])]
+            channels[(arm, "hand_rotation")] = [(m.start, m.end, m.manner, m.rotations) for m in moves]
+            channels[(arm, "handshape")] = [(m.start, m.end, m.manner, m.shapes) for m in moves]
+        made = iter(Move.many([move for moves in channels.values() for move in moves]))
+        return {channel: tuple(islice(made, len(moves))) for channel, moves in channels.items()}
 
     def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
         return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))

@@ -20,7 +20,7 @@ import pytest
 
 from motor.body.avatar import load_avatar
 from motor.signing.hand_geometry import HandGeometry
-from motor.signing.lmp import stopping_length
+from motor.signing.lmp import Move, stopping_length
 from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
@@ -128,3 +128,37 @@ def test_placed_rows_are_cut_as_numpy_split_cuts_them(case):
     fast = split_runs(rows, counts)
     plain = np.split(rows, np.cumsum(counts)[:-1])
     assert [(piece.shape, piece.tobytes()) for piece in fast] == [(piece.shape, piece.tobytes()) for piece in plain]
+
+
+_PATH = np.array([[0.1, 1.2, 0.3], [0.2, 1.1, 0.35], [0.25, 1.0, 0.4]])
+#: Rows of moves ``(start, end, manner, values)`` made at once, labelled synthetic: all
+#: valid, and one refused among valid ones for each check the constructor makes (or
+#: values it converts: a list, integers).
+MOVE_CASES = {
+    "valid": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.5, "lax", _PATH[:2]), (0.5, 0.9, "linear", _PATH.T.copy())],
+    "none": [],
+    "a nan": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.5, "lax", np.where(_PATH > 1.1, np.nan, _PATH))],
+    "an infinity": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.5, "lax", np.where(_PATH > 1.1, -np.inf, _PATH))],
+    "one row": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.5, "lax", _PATH[:1])],
+    "one dimension": [(0.0, 0.2, "targetted", _PATH[0])],
+    "no time": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.2, "lax", _PATH)],
+    "backwards in time": [(0.3, 0.2, "targetted", _PATH)],
+    "unknown manner": [(0.0, 0.2, "targetted", _PATH), (0.2, 0.5, "brisk", _PATH)],
+    "a list": [(0.0, 0.2, "targetted", _PATH.tolist())],
+    "integers": [(0.0, 0.2, "fast", np.array([[0, 1, 2], [3, 4, 5]]))],
+}
+
+
+def _made(make):
+    """What ``make`` gives as comparable numbers, or the error it raises."""
+    try:
+        moves = make()
+    except ValueError as error:
+        return str(error)
+    return [(m.start, m.end, m.manner, m.values.dtype, m.values.shape, m.values.tobytes()) for m in moves]
+
+
+@pytest.mark.parametrize("case", MOVE_CASES)
+def test_moves_made_at_once_are_those_made_one_by_one(case):
+    rows = MOVE_CASES[case]
+    assert _made(lambda: Move.many(rows)) == _made(lambda: [Move(*row) for row in rows])
