@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from motor import quaternion as quat
 from motor.trajectory.guiding_strokes import (
     curve_breakpoints,
     default_normal,
@@ -56,18 +57,18 @@ def curve(start: np.ndarray, end: np.ndarray, segment: Segment) -> tuple[np.ndar
     chord = end - start
     normal = None if segment.normal is None else np.asarray(segment.normal.vector, dtype=float)
     if segment.shape == "wavy":
-        return wavy(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), WAVES, normal), None
+        return wavy(start, end, WAVE_AMPLITUDE * quat.length(chord), WAVES, normal), None
     if segment.shape == "zigzag":
-        return zigzag(start, end, WAVE_AMPLITUDE * float(np.linalg.norm(chord)), ZIGS, normal), None
+        return zigzag(start, end, WAVE_AMPLITUDE * quat.length(chord), ZIGS, normal), None
     letter = (segment.shape or "arcu").removeprefix("arc")
     bulge = np.asarray(AXES.get(letter, AXES["u"]), dtype=float)
     across = bulge - (bulge @ chord) / (chord @ chord) * chord
     note = None
-    if np.linalg.norm(across) < 1e-6:
+    if quat.length(across) < 1e-6:
         note = f"arc {segment.shape!r} bulges along its own chord; bulging in the default plane"
         plane = default_normal(chord)
     else:
-        plane = np.cross(chord, across)  # LeftC bulges toward plane × chord = across
+        plane = quat.cross(chord, across)  # LeftC bulges toward plane × chord = across
     return curve_breakpoints(start, end, plane, "LeftC", ARC_EXTENT).points, note
 
 
@@ -98,7 +99,7 @@ def circle(start: np.ndarray, segment: Segment, arm_length: float) -> np.ndarray
 def unit(vector: tuple[float, ...] | np.ndarray) -> np.ndarray:
     """``vector`` of length 1; ValueError for a zero vector."""
     v = np.asarray(vector, dtype=float)
-    norm = float(np.linalg.norm(v))
+    norm = quat.length(v)
     if norm < 1e-9:
         raise ValueError("direction of zero length")
     return v / norm
@@ -109,8 +110,8 @@ def circle_axes(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     up, forward = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
     reference = up if abs(axis @ up) <= abs(axis @ forward) else forward
     e1 = reference - (reference @ axis) * axis
-    e1 /= np.linalg.norm(e1)
-    return e1, np.cross(axis, e1)
+    e1 /= quat.length(e1)
+    return e1, quat.cross(axis, e1)
 
 
 def clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.ndarray, default: float) -> float:
@@ -119,7 +120,7 @@ def clock_angle(letters: str | None, axis: np.ndarray, e1: np.ndarray, e2: np.nd
         return default
     direction = np.sum([AXES[letter] for letter in letters], axis=0)
     direction = direction - (direction @ axis) * axis
-    if np.linalg.norm(direction) < 1e-9:
+    if quat.length(direction) < 1e-9:
         return default
     # the hand starts at that clock position: the angle of the point from the centre
     return float(np.arctan2(direction @ e2, direction @ e1))

@@ -501,7 +501,7 @@ class _SignCompiler:
     def side_by_side(self) -> None:
         """Symmetric hands sent to the same central site go to either side of it."""
         mine, theirs = self.hands[self.dominant], self.hands[self.other]
-        if np.linalg.norm(mine.location - theirs.location) > SIDE_BY_SIDE:
+        if quat.length(mine.location - theirs.location) > SIDE_BY_SIDE:
             return
         shift = np.array([SIDE_BY_SIDE, 0.0, 0.0])
         sign = 1.0 if self.dominant == "left" else -1.0
@@ -798,12 +798,12 @@ class _SignCompiler:
         straight = False
         if segment.kind is SegmentKind.CIRCLE:
             points = circle(start, segment, self.arm_length)
-        elif segment.kind is SegmentKind.CURVE and np.linalg.norm(end - start) > _SAME:
+        elif segment.kind is SegmentKind.CURVE and quat.length(end - start) > _SAME:
             points, note = curve(start, end, segment)
             if note:
                 self.note(note)
         else:
-            if segment.shape not in (None, "nomotion") and np.linalg.norm(end - start) <= _SAME:
+            if segment.shape not in (None, "nomotion") and quat.length(end - start) <= _SAME:
                 self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
             points = line(start, end)
             straight = True

@@ -35,6 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from motor import quaternion as quat
+
 UP = np.array([0.0, 1.0, 0.0])
 FORWARD = np.array([0.0, 0.0, 1.0])
 CURVE_SHAPES: tuple[str, ...] = ("LeftC", "RightC", "LeftS", "RightS")
@@ -59,7 +61,7 @@ def unit(vector: np.ndarray | tuple[float, ...], name: str) -> np.ndarray:
     v = np.asarray(vector, dtype=float)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
         raise ValueError(f"{name}: expected a finite 3-vector, got {vector!r}")
-    norm = float(np.linalg.norm(v))
+    norm = quat.length(v)
     if norm < _EPS:
         raise ValueError(f"{name} has zero length")
     return v / norm
@@ -73,18 +75,18 @@ def default_normal(chord: np.ndarray) -> np.ndarray:
     """
     c = unit(chord, "curve chord")
     side = UP if abs(float(c @ UP)) <= abs(float(c @ FORWARD)) else FORWARD
-    return unit(np.cross(c, side), "curve normal (chord parallel to both up and forward)")
+    return unit(quat.cross(c, side), "curve normal (chord parallel to both up and forward)")
 
 
 def _in_plane_frame(chord: np.ndarray, normal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Unit chord ĉ and the left side ``n × ĉ`` (normal projected perpendicular to ĉ)."""
-    c = chord / np.linalg.norm(chord)
+    c = chord / quat.length(chord)
     n = normal - (normal @ c) * c
-    norm = float(np.linalg.norm(n))
+    norm = quat.length(n)
     if norm < 1e-6:
         raise ValueError("curve normal is parallel to the chord from start to end")
     n /= norm
-    return c, np.cross(n, c)
+    return c, quat.cross(n, c)
 
 
 def _bulge_profile(roundness: float, skewedness: float) -> tuple[np.ndarray, np.ndarray]:
@@ -138,7 +140,7 @@ def curve_breakpoints(
     else:
         n = unit(normal, "curve normal")
     c, left = _in_plane_frame(chord, n)
-    length = float(np.linalg.norm(chord))
+    length = quat.length(chord)
     fractions, heights = _bulge_profile(roundness, skewedness)
     sign = 1.0 if shape.startswith("Left") else -1.0
     if shape.endswith("C"):
@@ -163,7 +165,7 @@ def _plane_axes(normal: np.ndarray, reference: np.ndarray | None) -> tuple[np.nd
     r = np.asarray(reference, dtype=float)
     e1 = r - (r @ normal) * normal
     e1 = unit(e1, "reference axis projected into the circle's plane")
-    return e1, np.cross(normal, e1)
+    return e1, quat.cross(normal, e1)
 
 
 def ellipse_breakpoints(

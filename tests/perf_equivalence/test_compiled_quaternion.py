@@ -65,3 +65,27 @@ def test_products_agree_with_scipy():
 def test_a_wrong_last_axis_is_refused():
     with pytest.raises(ValueError, match="last axes of 4 and 4"):
         quat.multiply(np.zeros(3), np.zeros(4))
+
+
+#: Single vectors, labelled synthetic: ordinary, tiny and huge components, zeros and a
+#: −0 (the huge overflow to infinity), a strided view, a quaternion's four components.
+VECTORS = {
+    "ordinary": np.array([0.3, -1.2, 0.45]),
+    "tiny": np.array([1e-160, -3e-170, 2e-155]),
+    "huge": np.array([1e150, -3e152, 2e149]),
+    "zero": np.zeros(3),
+    "negative zero": np.array([-0.0, 0.0, -0.0]),
+    "strided view": RNG.normal(size=(4, 6))[1, ::2],
+    "four components": RNG.normal(size=4),
+}
+
+
+@pytest.mark.parametrize("case", VECTORS)
+def test_the_length_of_one_vector_is_numpys_norm_bit_for_bit(case):
+    v = VECTORS[case]
+    assert quat.length(v) == np.linalg.norm(v)
+
+
+def test_the_cross_product_of_single_vectors_is_numpys_bit_for_bit():
+    for u, v in zip(RNG.normal(size=(200, 3)) * RNG.uniform(1e-3, 1e3, size=(200, 1)), RNG.normal(size=(200, 3))):
+        assert quat.cross(u, v).tobytes() == np.cross(u, v).tobytes()
