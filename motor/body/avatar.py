@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -199,9 +200,18 @@ class Avatar:
         return self.limits[joint][kind]
 
     def arm_lengths(self, side: str) -> tuple[float, float]:
-        """Upper-arm and forearm lengths of one side, metres."""
-        _, _, elbow, wrist = self.arm_joints(side)
-        return float(np.linalg.norm(self.offsets[elbow])), float(np.linalg.norm(self.offsets[wrist]))
+        """Upper-arm and forearm lengths of one side, metres (measured once: every body
+        site placed at a proximity asks for them)."""
+        measured = self._measured_arms
+        if side not in measured:
+            _, _, elbow, wrist = self.arm_joints(side)
+            measured[side] = float(np.linalg.norm(self.offsets[elbow])), float(np.linalg.norm(self.offsets[wrist]))
+        return measured[side]
+
+    @cached_property
+    def _measured_arms(self) -> dict[str, tuple[float, float]]:
+        """:meth:`arm_lengths` by side, as measured so far (the offsets are read-only)."""
+        return {}
 
     def arm_length(self, side: str = "r") -> float:
         """Shoulder-to-wrist length of the straight arm, metres: the unit of proximities."""
