@@ -35,6 +35,7 @@ from mura.errors import SpecError
 from mura.values import BodySite, HandShape, Location
 
 _Value = TypeVar("_Value")
+_UNKNOWN = object()
 
 
 class GeometryPending(Exception):
@@ -61,6 +62,9 @@ class HandGeometry:
         self._pending_poses: dict[Hashable, tuple[str, np.ndarray, np.ndarray, np.ndarray]] = {}
         self._pending_palm_poses: list[tuple[np.ndarray, Hashable, tuple[str, np.ndarray, np.ndarray]]] = []
         self._alone: set[Hashable] = set()
+        #: Site offsets by the id of the request tuple asked (:meth:`site_offsets`), with the
+        #: tuple itself, which keeps the id from being reused while the entry lasts.
+        self._answers: dict[int, tuple[tuple[str, BodySite, np.ndarray, np.ndarray], np.ndarray]] = {}
 
     def _unknown(self, key: Hashable) -> bool:
         """Whether a memoizing geometry neither knows ``key`` nor has given up computing it
@@ -70,12 +74,13 @@ class HandGeometry:
     def _recall(self, key: Hashable, compute: Callable[[], _Value]) -> _Value:
         if not self.memoize:
             return compute()
-        if key not in self._memo:
+        value = self._memo.get(key, _UNKNOWN)
+        if value is _UNKNOWN:
             value = compute()
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
             self._memo[key] = value
-        return self._memo[key]  # type: ignore[return-value]
+        return value  # type: ignore[return-value]
 
     def rotation(self, side: str, fingers: np.ndarray, palm: np.ndarray) -> np.ndarray:
         """Global hand rotation ``(4,)`` of the hand on ``side`` (``"l"``/``"r"``) whose
@@ -139,15 +144,19 @@ class HandGeometry:
 
     def site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> list[np.ndarray]:
         """The :meth:`site_offset` of each ``(side, site, rotation, params)``, in order;
-        when memoizing, a request that is the very same tuple as one before (a sign asks
-        for one posture's offset again and again) is answered once."""
+        when memoizing, a request that is the very same tuple as one answered before (a
+        sign asks for one posture's offset again and again; :meth:`prefetch_site_offsets`
+        answers a collection's) is answered as then, without making its key again."""
         if not self.memoize:
             return [self.site_offset(*request) for request in requests]
-        answers: dict[int, np.ndarray] = {}  # by the ids of the requests, which the sequence keeps alive meanwhile
+        answers = self._answers
+        offsets = []
         for request in requests:
-            if id(request) not in answers:
-                answers[id(request)] = self.site_offset(*request)
-        return [answers[id(request)] for request in requests]
+            known = answers.get(id(request))
+            if known is None or known[0] is not request:
+                known = answers[id(request)] = (request, self.site_offset(*request))
+            offsets.append(known[1])
+        return offsets
 
     def expect_site_offsets(self, requests: Sequence[tuple[str, BodySite, np.ndarray, np.ndarray]]) -> None:
         """Note the :meth:`site_offset` of each ``(side, site, rotation, params)`` a caller
@@ -176,18 +185,18 @@ class HandGeometry:
         not yet known in one forward-kinematics pass per side and site (a collection of
         signs asks for thousands); each row's arithmetic is that of :meth:`site_offset`,
         so the answers are the same, bit for bit. A request that is the very same tuple as
-        one before (a sign asks for one posture's offset again and again) is looked at once.
-        Does nothing without ``memoize``."""
+        one before (a sign asks for one posture's offset again and again) is looked at once,
+        and its answer kept for :meth:`site_offsets`. Does nothing without ``memoize``."""
         if not self.memoize:
             return
         missing: dict[tuple[str, BodySite], dict[Hashable, tuple[np.ndarray, np.ndarray]]] = {}
-        seen: set[int] = set()  # ids of the requests, which the sequence keeps alive meanwhile
+        keys: dict[int, tuple[tuple[str, BodySite, np.ndarray, np.ndarray], Hashable]] = {}  # by the ids of the requests, as :attr:`_answers`
         for request in requests:
-            if id(request) in seen:
+            if id(request) in keys:
                 continue
-            seen.add(id(request))
             side, site, rotation, params = request
             key = _offset_key(side, site, rotation, params)
+            keys[id(request)] = (request, key)
             if key not in self._memo:
                 missing.setdefault((side, site), {})[key] = (rotation, params)
         for (side, site), wanted in missing.items():
@@ -198,6 +207,10 @@ class HandGeometry:
                 continue
             offsets.setflags(write=False)
             self._memo.update(zip(wanted, offsets))
+        for identity, (request, key) in keys.items():
+            offset = self._memo.get(key)
+            if offset is not None:  # else its pass failed: asked again, it is computed alone
+                self._answers[identity] = (request, offset)
 
     def _site_offsets(self, side: str, site: BodySite, postures: Iterable[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
         avatar = self.avatar

@@ -897,13 +897,10 @@ class _SignCompiler:
         asked for within 1e-9 of it (rounded to 9 decimals)."""
         exact = (arm, site, key_bytes(rotation), key_bytes(params))
         known = self._asked.get(exact)
-        if known is not None:  # asked for these very values before: the same answer
-            return known
-        key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
-        if key not in self._offsets:
-            self._offsets[key] = (AVATAR_SIDE[arm], site, rotation, params)
-        self._asked[exact] = self._offsets[key]
-        return self._offsets[key]
+        if known is None:  # else asked for these very values before: the same answer
+            key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
+            known = self._asked[exact] = self._offsets.setdefault(key, (AVATAR_SIDE[arm], site, rotation, params))
+        return known
 
 
 def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
