@@ -20,7 +20,7 @@ import pytest
 from motor.body.avatar import load_avatar
 from motor.body.conventions import ARMS
 from motor.signing import path_shapes, planning
-from motor.signing.lmp import stopping_length
+from motor.signing.lmp import REVERSAL_ANGLE, stopping_length
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
 from motor.signing.reach import path_shift, path_shifts
@@ -169,6 +169,26 @@ def test_one_path_stopping_length_of_real_paths_equals_the_plain_one(real_paths)
 @pytest.mark.parametrize("kind", SYNTHETIC)
 def test_one_path_stopping_length_of_a_synthetic_path_equals_the_plain_one(kind):
     path = _synthetic(kind)
+    assert stopping_length_of(path) == stopping_length(path)
+
+
+#: Turns (radians from straight on) of a path's middle point, labelled synthetic: around
+#: the reversal angle, where the one-path function's shortcut for paths without a
+#: reversal gives way to measuring every turn, and far from it on either side.
+TURNS = {
+    "gentle": 0.3,
+    "the shortcut's sharpest turn": REVERSAL_ANGLE - 2.1e-6,
+    "short of a reversal, each turn measured": REVERSAL_ANGLE - 1e-7,
+    "at the reversal": REVERSAL_ANGLE,
+    "just past the reversal": REVERSAL_ANGLE + 1e-12,
+    "back on itself": np.pi - 1e-3,
+}
+
+
+@pytest.mark.parametrize("turn", TURNS)
+def test_one_path_stopping_length_of_a_turning_path_equals_the_plain_one(turn):
+    angle = TURNS[turn]
+    path = np.array([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.2, 0.0, 0.0], [0.2 + 0.1 * np.cos(angle), 0.1 * np.sin(angle), 0.0], [0.3, 0.05, 0.02]])
     assert stopping_length_of(path) == stopping_length(path)
 
 
