@@ -10,6 +10,8 @@ rotations are conjugated by the reflection ``M``: ``R ↦ M R M``.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from motor.trajectory.spline import WristTrajectory
@@ -18,13 +20,16 @@ from mura.constraints import Symmetry
 _AXIS_OF_PLANE = {"S": 0, "T": 1, "F": 2}
 
 
+@lru_cache(maxsize=64)
 def reflection_signs(symmetry: Symmetry) -> np.ndarray:
-    """Diagonal ``(3,)`` of the reflection matrix M of ``symmetry`` (entries ±1)."""
+    """Diagonal ``(3,)`` of the reflection matrix M of ``symmetry`` (entries ±1), read-only
+    and made once per symmetry: a sign planner mirrors thousands of directions."""
     signs = np.ones(3)
     for plane in symmetry.planes:
         if plane not in _AXIS_OF_PLANE:
             raise ValueError(f"symmetry {symmetry.name!r}: unknown mirror plane {plane!r} (expected S, T or F)")
         signs[_AXIS_OF_PLANE[plane]] = -1.0
+    signs.flags.writeable = False
     return signs
 
 
