@@ -36,6 +36,7 @@ from mura.values import BodySite, HandShape, Location
 
 _Value = TypeVar("_Value")
 _UNKNOWN = object()
+_FLOAT64 = np.dtype(np.float64)
 
 
 class GeometryPending(Exception):
@@ -313,6 +314,6 @@ def _pose_key(side: str, wrist: np.ndarray, rotation: np.ndarray, params: np.nda
 
 def key_bytes(values: np.ndarray) -> bytes:
     """The bytes of ``values`` as float64: a memo key that matches the very same values."""
-    if type(values) is np.ndarray and values.dtype == np.float64:  # most keys: skip the conversion
+    if type(values) is np.ndarray and values.dtype == _FLOAT64:  # most keys: skip the conversion
         return values.tobytes()
     return np.asarray(values, dtype=float).tobytes()

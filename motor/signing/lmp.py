@@ -64,6 +64,7 @@ STILL = 1e-6
 #: Step of the differences that estimate a channel's velocity, seconds.
 _STEP = 1e-4
 _SAME = 1e-12
+_FLOAT64 = np.dtype(np.float64)
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,7 +122,7 @@ def _passing(moves: Sequence[tuple[float, float, str, np.ndarray]]) -> bool:
     """Whether each move's values are a float array the constructor keeps as it is and all
     the checks of :meth:`Move.__post_init__` pass."""
     for start, end, manner, values in moves:
-        if not (type(values) is np.ndarray and values.dtype == np.float64 and values.ndim == 2 and values.shape[0] >= 2 and end > start and manner in MANNERS):
+        if not (type(values) is np.ndarray and values.dtype == _FLOAT64 and values.ndim == 2 and values.shape[0] >= 2 and end > start and manner in MANNERS):
             return False
     return not moves or bool(np.isfinite(np.concatenate([values for *_, values in moves], axis=None)).all())
 
