@@ -90,7 +90,6 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from functools import partial
-from itertools import islice
 from typing import TypeVar
 
 import numpy as np
@@ -183,8 +182,7 @@ class _Hand:
     """A hand's state while planning: palm-centre location, EFD and palm vectors, shape;
     ``rotations`` holds its global rotation by side once a memoizing compiler has asked for
     it (:meth:`_SignCompiler.rotation`), shared with the copies that keep its fingers and palm.
-    Never changed once made (a changed hand is a new one), though not frozen: a frozen
-    dataclass takes four times as long to make, and planning makes ~27,000 per collection."""
+    Unchanged once made, though not frozen: frozen, one took 4× as long (~27,000 a collection)."""
 
     location: np.ndarray
     fingers: np.ndarray
@@ -209,8 +207,7 @@ class _Hand:
 
 @dataclass(eq=False, slots=True)
 class _HandMove:
-    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys
-    (never changed once made; not frozen, as :class:`_Hand`)."""
+    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys (unchanged once made, as :class:`_Hand`)."""
 
     start: float
     end: float
@@ -881,8 +878,7 @@ class _SignCompiler:
     # -- from hand moves to channel moves ------------------------------------------------
 
     def channel_moves(self, layout: Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
-        """Each hand's moves by channel: its placed wrist paths, its rotations, its shapes
-        (all the sign's moves made at once: :meth:`Move.many`)."""
+        """Each hand's moves by channel, all of the sign's made at once (:meth:`Move.many`)."""
         channels: dict[tuple[str, str], list[tuple[float, float, str, np.ndarray]]] = {}
         for arm in layout.first:
             moves = self.moves.get(arm, [])
@@ -890,7 +886,7 @@ class _SignCompiler:
             channels[(arm, "hand_rotation")] = [(m.start, m.end, m.manner, m.rotations) for m in moves]
             channels[(arm, "handshape")] = [(m.start, m.end, m.manner, m.shapes) for m in moves]
         made = iter(Move.many([move for moves in channels.values() for move in moves]))
-        return {channel: tuple(islice(made, len(moves))) for channel, moves in channels.items()}
+        return {channel: tuple(next(made) for _ in moves) for channel, moves in channels.items()}
 
     def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
         return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))
