@@ -43,6 +43,7 @@ curved arcs and longer still for circles; :func:`movement_duration` gives
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
@@ -254,7 +255,7 @@ def shortest_duration(length: float, manner: str) -> float:
     peak_rate, peak_acceleration = _profile_peaks(manner)
     limits = budget(manner)
     by_speed = length * peak_rate / limits.peak_speed
-    by_acceleration = float(np.sqrt(length * peak_acceleration / limits.peak_acceleration))
+    by_acceleration = math.sqrt(length * peak_acceleration / limits.peak_acceleration)  # numpy's sqrt, correctly rounded alike
     return max(by_speed, by_acceleration)
 
 
