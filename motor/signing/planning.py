@@ -892,9 +892,9 @@ class _SignCompiler:
         return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))
 
     def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
-        """The offset this sign takes for a hand posture: that of the first posture it
-        asked for within 1e-9 of it (rounded to 9 decimals)."""
-        exact = (arm, site, key_bytes(rotation), key_bytes(params))
+        """The offset this sign takes for a hand posture: that of the first posture it asked for within
+        1e-9 of it (rounded to 9 decimals); the exact key of :data:`_PALM` itself, most asked, omits the site."""
+        exact = (arm, key_bytes(rotation), key_bytes(params)) if site is _PALM else (arm, site, key_bytes(rotation), key_bytes(params))
         known = self._asked.get(exact)
         if known is None:  # else asked for these very values before: the same answer
             key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
