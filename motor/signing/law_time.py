@@ -22,9 +22,9 @@ import numba
 import numpy as np
 
 from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1
-from motor.signing.lmp import LAW_SMOOTHING, _SAME
+from motor.signing.lmp import LAW_SMOOTHING, NEGLIGIBLE
 from motor.trajectory.power_law import EXPONENT, clamped_curvature
-from motor.trajectory.spline import _HOLD
+from motor.trajectory.spline import DEGENERATE_CHORD
 
 #: Truncation of the Gaussian kernel in standard deviations (``gaussian_filter1d``'s default).
 _TRUNCATE = 4.0
@@ -150,7 +150,7 @@ def _turning_cosines(points, starts, chords, cosines):  # noqa: ANN001, ANN202
             ax, ay, az = points[i, 0] - points[i - 1, 0], points[i, 1] - points[i - 1, 1], points[i, 2] - points[i - 1, 2]
             bx, by, bz = points[i + 1, 0] - points[i, 0], points[i + 1, 1] - points[i, 1], points[i + 1, 2] - points[i, 2]
             denom = chords[i - 1] * chords[i]
-            if denom > _HOLD:
+            if denom > DEGENERATE_CHORD:
                 cosine = (ax * bx + az * bz) + ay * by
                 cosines[i] = min(max(cosine / denom, -1.0), 1.0)
 
@@ -171,10 +171,10 @@ def _curvature_and_grids(angles, chords, arc, starts, curvature, grids, counts, 
             continue
         for i in range(first + 1, last):
             span = 0.5 * (chords[i - 1] + chords[i])
-            curvature[i] = angles[i] / (span if span >= _SAME else _SAME)
+            curvature[i] = angles[i] / (span if span >= NEGLIGIBLE else NEGLIGIBLE)
         curvature[first], curvature[last] = curvature[first + 1], curvature[last - 1]
         total = arc[last]
-        if total < _SAME:
+        if total < NEGLIGIBLE:
             continue
         step = min(LAW_SMOOTHING / 4.0, total / 8.0)
         count = int(np.ceil(total / step)) + 1

@@ -63,7 +63,8 @@ PATH_DENSITY = 12
 STILL = 1e-6
 #: Step of the differences that estimate a channel's velocity, seconds.
 _STEP = 1e-4
-_SAME = 1e-12
+#: A length (m) or a width between keys (channel units) below which it counts as none.
+NEGLIGIBLE = 1e-12
 _FLOAT64 = np.dtype(np.float64)
 
 
@@ -183,7 +184,7 @@ def stopping_times(lengths: np.ndarray, start: float, end: float) -> np.ndarray:
     of ``lengths`` metres, each from rest to rest in the move's manner) is at rest: the
     ``(k + 1,)`` piece boundaries. Each piece takes time ∝ √length, so every piece peaks at
     the same acceleration (``length / time²`` is the same)."""
-    weights = np.sqrt(np.maximum(lengths, 0.0)) + _SAME
+    weights = np.sqrt(np.maximum(lengths, 0.0)) + NEGLIGIBLE
     return start + (end - start) * np.concatenate([[0.0], np.cumsum(weights) / weights.sum()])
 
 
@@ -213,11 +214,11 @@ def law_fractions(points: np.ndarray) -> np.ndarray:
     its logarithm smoothed over :data:`LAW_SMOOTHING` metres of arc."""
     chords = np.linalg.norm(np.diff(points, axis=0), axis=1)
     arc = np.concatenate([[0.0], np.cumsum(chords)])
-    if arc[-1] < _SAME:
+    if arc[-1] < NEGLIGIBLE:
         return np.linspace(0.0, 1.0, points.shape[0])
     curvature = np.zeros(points.shape[0])
     if points.shape[0] > 2:
-        spans = np.maximum(0.5 * (chords[:-1] + chords[1:]), _SAME)
+        spans = np.maximum(0.5 * (chords[:-1] + chords[1:]), NEGLIGIBLE)
         curvature[1:-1] = turning_angles(points) / spans
     curvature[0], curvature[-1] = curvature[min(1, curvature.size - 1)], curvature[max(curvature.size - 2, 0)]
     log_curvature = np.log(clamped_curvature(curvature))
@@ -315,7 +316,7 @@ class _Track:
         index = np.minimum(np.maximum(self.keys.searchsorted(wanted, side="right") - 1, self.first[move]), self.last[move] - 1)
         low_key = self.keys[index]
         width = self.keys[index + 1] - low_key
-        local = np.minimum(np.maximum((wanted - low_key) / np.where(width > _SAME, width, 1.0), 0.0), 1.0)
+        local = np.minimum(np.maximum((wanted - low_key) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0), 1.0)
         a, b = self.values[index], self.values[index + 1]
         out = quat.slerp(a, b, local) if self.rotation else a + local[:, None] * (b - a)
         if before.any():

@@ -41,7 +41,7 @@ from motor.signing.lmp import (
     stopping_length,
     stopping_times,
 )
-from motor.trajectory.spline import _HOLD, HOLD_LENGTH
+from motor.trajectory.spline import DEGENERATE_CHORD, HOLD_LENGTH
 
 
 def stopping_lengths(paths: Sequence[np.ndarray]) -> list[float]:
@@ -84,7 +84,7 @@ def stopping_length_of(points: np.ndarray) -> float:
     if not (chords > HOLD_LENGTH).all():
         return stopping_length(points)
     denom = chords[:-1] * chords[1:]
-    cos = np.divide(np.einsum("ij,ij->i", steps[:-1], steps[1:]), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    cos = np.divide(np.einsum("ij,ij->i", steps[:-1], steps[1:]), denom, out=np.ones_like(denom), where=denom > DEGENERATE_CHORD)
     if cos.min() > _NO_REVERSAL:  # no turn comes near a reversal: one piece
         return float(np.sqrt(np.float64(_length(_traced_within(points)))) ** 2)
     reversals = np.flatnonzero(np.arccos(np.clip(cos, -1.0, 1.0)) >= REVERSAL_ANGLE) + 1
@@ -179,7 +179,7 @@ def _turning(points: np.ndarray) -> np.ndarray:
     d = np.diff(points, axis=1)
     a, b = d[:, :-1].reshape(-1, 3), d[:, 1:].reshape(-1, 3)
     denom = np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)
-    cos = np.divide(np.einsum("ij,ij->i", a, b), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    cos = np.divide(np.einsum("ij,ij->i", a, b), denom, out=np.ones_like(denom), where=denom > DEGENERATE_CHORD)
     return np.arccos(np.clip(cos, -1.0, 1.0)).reshape(points.shape[0], -1)
 
 

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from motor import quaternion as quat
-from motor.signing.lmp import _SAME, SignChannelLMP, _Track, manner_tables
+from motor.signing.lmp import NEGLIGIBLE, SignChannelLMP, _Track, manner_tables
 
 
 def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.ndarray) -> np.ndarray | None:
@@ -62,7 +62,7 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     index = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), sizes) + 1j * keys, tracks + 1j * wanted, side="right") - 1
     index = np.clip(index, first[row], last[row] - 1)
     width = keys[index + 1] - keys[index]
-    fraction = np.clip((wanted - keys[index]) / np.where(width > _SAME, width, 1.0), 0.0, 1.0)
+    fraction = np.clip((wanted - keys[index]) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0, 1.0)
     if rotation:
         out = quat.slerp(values[index], values[index + 1], fraction)
     else:

@@ -50,7 +50,9 @@ POWER_LAW_EXPONENT = EXPONENT
 CUSP_ANGLE = 2.0 * np.pi / 3.0
 #: Strokes shorter than this (metres) are holds.
 HOLD_LENGTH = 1e-6
-_HOLD = 1e-9
+#: A chord length (m), or the product of two (m²), at or below which a chord has no
+#: direction to turn from.
+DEGENERATE_CHORD = 1e-9
 
 
 def fitts_duration(amplitude: np.ndarray | float) -> np.ndarray:
@@ -94,7 +96,7 @@ def turning_angles(points: np.ndarray) -> np.ndarray:
     a, b = d[:-1], d[1:]
     na, nb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
     denom = na * nb
-    cos = np.divide(np.einsum("ij,ij->i", a, b), denom, out=np.ones_like(denom), where=denom > _HOLD)
+    cos = np.divide(np.einsum("ij,ij->i", a, b), denom, out=np.ones_like(denom), where=denom > DEGENERATE_CHORD)
     return np.arccos(np.clip(cos, -1.0, 1.0))
 
 
@@ -122,8 +124,8 @@ def time_breakpoints(points: np.ndarray, start: float, end: float, exponent: flo
     if not (np.isfinite(start) and np.isfinite(end) and end > start):
         raise ValueError(f"stroke interval must be finite with end > start, got [{start}, {end}]")
     lengths = np.linalg.norm(np.diff(p, axis=0), axis=1)
-    if np.any(lengths <= _HOLD):
-        bad = int(np.argmax(lengths <= _HOLD))
+    if np.any(lengths <= DEGENERATE_CHORD):
+        bad = int(np.argmax(lengths <= DEGENERATE_CHORD))
         raise ValueError(f"guiding stroke {bad} (breakpoint {bad} to {bad + 1}) has zero length")
     weights = lengths * _radii(p, lengths) ** (-exponent)
     cumulative = np.concatenate([[0.0], np.cumsum(weights)])
