@@ -95,7 +95,7 @@ def within_reach_all(avatar: Avatar, drafts: list[SignPlan | SignPlanningError])
         original = np.concatenate(points, dtype=float)
         # a hand's first posture and moves in one sign are one chain: they still meet once cleared
         chains = np.repeat(np.arange(len(owners)), counts)
-        cleared, cleared_lengths, _ = _cleared_runs(avatar, arm, original, _rotations_along(keys, points), lengths, chains=chains)
+        cleared, cleared_lengths, _ = _cleared_runs(avatar, arm, original, rotations_along_paths(keys, points), lengths, chains=chains)
         changed = _changed_runs(cleared, cleared_lengths, original, lengths)
         ends = np.cumsum(cleared_lengths)
         # each changed path its own array; a path the check left as it was, bit for bit, keeps its move
@@ -400,16 +400,12 @@ def rotations_along(keys: np.ndarray, fractions: np.ndarray) -> np.ndarray:
     return quat.slerp(keys[index], keys[index + 1], position - index)
 
 
-def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> list[np.ndarray]:
+def rotations_along_paths(keys: list[np.ndarray], paths: list[np.ndarray]) -> np.ndarray:
     """For every path ``(n_k, 3)``: the rotations ``(n_k, 4)`` at its points' fractions of
     the way (:func:`arc_fractions`) through its evenly spaced keys ``(m_k, 4)``
-    (:func:`rotations_along`); a path of one point takes its only key. All paths in a few
-    vectorized passes, each row computed as those functions compute it."""
-    return split_runs(_rotations_along(keys, paths), [len(path) for path in paths])
-
-
-def _rotations_along(keys: list[np.ndarray], paths: list[np.ndarray]) -> np.ndarray:
-    """:func:`rotations_along_paths` laid end to end ``(sum n_k, 4)``."""
+    (:func:`rotations_along`); a path of one point takes its only key. Concatenated
+    ``(sum n_k, 4)``, as :func:`arc_fractions_of_paths`; all paths in a few vectorized
+    passes, each row computed as those functions compute it."""
     counts = np.array([len(path) for path in paths])
     key_counts = np.array([len(key) for key in keys])
     flat_keys = np.concatenate(keys)

@@ -71,7 +71,7 @@ def test_rotations_and_fractions_along_all_paths_equal_each_path(seed):
     keys = [turn if len(turn) > 1 else turn[:1] for turn in turns]
     fractions = np.split(arc_fractions_of_paths(paths), np.cumsum([len(p) for p in paths])[:-1])
     assert all(same(f, arc_fractions(p)) for f, p in zip(fractions, paths))
-    along = rotations_along_paths(keys, paths)
+    along = np.split(rotations_along_paths(keys, paths), np.cumsum([len(p) for p in paths])[:-1])
     for rotations, key, path in zip(along, keys, paths):
         assert same(rotations, key if len(key) == 1 else rotations_along(key, arc_fractions(path)))
 
