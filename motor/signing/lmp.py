@@ -192,15 +192,23 @@ def stopping_length(points: np.ndarray) -> float:
     """The straight length (metres) a rest-to-rest movement of the same duration and peak
     acceleration would travel as the path ``points`` stopping at each reversal
     (:func:`stopping_times`): ``(Σ √lengthᵢ)²``, the path length when it has no reversal."""
-    lengths = [float(np.linalg.norm(np.diff(piece, axis=0), axis=1).sum()) for piece in smooth_pieces(points, through=False)]
+    lengths = [polyline_length(piece) for piece in smooth_pieces(points, through=False)]
     return float(np.sum(np.sqrt(lengths)) ** 2)
+
+
+def polyline_length(polyline: np.ndarray) -> float:
+    """Length (m) of a polyline ``(k, 3)``: its chords' lengths summed, with the arithmetic
+    of ``np.linalg.norm(np.diff(polyline, axis=0), axis=1).sum()`` without its wrappers
+    (a collection of signs measures thousands)."""
+    steps = polyline[1:] - polyline[:-1]
+    return float(np.sqrt(np.add.reduce(steps * steps, axis=1)).sum())
 
 
 def _stopping_at_reversals(move: Move, through: bool) -> list[Move]:
     """A wrist move traced along its smooth path, split where the path reverses into moves
     that each start and stop at rest (a reversal at speed is a step in velocity)."""
     pieces = smooth_pieces(move.values, through)
-    lengths = np.array([np.linalg.norm(np.diff(piece, axis=0), axis=1).sum() for piece in pieces])
+    lengths = np.array([polyline_length(piece) for piece in pieces])
     times = stopping_times(lengths, move.start, move.end)
     return [replace(move, start=float(a), end=float(b), values=piece) for a, b, piece in zip(times[:-1], times[1:], pieces)]
 

@@ -37,6 +37,7 @@ from motor.signing.lmp import (
     Move,
     TracedChain,
     law_fractions,
+    polyline_length,
     smooth_pieces,
     stopping_length,
     stopping_times,
@@ -78,7 +79,7 @@ def stopping_length_of(points: np.ndarray) -> float:
     A path with a hold goes through the one-path function, as in the batch."""
     points = np.asarray(points, dtype=float)
     if points.shape[0] < 3:
-        return float(np.sqrt(np.float64(_length(points))) ** 2)  # the sum of one root is that root
+        return float(np.sqrt(np.float64(polyline_length(points))) ** 2)  # the sum of one root is that root
     steps = points[1:] - points[:-1]
     chords = np.sqrt(np.add.reduce(steps * steps, axis=1))  # np.linalg.norm's arithmetic
     if not (chords > HOLD_LENGTH).all():
@@ -86,24 +87,16 @@ def stopping_length_of(points: np.ndarray) -> float:
     denom = chords[:-1] * chords[1:]
     cos = np.divide(np.einsum("ij,ij->i", steps[:-1], steps[1:]), denom, out=np.ones_like(denom), where=denom > DEGENERATE_CHORD)
     if cos.min() > _NO_REVERSAL:  # no turn comes near a reversal: one piece
-        return float(np.sqrt(np.float64(_length(_traced_within(points)))) ** 2)
+        return float(np.sqrt(np.float64(polyline_length(_traced_within(points)))) ** 2)
     reversals = np.flatnonzero(np.arccos(np.clip(cos, -1.0, 1.0)) >= REVERSAL_ANGLE) + 1
     cuts = [0, *reversals.tolist(), points.shape[0] - 1]
-    return float(np.sum(np.sqrt([_length(_traced_within(points[first : last + 1])) for first, last in pairwise(cuts)])) ** 2)
+    return float(np.sum(np.sqrt([polyline_length(_traced_within(points[first : last + 1])) for first, last in pairwise(cuts)])) ** 2)
 
 
 #: A cosine of turning above which the turn is surely short of a reversal
 #: (:data:`motor.signing.lmp.REVERSAL_ANGLE`): a millionth above the reversal's cosine
 #: is two millionths of a radian short of it, far beyond the rounding of ``arccos``.
 _NO_REVERSAL = float(np.cos(REVERSAL_ANGLE)) + 1e-6
-
-
-def _length(polyline: np.ndarray) -> float:
-    """Length (m) of a polyline ``(k, 3)``, summed as :func:`motor.signing.lmp.stopping_length`
-    sums it (``np.linalg.norm(np.diff(polyline, axis=0), axis=1).sum()``: the same
-    arithmetic, without the wrappers)."""
-    steps = polyline[1:] - polyline[:-1]
-    return float(np.sqrt(np.add.reduce(steps * steps, axis=1)).sum())
 
 
 def _traced_within(piece: np.ndarray) -> np.ndarray:
