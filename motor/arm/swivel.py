@@ -17,7 +17,7 @@ import numba
 import numpy as np
 
 from motor.arm.swivel_cost import parabola_offset
-from motor.kernel_types import READ2, READ_INTS1, WRITE2
+from motor.kernel_types import READ2, READ_INTS1, WRITE2, WRITE_INTS1
 from motor.program.lmp import TimePegs, VectorKeyframeLMP
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk
 
@@ -96,40 +96,41 @@ def smooth_swivels(
     value = _cost_to_go(np.ascontiguousarray(costs, dtype=float), base, change, horizon)
     if now is not None:
         value = value + now
-    rows = value.shape[0]
-    wrapped = _wrapped(_aligned(value, base[:rows]))
-    options = np.stack([wrapped[:, k : k + count] + change[:rows, k : k + 1] for k in range(len(shifts))], axis=1)
-    moves = (base[:rows, None] + np.argmin(options, axis=1) - MAX_STEP).ravel().tolist()
-    cells = [0] * rows
-    cell = int(np.argmin(value[0])) if previous is None else previous.cell
-    begin = 1 if previous is None else 0
-    cells[0] = cell
-    for row in range(begin, rows):
-        cell += moves[row * count + cell % count]
-        cells[row] = cell
-    chosen = np.array(cells)
+    first = int(np.argmin(value[0])) if previous is None else previous.cell
+    chosen = _walk(value, base[: value.shape[0]], np.ascontiguousarray(change[: value.shape[0]]), first, previous is None)
     near = chosen[:, None] + np.array([-1, 0, 1])
     around = np.take_along_axis(value, near % count, axis=1)
     offsets = parabola_offset(around[:, 0], around[:, 1], around[:, 2])
     return chosen, candidates[0] + (chosen + offsets) * step
 
 
-def _aligned(value: np.ndarray, base: np.ndarray) -> np.ndarray:
-    """``value (m, K)`` with row ``r`` turned so that column ``i`` holds candidate
-    ``i + base[r]`` (mod K); rows that need no turn — most — are left as they are."""
-    turned = np.flatnonzero(base)
-    if turned.size == 0:
-        return value
-    count = value.shape[1]
-    aligned = value.copy()
-    aligned[turned] = np.take_along_axis(value[turned], (np.arange(count) + base[turned, None]) % count, axis=1)
-    return aligned
-
-
-def _wrapped(value: np.ndarray) -> np.ndarray:
-    """``value (m, K)`` with :data:`MAX_STEP` columns of the other end on either side (the
-    candidates go round the circle)."""
-    return np.concatenate([value[:, -MAX_STEP:], value, value[:, :MAX_STEP]], axis=1)
+@numba.njit([WRITE_INTS1(READ2, READ_INTS1, READ2, numba.int64, numba.boolean)], cache=True, error_model="numpy")
+def _walk(value, base, change, cell, fresh):  # noqa: ANN001, ANN202
+    """The cells of the track along the value tables ``value (m, K)``: from ``cell`` at
+    the grid point before the first (``fresh``: at the first itself), each grid point's
+    cell is the one before moved by the zero's turn ``base`` and by the move ``d`` (at
+    most :data:`MAX_STEP` candidates) whose ``change[:, d]`` plus value there is least —
+    the first least, or the first NaN, as ``np.argmin`` over the banded options picks
+    it. Only the options of the cell walked from are summed (the same sums)."""
+    rows, count = value.shape
+    cells = np.empty(rows, dtype=np.int64)
+    for row in range(rows):
+        if fresh and row == 0:
+            cells[0] = cell
+            continue
+        start = cell % count - MAX_STEP + base[row]
+        best, least = 0, value[row, start % count] + change[row, 0]
+        if least == least:
+            for d in range(1, 2 * MAX_STEP + 1):
+                option = value[row, (start + d) % count] + change[row, d]
+                if option != option:
+                    best = d
+                    break
+                if option < least:
+                    best, least = d, option
+        cell += base[row] + best - MAX_STEP
+        cells[row] = cell
+    return cells
 
 
 @numba.njit(
@@ -170,3 +171,4 @@ def load_kernels() -> None:
     """Run this module's compiled loop once (it loads when the module is imported):
     :func:`motor.compiled.warm_up`."""
     _cost_to_go(np.zeros((2, 4)), np.zeros(2, dtype=np.int64), np.zeros((2, 2 * MAX_STEP + 1)), 1)
+    _walk(np.zeros((2, 4)), np.zeros(2, dtype=np.int64), np.zeros((2, 2 * MAX_STEP + 1)), 0, True)

@@ -29,12 +29,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from motor.arm.ik import CANDIDATES, track_costs
 from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
 from motor.body.avatar import Avatar
 from motor.body.conventions import ARMS, AVATAR_SIDE
+from motor.kernel_types import READ1, READ2, WRITE1, WRITE2
 
 #: Period of the grid, seconds.
 SWIVEL_PERIOD = 0.125
@@ -217,25 +219,8 @@ def twist_track(wanted: np.ndarray, certainty: np.ndarray, previous: float | Non
     frames instead of one, and only as far as the hand's twist is defined (``certainty``,
     :func:`motor.arm.ik.twist_certainty`). The first grid point, without a previous one,
     takes the shortest turn."""
-    low, high = limits
-    turn = 2.0 * math.pi
-    twists = []
-    here = previous
-    for value, sure in zip(wanted.tolist(), certainty.tolist()):
-        if here is None:
-            here = low if value < low else high if value > high else value
-            twists.append(here)
-            continue
-        value += turn * round((here - value) / turn)
-        other = value - turn if value > high else value + turn
-        short = value - high if value > high else low - value if value < low else 0.0
-        other_short = other - high if other > high else low - other if other < low else 0.0
-        if short > other_short + TWIST_HYSTERESIS:
-            value = other
-        step = (low if value < low else high if value > high else value) - here
-        here += sure * (-TWIST_STEP if step < -TWIST_STEP else TWIST_STEP if step > TWIST_STEP else step)
-        twists.append(here)
-    return np.array(twists)
+    start = 0.0 if previous is None else float(previous)
+    return _twists(np.ascontiguousarray(wanted, dtype=float), np.ascontiguousarray(certainty, dtype=float), start, previous is None, float(limits[0]), float(limits[1]))
 
 
 def wrist_track(targets: np.ndarray, certainty: np.ndarray, previous: tuple[float, float] | None) -> np.ndarray:
@@ -245,15 +230,55 @@ def wrist_track(targets: np.ndarray, certainty: np.ndarray, previous: tuple[floa
     where the hand points so far off the forearm that the nearest wrist jumps from one
     limit to the other, the wrist stays where it was. Without a previous grid point the
     first takes its target."""
-    values = targets.tolist()
-    here = list(values[0]) if previous is None else list(previous)
-    track = []
-    for (flexion, deviation), sure in zip(values, certainty.tolist()):
-        for i, target in enumerate((flexion, deviation)):
-            step = target - here[i]
-            here[i] += sure * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
-        track.append(tuple(here))
-    return np.array(track)
+    here = np.array(targets[0] if previous is None else previous, dtype=float)
+    return _wrist_steps(np.ascontiguousarray(targets, dtype=float), np.ascontiguousarray(certainty, dtype=float), here)
+
+
+@numba.njit([WRITE1(READ1, READ1, numba.float64, numba.boolean, numba.float64, numba.float64)], cache=True, error_model="numpy")
+def _twists(wanted, certainty, previous, fresh, low, high):  # noqa: ANN001, ANN202
+    """:func:`twist_track`'s steps from ``previous`` (``fresh``: from none), one grid point
+    at a time (each depends on the one before); the whole turn nearest is ``rint``'s, ties
+    to even as Python's ``round``."""
+    turn = 2.0 * math.pi
+    twists = np.empty(wanted.size)
+    here = previous
+    for i in range(wanted.size):
+        value = wanted[i]
+        if i == 0 and fresh:
+            here = low if value < low else high if value > high else value
+            twists[0] = here
+            continue
+        value += turn * np.rint((here - value) / turn)
+        other = value - turn if value > high else value + turn
+        short = value - high if value > high else low - value if value < low else 0.0
+        other_short = other - high if other > high else low - other if other < low else 0.0
+        if short > other_short + TWIST_HYSTERESIS:
+            value = other
+        step = (low if value < low else high if value > high else value) - here
+        here += certainty[i] * (-TWIST_STEP if step < -TWIST_STEP else TWIST_STEP if step > TWIST_STEP else step)
+        twists[i] = here
+    return twists
+
+
+@numba.njit([WRITE2(READ2, READ1, READ1)], cache=True, error_model="numpy")
+def _wrist_steps(targets, certainty, start):  # noqa: ANN001, ANN202
+    """:func:`wrist_track`'s steps from ``start (2,)``, one grid point at a time."""
+    track = np.empty(targets.shape)
+    flexion, deviation = start[0], start[1]
+    for i in range(targets.shape[0]):
+        step = targets[i, 0] - flexion
+        flexion += certainty[i] * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
+        step = targets[i, 1] - deviation
+        deviation += certainty[i] * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
+        track[i, 0], track[i, 1] = flexion, deviation
+    return track
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loops once (they load when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    _twists(np.zeros(2), np.ones(2), 0.0, True, -1.0, 1.0)
+    _wrist_steps(np.zeros((2, 2)), np.ones(2), np.zeros(2))
 
 
 def _catmull_rom(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, u: np.ndarray) -> np.ndarray:

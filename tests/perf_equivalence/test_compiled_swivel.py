@@ -1,13 +1,16 @@
-"""The compiled value tables of the swivel track (:func:`motor.arm.swivel._cost_to_go`)
-are the numpy ones (``plain_swivel.py``) bit for bit: over horizons, candidate counts,
-zero turns of either sign (rows turned past the circle's ends) and costs with ties."""
+"""The swivel track's compiled loops are the plain ones (``plain_swivel.py``) bit for bit:
+the value tables (:func:`motor.arm.swivel._cost_to_go`) over horizons, candidate counts,
+zero turns of either sign (rows turned past the circle's ends) and costs with ties; the
+walk along them (:func:`motor.arm.swivel._walk`) with ties and NaNs; the forearm twist's
+and the wrist's tracks along the grid."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from motor.arm.swivel import DISCOUNT, HORIZON, MAX_STEP, SMOOTHNESS, _cost_to_go
+from motor.arm.swivel import DISCOUNT, HORIZON, MAX_STEP, SMOOTHNESS, _cost_to_go, _walk
+from motor.arm.swivel_track import twist_track, wrist_track
 from tests.perf_equivalence import plain_swivel as plain
 
 RNG = np.random.default_rng(31)
@@ -45,3 +48,68 @@ def test_one_step_is_the_least_reachable_next_cost():
     table = _cost_to_go(costs, base, change, 1)
     reachable = [min(costs[1, (i + d) % 10] for d in range(-MAX_STEP, MAX_STEP + 1)) for i in range(10)]
     assert np.allclose(table[0], DISCOUNT * np.array(reachable))
+
+
+def _values(rows: int, count: int, kind: str) -> np.ndarray:
+    """Value tables: random, with ties (rounded), or with NaNs (a non-finite cost)."""
+    value = RNG.uniform(0.0, 30.0, (rows, count))
+    if kind == "ties":
+        value = np.round(value / 10.0) * 10.0
+    if kind == "nan":
+        value[RNG.random((rows, count)) < 0.05] = np.nan
+    return value
+
+
+@pytest.mark.parametrize("count", [36, 12])
+@pytest.mark.parametrize("turning", ["still", "turning", "far"])
+@pytest.mark.parametrize("kind", ["plain", "ties", "nan"])
+@pytest.mark.parametrize("start", [None, 0, -47, 1_000_003])
+def test_the_walk_is_the_numpy_argmin_walk_bit_for_bit(count, turning, kind, start):
+    """The compiled walk picks each grid point's move as ``np.argmin`` over the banded
+    options does (first least, first NaN), from a fresh start or an unwrapped cell far off
+    either end."""
+    rows = 60
+    turn = {"still": np.zeros(rows), "turning": RNG.normal(0.0, 0.8, rows), "far": RNG.normal(0.0, 2.0 * count, rows)}[turning]
+    base, change = _change(turn, 2.0 * np.pi / count)
+    value = _values(rows, count, kind)
+    fresh = start is None
+    cell = int(np.argmin(value[0])) if fresh else start
+    got = _walk(value, base, np.ascontiguousarray(change), cell, fresh)
+    assert got.dtype == np.int64
+    assert np.array_equal(got, plain.walk(value, base, change, cell, fresh))
+
+
+def test_the_walk_takes_the_cheapest_reachable_candidate():
+    """Independent of numpy's: with no change cost and no turn, each step goes to the
+    least value within :data:`MAX_STEP` candidates of the cell before, round the circle."""
+    value = np.full((3, 12), 5.0)
+    value[1, 10] = 1.0  # two steps down from 0, round the circle
+    value[2, 2] = 0.0  # four steps up from 10: out of reach, the least reachable is a tie
+    cells = _walk(value, np.zeros(3, dtype=np.int64), np.zeros((3, 2 * MAX_STEP + 1)), 0, True)
+    assert cells.tolist() == [0, -2, -5]
+
+
+@pytest.mark.parametrize("previous", [None, 0.3, -2.9, 2.9, 40.0])
+@pytest.mark.parametrize("certainty", ["sure", "partly", "unsure"])
+@pytest.mark.parametrize("ties", [False, True])
+def test_the_twist_track_is_the_python_one_bit_for_bit(previous, certainty, ties):
+    """Wanted twists round the circle and beyond it, half-turn ties of the nearest whole
+    turn (Python's ``round`` takes the even one), and every kind of certainty."""
+    count = 80
+    wanted = RNG.uniform(-3.5 * np.pi, 3.5 * np.pi, count)
+    if ties:
+        wanted[::3] = (0.0 if previous is None else previous) + np.pi * RNG.choice([-3.0, -1.0, 1.0, 3.0], wanted[::3].size)
+    sure = {"sure": np.ones(count), "partly": RNG.uniform(0.0, 1.0, count), "unsure": np.zeros(count)}[certainty]
+    limits = (-1.6, 2.4)
+    got = twist_track(wanted, sure, previous, limits)
+    assert np.array_equal(got, plain.twist_track(wanted, sure, previous, limits))
+
+
+@pytest.mark.parametrize("previous", [None, (0.2, -0.1), (3.0, -3.0)])
+@pytest.mark.parametrize("certainty", ["sure", "partly", "unsure"])
+def test_the_wrist_track_is_the_python_one_bit_for_bit(previous, certainty):
+    count = 80
+    targets = RNG.uniform(-1.5, 1.5, (count, 2))
+    sure = {"sure": np.ones(count), "partly": RNG.uniform(0.0, 1.0, count), "unsure": np.zeros(count)}[certainty]
+    got = wrist_track(targets, sure, previous)
+    assert np.array_equal(got, plain.wrist_track(targets, sure, previous))
