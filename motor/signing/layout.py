@@ -1,6 +1,6 @@
 """A sign's hands laid out before their plan, and their wrists placed, many signs at once.
 
-The sign planner (:mod:`motor.signing.planning`) compiles each sign into a :class:`Layout`:
+The sign compiler (:mod:`motor.signing.sign_compiler`) compiles each sign into a :class:`Layout`:
 its hands' first postures and, per move, the palm path with the wrist-to-palm offsets of
 the move's first and last postures. :func:`placed` turns the palm paths of all the layouts
 of a collection into wrist paths and eases every wrist position out of the torso in one

@@ -2,7 +2,7 @@
 wavy and zigzag lines, and circles, ellipses and arcs of them between clock positions.
 
 Each shape is a polyline of wrist positions ``(k, 3)`` (avatar frame, metres) from where
-the hand is; the sign planner (:mod:`motor.signing.planning`) times it. Sizes are fractions
+the hand is; the sign compiler (:mod:`motor.signing.sign_compiler`) times it. Sizes are fractions
 of the arm's length, so a sign keeps its proportions on any avatar.
 """
 

@@ -3,53 +3,10 @@
 :func:`plan_sign` turns a :class:`mura.signs.Sign` into a :class:`SignPlan`: for each
 hand, the first posture (wrist, global hand rotation, hand parameters) and the sign's
 moves on its own clock ``[0, duration]``, one :class:`motor.signing.lmp.Move` per channel.
-
-**Where the hand is.** A location names where the *palm centre* goes (the avatar's
-``palm`` site of that hand), or the part of the hand its contact bracket names
-(``hamchin [hamtouch hamthumb hamfingertip]``: the thumb's tip); the wrist is placed so
-that it gets there with the hand in its orientation and shape. Locations come from :func:`motor.body.locations.resolve_location`:
-body sites with their proximity and side, the signing-space grid, and sites on the other
-arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
-a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
-Site names the resolver does not know are read as documented in :data:`motor.signing.sites.SITE_ALIASES` and
-:data:`~motor.signing.sites.PROXIMITY_ALIASES`; the bare ``contact`` site keeps the hand where it is.
-
-**Two hands.** Under ``lr`` symmetry the non-dominant hand's path is the dominant hand's
-mirrored across the symmetry's planes (the sagittal plane ``x = 0`` at least), its
-orientation mirrored across the sagittal plane, its shape the same; under ``par``
-symmetry the path is translated, not mirrored. Alternating symmetry plays the
-non-dominant hand's path displacements reversed (one hand goes down while the other goes
-up). Leaves scoped to one arm move that hand only. A hand constellation puts the
-non-dominant hand at the pair's location and the dominant hand so that its named site
-meets the non-dominant hand's (touch, close …). A symmetric sign whose hands change into
-a constellation (``hamreplace … hampinkyside hamplus hampinkyside``) brings both hands
-together, each halfway, the pair meeting on the sagittal plane; the moves of a parallel
-group are planned to the hands as its shape and orientation changes leave them. A dominant hand located on the other hand
-or arm in a one-handed sign brings the other hand up as a passive base
-(:data:`PASSIVE_POSTURE`).
-
-**Movements** (:mod:`motor.signing.path_shapes`). Straight moves go ``SIZE_FRACTIONS`` of the arm's length (small, normal,
-large); arcs bulge by ``ARC_EXTENT`` of the chord to the side their name gives;
-wavy and zigzag paths come from :mod:`motor.trajectory.guiding_strokes`; circles and ellipses have
-radii ``CIRCLE_FRACTIONS`` of the arm's length and start where the hand is (clock
-positions choose where on the circle). Local movements: nodding and swinging turn the
-wrist by :data:`LOCAL_ANGLE` (down–up, side to side), twisting turns the forearm, finger
-play bends or opens alternate fingers by half a bend from their own shape (folded fingers
-stay), stirring is a small horizontal circle. Durations are
-:func:`motor.trajectory.biocontrol.movement_duration` of the movement kind in the sign's manner,
-independent of size. Time profiles: targetted for the sign's movements, linear for
-circles, hard contact for movements ending in touch, sudden stop for ``halt``/``rest``,
-the fast/slow/tense tables for those manners. A static sign holds its posture for
-:data:`STATIC_HOLD` seconds; a sign with movement first holds its first posture for
-:data:`INITIAL_HOLD` seconds (its citation form; :func:`without_initial_hold` for a sign
-inside an utterance).
-
-**Repetition.** ``fromstart``: back to the start (lax) and again; ``continue``: on from
-where the pass ended; ``reverse``: back along the same path (targetted), then forward.
-A displaced repetition shifts each further pass by the displacement's direction and size
-(small by default) once more. A ``Symmetrical`` node inside the movement (a part of a
-compound sign with its own symmetry operator) makes both hands take part, mirrored or in
-parallel as it says, for that part; ``neutralspace`` is neutral space.
+The sign's postures and movement are compiled into hand moves by
+:class:`motor.signing.sign_compiler.SignCompiler` (where the hands go, two hands,
+movements, repetition: that module says how); this one keeps them clear of the body and
+within reach, retimes them, and plans many signs at once.
 
 **Body.** Wrist positions inside the torso's elliptic cylinder (grown by
 :data:`motor.body.collision.TORSO_MARGIN`), or behind it, are first eased out of it as the
@@ -85,156 +42,24 @@ for bit (``tests/signing_speed``, ``tests/perf_equivalence/test_planning_fast_pa
 from __future__ import annotations
 
 import gc
-import math
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from functools import partial
 from typing import TypeVar
 
-import numpy as np
-
-from motor import quaternion as quat
 from motor.body.avatar import Avatar
-from motor.body.conventions import AVATAR_SIDE
-from motor.body.kinematics import Pose
-from motor.body.locations import resolve_location
-from motor.hand.shape import played
-from motor.signing.hand_geometry import GeometryPending, HandGeometry, key_bytes
+from motor.signing.hand_geometry import GeometryPending, HandGeometry
 from motor.signing.layout import Layout, placed
-from motor.signing.lmp import Move
 from motor.signing.orientations import written_orientations
-from motor.signing.path_shapes import SIZE_FRACTIONS, circle, curve, line, unit
-from motor.signing.plan import HandPose, SignPlan, SignPlanningError
-from motor.signing.reach import arc_fractions, within_reach_all
+from motor.signing.plan import SignPlan, SignPlanningError
+from motor.signing.reach import within_reach_all
 from motor.signing.retiming import retimed_all
-from motor.signing.sites import (
-    hand_site,
-    is_hand_site,
-    leaf_location,
-    normalized,
-    on_other_hand,
-    touches,
-)
-from motor.trajectory.biocontrol import movement_duration, shortest_duration
-from motor.trajectory.symmetry import mirror_directions
-from mura.constraints import (
-    Arm,
-    Constraint,
-    Dynamic,
-    Parallel,
-    Repetition,
-    Segment,
-    SegmentKind,
-    Static,
-    Symmetrical,
-    Symmetry,
-    iter_leaves,
-)
-from mura.constraints import Sequence as SequenceNode
+from motor.signing.sign_compiler import INITIAL_HOLD, NEUTRAL_FINGERS, SignCompiler
 from mura.errors import SpecError
-from mura.signs import HandPosture, Sign
-from mura.values import (
-    BetweenLocation,
-    BodySite,
-    Direction,
-    GridLocation,
-    HandShape,
-    Location,
-    PalmOrientation,
-)
+from mura.signs import Sign
 
-#: Wrist turn of nodding and swinging, forearm turn of twisting, radians.
-LOCAL_ANGLE = 0.45
-#: How long a static sign holds its posture, seconds (tense: ×1.5 by its manner table).
-STATIC_HOLD = 0.5
-#: How long a sign with movement holds its first posture before moving, seconds: the
-#: initial hold of the citation form (Liddell and Johnson's hold–movement model), which
-#: lets the viewer see where the sign's movement begins (a departure from rest).
-INITIAL_HOLD = 0.08
-#: Half the gap between symmetric hands sent to one central site, metres.
-SIDE_BY_SIDE = 0.05
-#: Neutral signing space of the right hand (mirrored for the left).
-NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
-#: Extended-finger direction and palm of a hand whose sign leaves them open.
-NEUTRAL_FINGERS = (0.0, 0.0, 1.0)
-#: The passive non-dominant hand that a one-handed sign touches: flat, palm up, in front.
-PASSIVE_POSTURE = HandPosture(
-    HandShape("flathand"),
-    Direction((0.0, 0.0, 1.0)),
-    PalmOrientation((0.0, 1.0, 0.0)),
-    GridLocation("LocStomach", "LocCCenterLeft", "LocNorm"),
-)
-#: HamNoSys manners to (duration manner, profile manner) of the biocontrol tables.
-MANNERS: dict[str, str] = {"targetted": "targetted", "fast": "fast", "slow": "slow", "tense": "tense", "halt": "sudden_stop", "rest": "sudden_stop"}
-_SAME = 1e-6
-#: The movement kind (:data:`motor.trajectory.biocontrol.MOVEMENT_KIND_DURATION`) of each segment kind.
-_KINDS = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}
-_NEUTRAL_LEFT = replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
-_SAGITTAL = Symmetry(frozenset({"S"}), "SymMS")
-_CHANNELS = ("wrist_position", "hand_rotation", "handshape")
-_PALM = BodySite("palm", proximity="touch")
 _Result = TypeVar("_Result")
-
-
-@dataclass(eq=False, slots=True)
-class _Hand:
-    """A hand's state while planning: palm-centre location, EFD and palm vectors, shape;
-    ``rotations`` holds its global rotation by side once a memoizing compiler has asked for
-    it (:meth:`_SignCompiler.rotation`), shared with the copies that keep its fingers and palm.
-    Unchanged once made, though not frozen: frozen, one took 4× as long (~27,000 a collection)."""
-
-    location: np.ndarray
-    fingers: np.ndarray
-    palm: np.ndarray
-    shape: HandShape
-    params: np.ndarray
-    rotations: dict[str, np.ndarray]
-
-    def at(self, location: np.ndarray) -> _Hand:
-        """The same hand with its palm centre at ``location`` (``dataclasses.replace``
-        without its overhead: planning moves hands tens of thousands of times)."""
-        return _Hand(location, self.fingers, self.palm, self.shape, self.params, self.rotations)
-
-    def turned(self, fingers: np.ndarray, palm: np.ndarray) -> _Hand:
-        """The same hand with its extended fingers and palm along ``fingers``, ``palm`` (as :meth:`at`)."""
-        return _Hand(self.location, fingers, palm, self.shape, self.params, {})
-
-    def shaped(self, shape: HandShape, params: np.ndarray) -> _Hand:
-        """The same hand in another shape, ``params`` its joint parameters (as :meth:`at`)."""
-        return _Hand(self.location, self.fingers, self.palm, shape, params, self.rotations)
-
-
-@dataclass(eq=False, slots=True)
-class _HandMove:
-    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys (unchanged once made, as :class:`_Hand`)."""
-
-    start: float
-    end: float
-    manner: str
-    locations: np.ndarray
-    rotations: np.ndarray
-    shapes: np.ndarray
-
-
-@dataclass(eq=False)
-class _Change:
-    """What one leaf does to one hand: new state fields and explicit keys along the way."""
-
-    hand: _Hand
-    path: np.ndarray | None = None
-    rotations: np.ndarray | None = None
-    shapes: np.ndarray | None = None
-    #: Whether ``path`` is a straight line of evenly spaced points (:func:`line`, or its
-    #: displacements mirrored or translated): no reversal, its stopping length at most its chord.
-    straight: bool = False
-
-
-@dataclass(eq=False)
-class _Step:
-    duration: float
-    manner: str
-    changes: dict[str, _Change]
 
 
 def plan_sign(avatar: Avatar, sign: Sign) -> SignPlan:
@@ -257,7 +82,7 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     with _collector_paused():
         geometry = HandGeometry(avatar, memoize)
         compiled = _compile_all(geometry, signs)
-        geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, _SignCompiler) for r in c.palm_offset_requests()])
+        geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, SignCompiler) for r in c.palm_offset_requests()])
         drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
         return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
 
@@ -281,7 +106,7 @@ def _collector_paused() -> Iterator[None]:
 
 
 def without_initial_hold(plan: SignPlan) -> SignPlan:
-    """The plan with its moves begun at once instead of after :data:`INITIAL_HOLD` (a sign
+    """The plan with its moves begun at once instead of after :data:`motor.signing.sign_compiler.INITIAL_HOLD` (a sign
     inside an utterance, whose stroke the scheduler times like a gesture's); a static
     plan, or one whose moves begin sooner, as it is."""
     starts = [move.start for moves in plan.moves.values() for move in moves]
@@ -291,7 +116,7 @@ def without_initial_hold(plan: SignPlan) -> SignPlan:
     return replace(plan, duration=plan.duration - INITIAL_HOLD, moves=moves)
 
 
-def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCompiler | SignPlanningError]:
+def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[SignCompiler | SignPlanningError]:
     """Every sign compiled into hand moves, in rounds: a sign that asks for an arm pose or
     a site offset not yet known is set aside, the round's requests of all signs are
     computed in one vectorized pass, and the signs set aside are compiled again (a sign
@@ -299,7 +124,7 @@ def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCom
     arm pose with the wrist offset it needs, count as one). The rotations of the hand
     orientations the signs write are computed first, all at once
     (:mod:`motor.signing.orientations`)."""
-    compiled: list[_SignCompiler | SignPlanningError | None] = [None] * len(signs)
+    compiled: list[SignCompiler | SignPlanningError | None] = [None] * len(signs)
     waiting = list(range(len(signs)))
     geometry.prefetch_rotations(*written_orientations(signs, [NEUTRAL_FINGERS], [(1.0, 0.0, 0.0)]))
     geometry.deferring = geometry.memoize
@@ -309,7 +134,7 @@ def _compile_all(geometry: HandGeometry, signs: Sequence[Sign]) -> list[_SignCom
             for index in waiting:
                 sign = signs[index]
                 try:
-                    compiled[index] = _attempt(sign, lambda: _SignCompiler(geometry, sign).compile_sign())
+                    compiled[index] = _attempt(sign, lambda: SignCompiler(geometry, sign).compile_sign())
                 except GeometryPending:
                     again.append(index)
             if not geometry.resolve_pending():
@@ -329,586 +154,13 @@ def _attempt(sign: Sign, work: Callable[[], _Result]) -> _Result | SignPlanningE
     except (SpecError, ValueError, KeyError) as error:
         return SignPlanningError(f"sign {sign.gloss!r}: {error}")
 
-
-class _SignCompiler:
-    def __init__(self, geometry: HandGeometry, sign: Sign) -> None:
-        self.geometry = geometry
-        self.avatar = geometry.avatar
-        self.sign = sign
-        self.dominant = sign.dominant.side
-        self.other = sign.dominant.other.side
-        self.arm_length = geometry.arm_length()
-        self.warnings: list[str] = []
-        self.hands: dict[str, _Hand] = {}
-        self.moves: dict[str, list[_HandMove]] = {}
-        self.clock = 0.0
-        symmetry = sign.symmetry
-        self.symmetric = symmetry is not None
-        self.alternating = bool(symmetry and symmetry.alternating)
-        planes = frozenset() if symmetry is None or symmetry.kind == "par" else symmetry.planes | {"S"}
-        self.path_mirror = Symmetry(planes, "path")
-        self.sagittal = _SAGITTAL
-        self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
-        self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
-        self.start: dict[str, _Hand] = {}
-        self.static = False
-        self._palm_requests: list[tuple[str, BodySite, np.ndarray, np.ndarray]] | None = None
-
-    def note(self, message: str) -> None:
-        self.warnings.append(f"{self.sign.gloss}: {message}")
-
-    # -- the whole sign ----------------------------------------------------------------
-
-    def compile_sign(self) -> _SignCompiler:
-        """Walk the sign's movement into hand moves (the first half of planning)."""
-        self.initial_postures()
-        self.start = dict(self.hands)
-        self.static = self.sign.movement is None
-        if self.static:
-            self.hold(STATIC_HOLD, self.sign.manner if self.sign.manner in MANNERS else "targetted")
-        else:
-            self.clock = INITIAL_HOLD
-            self.compile(self.sign.movement)
-            if self.clock <= INITIAL_HOLD:
-                self.hold(STATIC_HOLD, "targetted")
-        return self
-
-    def palm_offset_requests(self) -> list[tuple[str, BodySite, np.ndarray, np.ndarray]]:
-        """The wrist-to-palm offsets :meth:`layout` takes, as ``(side, site, rotation,
-        params)``: each first posture's, then per hand and move those of its first and last
-        postures; made once, so that they can be computed for the whole collection at once."""
-        if self._palm_requests is None:
-            self._palm_requests = [self.offset_request(arm, self.rotation(arm, hand), hand.params, _PALM) for arm, hand in self.start.items()]
-            for arm in self.start:
-                for move in self.moves.get(arm, []):
-                    self._palm_requests.append(self.offset_request(arm, move.rotations[0], move.shapes[0], _PALM))
-                    self._palm_requests.append(self.offset_request(arm, move.rotations[-1], move.shapes[-1], _PALM))
-        return self._palm_requests
-
-    def plan(self) -> SignPlan:
-        """The sign's plan from its compiled hand moves (the second half of planning)."""
-        return self.plan_from(placed(self.avatar, [self.layout()])[0])
-
-    def layout(self) -> Layout:
-        """Each hand's first posture and, per move, its palm path with the offsets from the
-        wrist to the palm in the move's first and last postures (:meth:`palm_offset_requests`)."""
-        offsets = iter(self.geometry.site_offsets(self.palm_offset_requests()))
-        first = {arm: self.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
-        return Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
-
-    def plan_from(self, layout: Layout) -> SignPlan:
-        """The plan of a layout whose wrists are kept out of the torso."""
-        moves = self.channel_moves(layout)
-        return SignPlan(self.sign.gloss, self.clock, layout.first, moves, self.static, dict(self.sign.nonmanual), tuple(self.warnings))
-
-    def hold(self, duration: float, manner: str) -> None:
-        scale = movement_duration("straight", MANNERS.get(manner, "targetted")) / movement_duration("straight")
-        self.apply(_Step(duration * scale, "targetted", {arm: _Change(hand) for arm, hand in self.hands.items()}))
-
-    # -- postures ------------------------------------------------------------------------
-
-    def initial_postures(self) -> None:
-        sign = self.sign
-        dominant = sign.posture
-        leaves = iter_leaves(sign.movement) if sign.movement is not None else ()
-        # the other hand takes part, as a passive base if the dominant hand touches it (a
-        # two-handed sign's leaves are not searched for that)
-        if sign.two_handed or on_other_hand(dominant.location) or any(on_other_hand(leaf_location(leaf)) for leaf in leaves):
-            self.hands[self.other] = self.other_hand()
-        self.hands[self.dominant] = self.hand_from(self.dominant, dominant, self.hands.get(self.other))
-        if sign.constellation is not None and self.other in self.hands:
-            self.place_constellation()
-        elif self.symmetric and self.other in self.hands:
-            self.side_by_side()
-
-    def other_hand(self) -> _Hand:
-        posture = self.other_posture()
-        hand = self.hand_from(self.other, posture, None)
-        own = self.sign.nondominant
-        if not self.symmetric or (own is not None and own.ext_finger is not None):
-            return hand
-        # the non-dominant hand mirrors the dominant hand's orientation
-        dominant = self.sign.posture
-        fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
-        palm = self.palm_vector(self.dominant, fingers, dominant.palm)
-        mirrored = hand.turned(mirror_directions(fingers, self.sagittal), mirror_directions(palm, self.sagittal))
-        return mirrored.at(self.locate(self.other, posture.location, mirrored, None) + self.part_to_palm(self.other, mirrored, posture.location))
-
-    def other_posture(self) -> HandPosture:
-        """The non-dominant hand's posture: its own fields, else the mirrored dominant's
-        (symmetric signs), else the passive base's."""
-        own = self.sign.nondominant or HandPosture()
-        if self.symmetric:
-            base = self.sign.posture
-            if on_other_hand(base.location):
-                base = replace(base, location=None)
-        elif self.sign.two_handed and self.sign.nondominant is not None:
-            base = replace(PASSIVE_POSTURE, shape=self.sign.posture.shape or PASSIVE_POSTURE.shape)
-        else:
-            base = PASSIVE_POSTURE
-        return HandPosture(
-            own.shape or base.shape,
-            own.ext_finger or base.ext_finger,
-            own.palm or base.palm,
-            own.location if own.location is not None else base.location,
-        )
-
-    def hand_from(self, arm: str, posture: HandPosture, other: _Hand | None) -> _Hand:
-        shape = posture.shape or HandShape("flathand")
-        fingers = np.asarray(posture.ext_finger.vector if posture.ext_finger else NEUTRAL_FINGERS, dtype=float)
-        palm = self.palm_vector(arm, fingers, posture.palm)
-        params = self.geometry.params(shape)
-        hand = _Hand(np.zeros(3), fingers, palm, shape, params, {})
-        return hand.at(self.locate(arm, posture.location, hand, other) + self.part_to_palm(arm, hand, posture.location))
-
-    def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
-        if palm is None:
-            inward = np.array([1.0 if arm == "right" else -1.0, 0.0, 0.0])
-            return inward
-        direction = np.asarray(palm.direction, dtype=float)
-        if palm.relative:
-            direction = quat.rotate(quat.between_vectors(np.array([0.0, 0.0, 1.0]), fingers / np.linalg.norm(fingers)), direction)
-        return direction
-
-    def neutral(self, arm: str) -> np.ndarray:
-        return self.geometry.location(NEUTRAL_LOCATION if arm == "right" else _NEUTRAL_LEFT, AVATAR_SIDE[arm])
-
-    def locate(self, arm: str, location: Location | None, hand: _Hand, other: _Hand | None, here: np.ndarray | None = None) -> np.ndarray:
-        """Palm-centre point ``(3,)`` for ``location`` (see the module docstring)."""
-        if location is None:
-            return self.neutral(arm) if here is None else here
-        if isinstance(location, BetweenLocation):
-            first = self.locate(arm, location.first, hand, other, here)
-            second = self.locate(arm, location.second, hand, other, here)
-            return (1.0 - location.fraction) * first + location.fraction * second
-        if not isinstance(location, BodySite):
-            return self.geometry.location(location, AVATAR_SIDE[arm])
-        site = normalized(location)
-        if site.site == "contact":
-            return self.neutral(arm) if here is None else here
-        if site.site == "neutralspace":
-            return self.neutral(arm)
-        if on_other_hand(site):
-            other_arm = "left" if arm == "right" else "right"
-            other_hand = other or self.hands.get(other_arm)
-            if other_hand is None:
-                self.note(f"location {location.site!r} on the other hand, which takes no part; neutral space")
-                return self.neutral(arm) if here is None else here
-            pose = self.arm_pose(other_arm, other_hand)
-            return resolve_location(self.avatar, site, AVATAR_SIDE[arm], pose)
-        return self.geometry.location(site, AVATAR_SIDE[arm])
-
-    def side_by_side(self) -> None:
-        """Symmetric hands sent to the same central site go to either side of it."""
-        mine, theirs = self.hands[self.dominant], self.hands[self.other]
-        if quat.length(mine.location - theirs.location) > SIDE_BY_SIDE:
-            return
-        shift = np.array([SIDE_BY_SIDE, 0.0, 0.0])
-        sign = 1.0 if self.dominant == "left" else -1.0
-        self.hands[self.dominant] = mine.at(mine.location + sign * shift)
-        self.hands[self.other] = theirs.at(theirs.location - sign * shift)
-
-    def place_constellation(self) -> None:
-        """Put the hands relative to each other (module docstring)."""
-        constellation = self.sign.constellation
-        assert constellation is not None
-        other = self.hands[self.other]
-        if constellation.location is not None:
-            other = other.at(self.locate(self.other, constellation.location, other, None))
-        other_site = hand_site(constellation.nondominant, constellation.contact)
-        own_site = hand_site(constellation.dominant, "touch")
-        dominant = self.hands[self.dominant]
-        self.expect_offsets(
-            ([(self.other, other, _PALM)] if is_hand_site(other_site) else [])
-            + [(self.dominant, dominant, _PALM)]
-            + ([(self.dominant, dominant, own_site)] if is_hand_site(own_site) else [])
-        )  # fmt: skip
-        if is_hand_site(other_site):
-            pose = self.arm_pose(self.other, other)
-            meeting = resolve_location(self.avatar, other_site, AVATAR_SIDE[self.dominant], pose)
-        else:
-            meeting = other.location
-        palm = self.offset(self.dominant, dominant, _PALM)
-        own = self.offset(self.dominant, dominant, own_site) if is_hand_site(own_site) else palm
-        self.hands[self.other] = other
-        self.hands[self.dominant] = dominant.at(meeting - own + palm)
-
-    # -- the hand's geometry -------------------------------------------------------------
-
-    def rotation(self, arm: str, hand: _Hand) -> np.ndarray:
-        """The hand's global rotation ``(4,)`` (:meth:`HandGeometry.rotation`); when
-        memoizing, kept on the hand, which a sign asks about again and again."""
-        side = AVATAR_SIDE[arm]
-        known = hand.rotations.get(side)
-        if known is None:
-            known = self.geometry.rotation(side, hand.fingers, hand.palm)
-            if self.geometry.memoize:
-                hand.rotations[side] = known
-        return known
-
-    def offset(self, arm: str, hand: _Hand, site: BodySite) -> np.ndarray:
-        """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
-        return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
-
-    def expect_offsets(self, wanted: Sequence[tuple[str, _Hand, BodySite]]) -> None:
-        """Note the :meth:`offset` of each ``(arm, hand, site)`` the sign is about to ask
-        for, in the order it will (:meth:`offset_request`), so that a sign compiled in
-        rounds waits one round for all of them (:meth:`HandGeometry.expect_site_offsets`)."""
-        self.geometry.expect_site_offsets([self.offset_request(arm, self.rotation(arm, hand), hand.params, site) for arm, hand, site in wanted])
-
-    def part_to_palm(self, arm: str, hand: _Hand, location: Location | None) -> np.ndarray:
-        """From the part of the hand a location puts at its site (``hand_part``: HamNoSys'
-        contact by the fingertip, the pinky side …) to the palm centre ``(3,)`` that
-        locations place, for the hand's rotation and shape; zeros without a named part."""
-        part = location.hand_part if isinstance(location, BodySite) else None
-        if part is None or not is_hand_site(part) or part.site == _PALM.site:
-            return np.zeros(3)
-        site = replace(normalized(part), proximity=_PALM.proximity)
-        self.expect_offsets([(arm, hand, _PALM), (arm, hand, site)])
-        return self.offset(arm, hand, _PALM) - self.offset(arm, hand, site)
-
-    def arm_pose(self, arm: str, hand: _Hand) -> Pose:
-        """The whole body with this arm in the hand's posture (rest elsewhere), one frame:
-        :meth:`HandGeometry.palm_pose` of the wrist under the palm."""
-        rotation = self.rotation(arm, hand)
-        offset = self.offset_request(arm, rotation, hand.params, _PALM)
-        return self.geometry.palm_pose(AVATAR_SIDE[arm], hand.location, offset, rotation, hand.params)
-
-    def pose(self, arm: str, hand: _Hand, palm_offset: np.ndarray) -> HandPose:
-        """The hand's posture with the wrist at its palm centre less ``palm_offset`` ``(3,)``."""
-        return HandPose(hand.location - palm_offset, self.rotation(arm, hand).copy(), hand.params.copy())
-
-    # -- the movement tree ---------------------------------------------------------------
-
-    def compile(self, node: Constraint) -> None:
-        if isinstance(node, SequenceNode):
-            for child in node.children:
-                self.compile(child)
-        elif isinstance(node, Parallel):
-            self.parallel(node)
-        elif isinstance(node, Repetition):
-            self.repetition(node)
-        elif isinstance(node, Symmetrical):
-            self.symmetrical(node)
-        elif isinstance(node, Dynamic) and len(node.segments) > 1:
-            for segment in node.segments:
-                self.apply(self.leaf(replace(node, segments=(segment,))))
-        else:
-            self.apply(self.leaf(node))
-
-    def parallel(self, node: Parallel) -> None:
-        children = _flattened(node)
-        leaves = [child for child in children if isinstance(child, (Static, Dynamic))]
-        if len(leaves) != len(children):
-            self.note("a parallel group with compound parts is performed one part after another")
-            for child in children:
-                self.compile(child)
-            return
-        base = dict(self.hands)
-        # moves are planned to the hands as the group leaves them: a site on the other hand
-        # is where that hand's new orientation puts it
-        steps = [self.leaf(leaf) for leaf in leaves if leaf.slot != "HandLocation"]
-        places = [leaf for leaf in leaves if leaf.slot == "HandLocation"]
-        if places and steps:
-            self.hands = {**base, **{arm: change.hand for arm, change in _merge_steps(steps, base).changes.items()}}
-        try:
-            steps += [self.leaf(leaf) for leaf in places]
-        finally:
-            self.hands = base
-        self.apply(_merge_steps(steps, base))
-
-    def symmetrical(self, node: Symmetrical) -> None:
-        """A part of a compound sign with a symmetry of its own: both hands, mirrored (or
-        in parallel) as it says, for that part only."""
-        saved = (self.symmetric, self.alternating, self.path_mirror)
-        planes = frozenset() if node.symmetry.name == "par" else node.symmetry.planes | {"S"}
-        self.symmetric, self.alternating, self.path_mirror = True, node.symmetry.alternating, Symmetry(planes, "path")
-        try:
-            self.compile(node.child)
-        finally:
-            self.symmetric, self.alternating, self.path_mirror = saved
-
-    def repetition(self, node: Repetition) -> None:
-        if node.alternating and self.other in self.hands:
-            self.alternating = True
-        start_hands, start_clock = dict(self.hands), self.clock
-        first = {arm: len(moves) for arm, moves in self.moves.items()}
-        self.compile(node.child)
-        passed = {arm: self.moves.get(arm, [])[first.get(arm, 0):] for arm in self.hands}
-        end_hands, length = dict(self.hands), self.clock - start_clock
-        if length <= 0.0:
-            return
-        shift = self.shift_of(node.displacement)
-        for index in range(1, node.count):
-            if node.mode == "continue":
-                if shift is not None:
-                    self.apply(_Step(movement_duration("straight", "targetted"), "lax", self.shifted(self.hands, shift)))
-                self.compile(node.child)
-            elif node.mode == "reverse" and index % 2 == 1:
-                backward = {arm: [_reversed(m, start_clock, start_clock + length) for m in reversed(moves)] for arm, moves in passed.items()}
-                self.replay(backward, length)
-                self.hands = dict(start_hands)
-            else:
-                offset = None if shift is None else {arm: index * vector for arm, vector in shift.items()}
-                if node.mode != "reverse":
-                    back = self.shifted(start_hands, offset) if offset is not None else {arm: _Change(hand) for arm, hand in start_hands.items()}
-                    self.apply(_Step(movement_duration("straight", "targetted"), "lax", back))
-                self.replay(passed, length, offset)
-                self.hands = dict(end_hands) if offset is None else {arm: change.hand for arm, change in self.shifted(end_hands, offset).items()}
-
-    def shift_of(self, displacement: Segment | None) -> dict[str, np.ndarray] | None:
-        """Each hand's shift between passes of a displaced repetition (the dominant hand's
-        along the displacement, the other hand's mirrored under symmetry), None without one."""
-        if displacement is None or displacement.direction is None:
-            return None
-        size = displacement.size if displacement.size in SIZE_FRACTIONS else "small"
-        vector = unit(displacement.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
-        shifts = {self.dominant: vector}
-        if self.symmetric and self.other in self.hands:
-            shifts[self.other] = mirror_directions(vector, self.path_mirror)
-        return shifts
-
-    def shifted(self, hands: Mapping[str, _Hand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
-        """Changes that put ``hands`` where they are, moved by ``offset`` (hands without one stay)."""
-        return {arm: _Change(hand.at(hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
-
-    def replay(self, moves: Mapping[str, list[_HandMove]], length: float, offset: Mapping[str, np.ndarray] | None = None) -> None:
-        """The recorded moves of one pass again, from the current clock (moved by ``offset``)."""
-        starts = [m.start for ms in moves.values() for m in ms]
-        origin = min(starts) if starts else self.clock
-        for arm, ms in moves.items():
-            shift = 0.0 if offset is None else offset.get(arm, 0.0)
-            self.moves.setdefault(arm, []).extend(
-                _HandMove(m.start - origin + self.clock, m.end - origin + self.clock, m.manner, m.locations + shift, m.rotations, m.shapes) for m in ms
-            )
-        self.clock += length
-
-    def apply(self, step: _Step) -> None:
-        """Append one step's moves (all hands it changes) and advance the clock."""
-        end = self.clock + max(step.duration, _SAME)
-        for arm, change in step.changes.items():
-            before = self.hands[arm]
-            after = change.hand
-            path = change.path if change.path is not None else line(before.location, after.location)
-            rotations = change.rotations if change.rotations is not None else np.array([self.rotation(arm, before), self.rotation(arm, after)])
-            shapes = change.shapes if change.shapes is not None else np.array([before.params, after.params])
-            self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
-            self.hands[arm] = after
-        self.clock = end
-
-    # -- leaves --------------------------------------------------------------------------
-
-    def arms_of(self, leaf: Static | Dynamic) -> tuple[str, ...]:
-        scope = leaf.scope
-        if scope in (Arm.RIGHT, Arm.LEFT, "right_arm", "left_arm"):
-            arm = Arm(scope).side if isinstance(scope, str) else scope.side
-            if arm not in self.hands:
-                self.hands[arm] = self.other_hand() if arm == self.other else self.hand_from(arm, self.sign.posture, None)
-            return (arm,)
-        if self.symmetric and self.other in self.hands:
-            return (self.dominant, self.other)
-        return (self.dominant,)
-
-    def leaf(self, leaf: Static | Dynamic) -> _Step:
-        """What one leaf does to the hands it applies to, from their current state."""
-        arms = self.arms_of(leaf)
-        if isinstance(leaf, Static):
-            segment = Segment(SegmentKind.LINEAR, end=leaf.value, manner="targetted")
-        else:
-            if not leaf.segments:
-                raise SignPlanningError(f"sign {self.sign.gloss!r}: dynamic {leaf.slot} without segments")
-            if len(leaf.segments) > 1:
-                self.note(f"{leaf.slot}: of {len(leaf.segments)} segments in a parallel group only the first is realized")
-            segment = leaf.segments[0]
-        manner = MANNERS.get(segment.manner or "targetted")
-        if manner is None:
-            self.note(f"unknown manner {segment.manner!r}; targetted")
-            manner = "targetted"
-        lead = arms[0]
-        hands = {arm: self.hands[arm] for arm in arms}
-        if leaf.slot == "HandLocation":
-            change, kind, profile = self.path(lead, hands[lead], segment, manner)
-            changes = {lead: change}
-            if len(arms) > 1:
-                changes[arms[1]] = self.follower_path(arms[1], hands[arms[1]], change, hands[lead])
-            elif self.meet_halfway(lead, segment):
-                changes = self.met_halfway(lead, change)
-        elif leaf.slot in ("HandShape", "ExtFingerOrientation", "PalmOrientation"):
-            kind, profile = "straight", manner
-            changes = {arm: self.posture_change(arm, hands[arm], leaf.slot, segment, arm != lead) for arm in arms}
-        else:
-            self.note(f"slot {leaf.slot} is not realized by the hands")
-            return _Step(0.0, manner, {})
-        duration = movement_duration(kind, manner)
-        return _Step(max(duration, self.shortest(changes, profile, duration)), profile, changes)
-
-    def meet_halfway(self, arm: str, segment: Segment) -> bool:
-        """Whether the dominant hand's move onto the other hand meets it halfway: under
-        symmetry both hands are active, so a constellation they change into (``hamreplace``
-        … ``hampinkyside hamplus hampinkyside``) brings them together in front of the
-        body's midline, not the dominant hand across to wherever the other one is."""
-        return arm == self.dominant and self.symmetric and self.other in self.hands and on_other_hand(segment.end)
-
-    def met_halfway(self, arm: str, change: _Change) -> dict[str, _Change]:
-        """The dominant hand's ``change`` onto the other hand, both hands moved sideways
-        (x, m) so that where they meet — halfway between the dominant palm's target and the
-        other palm — lies on the sagittal plane: the dominant path bent toward it along its
-        arc, the other hand on a straight line."""
-        assert change.path is not None
-        other = self.hands[self.other]
-        shift = np.array([-0.5 * (change.hand.location[0] + other.location[0]), 0.0, 0.0])
-        path = change.path + arc_fractions(change.path)[:, None] * shift
-        moved = other.at(other.location + shift)
-        return {
-            arm: replace(change, hand=change.hand.at(path[-1]), path=path, straight=False),
-            self.other: _Change(moved, path=line(other.location, moved.location), straight=True),
-        }
-
-    def shortest(self, changes: Mapping[str, _Change], manner: str, floor: float) -> float:
-        """The least time (s) the hands' paths need within the speed budget of ``manner``
-        (stopping at each reversal: :func:`motor.signing.lmp.stopping_length`), where it
-        may exceed ``floor`` (s), the time the leaf takes anyway.
-
-        When memoizing, a straight path whose chord needs no more than ``floor`` is not
-        measured: it is one piece (no reversal), and the B-spline traced within it is no
-        longer than its polyline, which is its chord, so its stopping length needs no
-        more either (:func:`_chord_bound` adds a margin for the rounding). The leaf's
-        duration, the greater of ``floor`` and this, is the same."""
-        memoize = self.geometry.memoize
-        paths = [
-            change.path for change in changes.values()
-            if change.path is not None and len(change.path) > 1
-            and not (memoize and change.straight and shortest_duration(_chord_bound(change.path), manner) <= floor)
-        ]  # fmt: skip
-        return max((shortest_duration(self.geometry.stopping_length(path), manner) for path in paths), default=0.0)
-
-    def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
-        """The palm-centre path of one HandLocation segment, its kind and time profile."""
-        start = hand.location
-        size = segment.size if segment.size in SIZE_FRACTIONS else "normal"
-        contact = any(m.startswith("contact=") and m != "contact=close" for m in segment.modifiers)
-        if segment.end is not None:
-            end = self.locate(arm, segment.end, hand, None, here=start) + self.part_to_palm(arm, hand, segment.end)
-            contact = contact or touches(segment.end)
-        elif segment.direction is not None:
-            end = start + unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
-        else:
-            end = start
-        kind = _KINDS[segment.kind]
-        straight = False
-        if segment.kind is SegmentKind.CIRCLE:
-            points = circle(start, segment, self.arm_length)
-        elif segment.kind is SegmentKind.CURVE and quat.length(end - start) > _SAME:
-            points, note = curve(start, end, segment)
-            if note:
-                self.note(note)
-        else:
-            if segment.shape not in (None, "nomotion") and quat.length(end - start) <= _SAME:
-                self.note(f"local movement {segment.shape!r} of the hand's location is held in place")
-            points = line(start, end)
-            straight = True
-        if manner == "sudden_stop":
-            profile = "sudden_stop"
-        elif segment.kind is SegmentKind.CIRCLE:
-            profile = "linear"
-        elif contact:
-            profile = "hard_contact"
-        else:
-            profile = manner
-        return _Change(hand.at(points[-1]), path=points, straight=straight), kind, profile
-
-    def follower_path(self, arm: str, hand: _Hand, lead: _Change, lead_hand: _Hand) -> _Change:
-        """The non-dominant hand's path under symmetry: the dominant's displacements
-        mirrored (lr) or translated (par), reversed when alternating."""
-        assert lead.path is not None
-        displacement = mirror_directions(lead.path - lead.path[0], self.path_mirror)
-        if self.alternating:
-            displacement = -displacement
-        path = hand.location + displacement
-        return _Change(hand.at(path[-1]), path=path, straight=lead.straight)
-
-    def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
-        """A change of shape or orientation (``replace``) or a local movement in place."""
-        local = segment.shape
-        if local in ("nodding", "swinging", "twisting"):
-            return self.local_turn(arm, hand, local)
-        if local == "fingerplay":
-            return self.fingerplay(hand)
-        value = segment.end if segment.end is not None else segment.start
-        if value is None:
-            self.note(f"{slot} change without a target is held")
-            return _Change(hand)
-        if slot == "HandShape":
-            if not isinstance(value, HandShape):
-                raise SignPlanningError(f"sign {self.sign.gloss!r}: HandShape change to {value!r}")
-            return _Change(hand.shaped(value, self.geometry.params(value)))
-        if slot == "ExtFingerOrientation":
-            if not isinstance(value, Direction):
-                raise SignPlanningError(f"sign {self.sign.gloss!r}: extended-finger change to {value!r}")
-            fingers = np.asarray(value.vector, dtype=float)
-            if mirrored:
-                fingers = mirror_directions(fingers, self.sagittal)
-            return _Change(hand.turned(fingers, hand.palm))
-        if not isinstance(value, PalmOrientation):
-            raise SignPlanningError(f"sign {self.sign.gloss!r}: palm change to {value!r}")
-        palm = self.palm_vector(arm, hand.fingers if not mirrored else mirror_directions(hand.fingers, self.sagittal), value)
-        if mirrored:
-            palm = mirror_directions(palm, self.sagittal)
-        return _Change(hand.turned(hand.fingers, palm))
-
-    def local_turn(self, arm: str, hand: _Hand, kind: str) -> _Change:
-        """Nodding (wrist flexion), swinging (side to side) or twisting (forearm), there
-        and back, about the hand's own axes."""
-        rotation = self.rotation(arm, hand)
-        frame = self.avatar.hand_frames[AVATAR_SIDE[arm]]
-        local_axis = {"nodding": frame.bend_axis, "swinging": frame.splay_axis, "twisting": frame.finger_axis}[kind]
-        axis = quat.rotate(rotation, local_axis)
-        angles = np.array([0.0, LOCAL_ANGLE, 0.0, -LOCAL_ANGLE, 0.0]) if kind != "nodding" else np.array([0.0, LOCAL_ANGLE, 0.0])
-        turns = quat.from_axis_angle(np.broadcast_to(axis, (angles.size, 3)), angles)
-        return _Change(hand, rotations=quat.continuous(quat.multiply(turns, rotation)))
-
-    def fingerplay(self, hand: _Hand) -> _Change:
-        """Fingers moving in turn: index and ring, then middle and pinky, then back, each
-        bending or opening by a half bend from its own shape (:func:`motor.hand.shape.played`;
-        the folded fingers of a fist or pinch stay folded)."""
-        first = played(hand.params, ("index", "ring"))
-        second = played(hand.params, ("middle", "pinky"))
-        return _Change(hand, shapes=np.stack([hand.params, first, second, first, hand.params]))
-
-    # -- from hand moves to channel moves ------------------------------------------------
-
-    def channel_moves(self, layout: Layout) -> dict[tuple[str, str], tuple[Move, ...]]:
-        """Each hand's moves by channel, all of the sign's made at once (:meth:`Move.many`)."""
-        channels: dict[tuple[str, str], list[tuple[float, float, str, np.ndarray]]] = {}
-        for arm in layout.first:
-            moves = self.moves.get(arm, [])
-            channels[(arm, "wrist_position")] = [(m.start, m.end, m.manner, w) for m, w in zip(moves, layout.wrists[arm])]
-            channels[(arm, "hand_rotation")] = [(m.start, m.end, m.manner, m.rotations) for m in moves]
-            channels[(arm, "handshape")] = [(m.start, m.end, m.manner, m.shapes) for m in moves]
-        made = iter(Move.many([move for moves in channels.values() for move in moves]))
-        return {channel: tuple(next(made) for _ in moves) for channel, moves in channels.items()}
-
-    def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
-        return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))
-
-    def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
-        """The offset this sign takes for a hand posture: that of the first posture it asked for within
-        1e-9 of it (rounded to 9 decimals); the exact key of :data:`_PALM` itself, most asked, omits the site."""
-        exact = (arm, key_bytes(rotation), key_bytes(params)) if site is _PALM else (arm, site, key_bytes(rotation), key_bytes(params))
-        known = self._asked.get(exact)
-        if known is None:  # else asked for these very values before: the same answer
-            key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
-            known = self._asked[exact] = self._offsets.setdefault(key, (AVATAR_SIDE[arm], site, rotation, params))
-        return known
-
-
-def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
-    """The plan of every compiled sign (:meth:`_SignCompiler.plan`), the wrists of all of
+def _plan_all(avatar: Avatar, compiled: Sequence[SignCompiler | SignPlanningError]) -> list[SignPlan | SignPlanningError]:
+    """The plan of every compiled sign (:meth:`SignCompiler.plan`), the wrists of all of
     them kept out of the torso in one pass; a sign whose layout fails is planned alone,
     where it fails with its own error."""
     layouts: dict[int, Layout] = {}
     for index, sign in enumerate(compiled):
-        if isinstance(sign, _SignCompiler):
+        if isinstance(sign, SignCompiler):
             layout = _attempt(sign.sign, sign.layout)
             if isinstance(layout, Layout):
                 layouts[index] = layout
@@ -919,65 +171,3 @@ def _plan_all(avatar: Avatar, compiled: Sequence[_SignCompiler | SignPlanningErr
         else _attempt(c.sign, c.plan)
         for index, c in enumerate(compiled)
     ]  # fmt: skip
-
-
-def _flattened(node: Parallel) -> list[Constraint]:
-    """The children of nested parallel groups, as one group."""
-    children: list[Constraint] = []
-    for child in node.children:
-        children.extend(_flattened(child) if isinstance(child, Parallel) else [child])
-    return children
-
-
-def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
-    """Parallel leaves: one step as long as the longest, each hand's fields from the leaf
-    that changes them."""
-    steps = [s for s in steps if s.changes]
-    if not steps:
-        return _Step(0.0, "targetted", {})
-    longest = max(steps, key=lambda s: s.duration)
-    merged: dict[str, _Change] = {}
-    for step in steps:
-        for arm, change in step.changes.items():
-            before = base[arm]
-            current = merged.get(arm, _Change(before))
-            hand = current.hand
-            if not _close(change.hand.location, before.location):
-                hand = hand.at(change.hand.location)
-            if not (_close(change.hand.fingers, before.fingers) and _close(change.hand.palm, before.palm)):
-                hand = hand.turned(change.hand.fingers, change.hand.palm)
-            if not _close(change.hand.params, before.params):
-                hand = hand.shaped(change.hand.shape, change.hand.params)
-            merged[arm] = _Change(
-                hand,
-                change.path if change.path is not None else current.path,
-                change.rotations if change.rotations is not None else current.rotations,
-                change.shapes if change.shapes is not None else current.shapes,
-            )
-    return _Step(longest.duration, longest.manner, merged)
-
-
-def _close(a: np.ndarray, b: np.ndarray) -> bool:
-    """:func:`numpy.allclose` with its default tolerances, for finite values, without its
-    overhead (it is asked tens of thousands of times per collection, mostly of 3-vectors
-    and of one hand's very parameters): element by element in Python floats, the same
-    IEEE arithmetic as numpy's, about six times faster for a 3-vector."""
-    if a is b:
-        return True
-    return all(abs(x - y) <= 1e-8 + 1e-5 * abs(y) for x, y in zip(a.tolist(), b.tolist()))
-
-
-def _chord_bound(path: np.ndarray) -> float:
-    """An upper bound (m) of the stopping length of a straight path ``(m, 3)``: its chord
-    with a relative margin of 1e-6 and an absolute one of 1e-9 m, far above the rounding
-    of the lengths summed along its points and its traced B-spline (~1e-15 m)."""
-    return math.dist(path[0].tolist(), path[-1].tolist()) * (1.0 + 1e-6) + 1e-9
-
-
-def _reversed(move: _HandMove, pass_start: float, pass_end: float) -> _HandMove:
-    """A move of a pass played backwards within the pass (the return stroke of a reversed
-    repetition), targetted."""
-    return _HandMove(
-        pass_start + pass_end - move.end, pass_start + pass_end - move.start, "targetted",
-        move.locations[::-1], move.rotations[::-1], move.shapes[::-1],
-    )

@@ -1,7 +1,7 @@
 """Sign moves given the time their *final* wrist paths need within the speed budget.
 
 A sign's moves are timed while it is compiled, from the paths HamNoSys asks for
-(:meth:`motor.signing.planning._SignCompiler.shortest`). Clearing those paths out of the
+(:meth:`motor.signing.sign_compiler.SignCompiler.shortest`). Clearing those paths out of the
 body and into reach (:mod:`motor.signing.reach`) can lengthen them, and the wrist does
 not travel a path evenly: it advances in *law time* (:func:`motor.signing.lmp.law_fractions`),
 slower in tight bends and faster along the straighter stretches, so its peak speed and

@@ -2,8 +2,8 @@
 
 A leaf's duration is the greater of its movement's duration and the time its paths need
 (their stopping lengths); a straight path is not measured when its chord, with a margin,
-needs no more (:meth:`motor.signing.planning._SignCompiler.shortest`). That holds if a
-straight path's stopping length never exceeds :func:`motor.signing.planning._chord_bound`:
+needs no more (:meth:`motor.signing.sign_compiler.SignCompiler.shortest`). That holds if a
+straight path's stopping length never exceeds :func:`motor.signing.sign_compiler._chord_bound`:
 checked here on straight paths (labelled synthetic) of every kind the compiler draws.
 
 The rotations of the hand orientations a collection writes are computed in one
@@ -24,7 +24,7 @@ from motor.signing.lmp import Move, stopping_length
 from motor.signing.orientations import written_orientations
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.path_shapes import line
-from motor.signing.planning import _chord_bound
+from motor.signing.sign_compiler import _chord_bound
 from motor.signing.reach import split_runs
 from motor.trajectory.spline import HOLD_LENGTH
 from motor.trajectory.symmetry import mirror_directions
@@ -34,7 +34,7 @@ from mura.sigml import parse_sigml
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
 START = np.array([0.1, 1.2, 0.3])
 #: Straight paths by kind: (start, end) of a :func:`line`, and how the path is then moved
-#: (as :meth:`~motor.signing.planning._SignCompiler.follower_path` moves a lead's path).
+#: (as :meth:`~motor.signing.sign_compiler.SignCompiler.follower_path` moves a lead's path).
 STRAIGHT_CASES = {
     "small move": (START, START + [0.0, 0.05, 0.0], None),
     "normal move": (START, START + [0.09, -0.12, 0.04], None),

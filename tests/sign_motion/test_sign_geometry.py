@@ -8,7 +8,8 @@ from sign_helpers import sign_from
 
 from motor.body.kinematics import forward_kinematics
 from motor.signing.path_shapes import SIZE_FRACTIONS
-from motor.signing.planning import INITIAL_HOLD, plan_sign
+from motor.signing.planning import plan_sign
+from motor.signing.sign_compiler import INITIAL_HOLD
 from motor.signing.sequence import check_motion, realize_signs
 from motor.trajectory.biocontrol import movement_duration
 

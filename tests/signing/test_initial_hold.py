@@ -11,7 +11,8 @@ import pytest
 from signing_helpers import sign_of
 
 from motor.signing.plan import SignPlan
-from motor.signing.planning import INITIAL_HOLD, plan_signs, without_initial_hold
+from motor.signing.planning import plan_signs, without_initial_hold
+from motor.signing.sign_compiler import INITIAL_HOLD
 
 HAND = "hamflathand hamextfingero hampalmd"
 MOVING = {
