@@ -22,12 +22,16 @@ contact keeps its planned minimum-jerk profile).
 
 from __future__ import annotations
 
+import math
+
+import numba
 import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.distance import closest_parameters
 from motor.body.volumes import Capsule
+from motor.kernel_types import READ1, READ2, WRITE2
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
@@ -124,28 +128,82 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     of stopping dead); beyond the torso's top and bottom the push fades out over
     :data:`EDGE_BAND`. Points farther away are unchanged; no moved point is left inside."""
     torso = avatar.torso
-    a, b = torso.half_width + margin, torso.half_depth + margin
-    # in units of the grown ellipse, from the ray's origin behind the axis
-    u = (points[:, 0] - torso.center[0]) / a
-    w = (points[:, 2] - torso.center[2]) / b + RAY_DEPTH
-    # the ray through the point leaves the ellipse at s = exit (s = 1 at the point)
-    square = u * u + w * w
-    disc = (RAY_DEPTH * w) ** 2 - square * (RAY_DEPTH**2 - 1.0)
-    exit_ = (RAY_DEPTH * w + np.sqrt(np.maximum(disc, 0.0))) / np.maximum(square, _TINY)
-    length = np.sqrt((u * a) ** 2 + (w * b) ** 2)
-    gap = np.where((disc > 0.0) & (w > 0.0), (1.0 - exit_) * length, np.inf)
-    fade = _fade(torso.bottom - points[:, 1]) * _fade(points[:, 1] - torso.top)
-    near = np.minimum(gap, SOFT_BAND)
-    eased = np.maximum(_eased(near, SOFT_BAND), _LANDED)
-    moved = (eased > near) & (fade > 0.0)
-    if not np.any(moved):
-        return points
-    # measured from the exit point, so that a point pushed whole lands past the surface
-    beyond = fade * eased + (1.0 - fade) * near
-    out = np.array(points, dtype=float)
-    out[:, 0] = np.where(moved, torso.center[0] + (u * exit_ * a) + beyond * u * a / np.maximum(length, _TINY), out[:, 0])
-    out[:, 2] = np.where(moved, torso.center[2] + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / np.maximum(length, _TINY), out[:, 2])
-    return out
+    rows = np.ascontiguousarray(points, dtype=float)
+    shape = np.array([torso.center[0], torso.center[2], torso.half_width + margin, torso.half_depth + margin, torso.bottom, torso.top])
+    rays = np.empty((rows.shape[0], _RAY_COLUMNS))
+    _torso_rays(rows, shape, rays)
+    # numpy's exp between the two loops: the compiled one rounds some last bits otherwise
+    rise = np.exp(rays[:, _EASE_ARGUMENT])
+    out = rows.copy()
+    return out if _pushed_out(shape, rays, rise, out) else points
+
+
+#: The columns :func:`_torso_rays` keeps per point: its coordinates in units of the grown
+#: ellipse (from the ray's origin), where the ray leaves it, the ray's length (m), how far
+#: out the point lies (at most :data:`SOFT_BAND`), the edges' fade and the argument of
+#: :func:`_eased`'s exponential.
+_RAY_COLUMNS = 7
+_EASE_ARGUMENT = 6
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _maximum(a, b):  # noqa: ANN001, ANN202
+    """``np.maximum`` of two numbers: a NaN in either wins, a tie gives the first."""
+    return a if a >= b or a != a else b
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _minimum(a, b):  # noqa: ANN001, ANN202
+    """``np.minimum`` of two numbers: a NaN in either wins, a tie gives the first."""
+    return a if a <= b or a != a else b
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _faded(beyond):  # noqa: ANN001, ANN202
+    """:func:`_fade` of one number, the same operations."""
+    u = _minimum(_maximum(beyond / EDGE_BAND, 0.0), 1.0)
+    return 1.0 - u * u * (3.0 - 2.0 * u)
+
+
+@numba.njit([numba.void(READ2, READ1, WRITE2)], cache=True, error_model="numpy")
+def _torso_rays(points, shape, rays):  # noqa: ANN001, ANN202
+    """Into ``rays``: :func:`kept_out_of_torso`'s first steps per point (columns
+    :data:`_RAY_COLUMNS`), numpy's operations element by element; ``shape``: the torso's
+    centre x and z, grown half width and half depth, bottom and top."""
+    cx, cz, a, b, bottom, top = shape[0], shape[1], shape[2], shape[3], shape[4], shape[5]
+    for i in range(points.shape[0]):
+        u = (points[i, 0] - cx) / a
+        w = (points[i, 2] - cz) / b + RAY_DEPTH
+        square = u * u + w * w
+        ahead = RAY_DEPTH * w
+        disc = ahead * ahead - square * (RAY_DEPTH**2 - 1.0)
+        exit_ = (ahead + math.sqrt(_maximum(disc, 0.0))) / _maximum(square, _TINY)
+        across, deep = u * a, w * b
+        length = math.sqrt(across * across + deep * deep)
+        gap = (1.0 - exit_) * length if disc > 0.0 and w > 0.0 else math.inf
+        near = _minimum(gap, SOFT_BAND)
+        rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4] = u, w, exit_, length, near
+        rays[i, 5] = _faded(bottom - points[i, 1]) * _faded(points[i, 1] - top)
+        rays[i, _EASE_ARGUMENT] = 2.0 * (_minimum(near, SOFT_BAND) / SOFT_BAND - 1.0)
+
+
+@numba.njit([numba.boolean(READ1, READ2, READ1, WRITE2)], cache=True, error_model="numpy")
+def _pushed_out(shape, rays, rise, out):  # noqa: ANN001, ANN202
+    """Into ``out`` (the points): :func:`kept_out_of_torso`'s last steps from
+    :func:`_torso_rays` and numpy's exponential ``rise``; whether any point moved."""
+    cx, cz, a, b = shape[0], shape[1], shape[2], shape[3]
+    moved = False
+    for i in range(rays.shape[0]):
+        u, w, exit_, length, near, fade = rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5]
+        eased = _maximum(near if near >= SOFT_BAND else 2.0 * SOFT_BAND * rise[i] / (1.0 + rise[i]), _LANDED)
+        if not (eased > near and fade > 0.0):
+            continue
+        moved = True
+        # measured from the exit point, so that a point pushed whole lands past the surface
+        beyond = fade * eased + (1.0 - fade) * near
+        out[i, 0] = cx + (u * exit_ * a) + beyond * u * a / _maximum(length, _TINY)
+        out[i, 2] = cz + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / _maximum(length, _TINY)
+    return moved
 
 
 def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
@@ -353,3 +411,11 @@ def _smooth_ramp(value: np.ndarray, edges: tuple[float, float]) -> np.ndarray:
     """0 below ``edges[0]``, 1 above ``edges[1]``, smoothstep between."""
     u = np.minimum(np.maximum((value - edges[0]) / (edges[1] - edges[0]), 0.0), 1.0)
     return u * u * (3.0 - 2.0 * u)
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loops once (they load when it is imported):
+    :func:`motor.compiled.warm_up`."""
+    shape, rays = np.array([0.0, 0.0, 0.2, 0.1, 0.0, 1.0]), np.zeros((1, _RAY_COLUMNS))
+    _torso_rays(np.zeros((1, 3)), shape, rays)
+    _pushed_out(shape, rays, np.ones(1), np.zeros((1, 3)))
