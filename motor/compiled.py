@@ -28,7 +28,7 @@ import time
 
 from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost, swivel_track, upright_placement
-from motor.body import collision, distance
+from motor.body import collision, distance, hands_parting
 from motor.hand import shape
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
 from motor.trajectory import biocontrol
@@ -38,7 +38,7 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel and compute the
     manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, collision, clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach):
+    for module in (quaternion, distance, collision, hands_parting, clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach):
         module.load_kernels()
     biocontrol.load_profiles()
     return time.perf_counter() - started

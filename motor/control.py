@@ -124,7 +124,7 @@ MAX_FRAME_LOOKAHEAD = 16.0
 #: (:meth:`MotorControl._hands_apart`): they are left alone while they overlap less than
 #: that (skin gives; moving the wrists for it would cost a movement that starts from a
 #: contact its minimum-jerk start) and never overlap more than that and
-#: :data:`motor.body.collision.HAND_BAND` together (5 mm).
+#: :data:`motor.body.hands_parting.HAND_BAND` together (5 mm).
 REACHED_ALLOWANCE = 0.003
 #: Most times, frame by frame, the hands as the arms turned them are moved apart and the
 #: arms solved again, to find how far apart the wrists must move (solving again turns the

@@ -9,12 +9,14 @@
   path that crosses the torso's front, top or bottom bends around it;
 * :func:`hand_separation` (and :func:`separate_hands`, which applies it) keeps the two
   hands a palm thickness apart, smoothly in their gap: hands placed in contact stay as
-  placed, hands asked to overlap are bent apart (to within :data:`HAND_BAND`); hands
+  placed, hands asked to overlap are bent apart (to within :data:`motor.body.hands_parting.HAND_BAND`); hands
   whose paths cross pass one over the other. Frame by frame: over time the motor control
   eases the separation in and out (:mod:`motor.body.hands_apart`).
 
-Both eases are C² (:func:`_eased`): a path that enters their band changes neither speed
-nor acceleration with a step. The torso's band lies in front of its margin (a clearance:
+Both eases are C²: a distance past a limit is kept positive, unchanged from the band's
+width ``band`` on and ``band (1 + tanh(gap / band − 1))`` below it — equal in value, slope
+and curvature at ``band``, rising monotonically from 0 however deep the point was — so a
+path that enters their band changes neither speed nor acceleration with a step. The torso's band lies in front of its margin (a clearance:
 nothing is left inside it), the hands' band below the palm thickness (a contact: the
 planners place hands that touch exactly there, and a movement that starts from the
 contact keeps its planned minimum-jerk profile).
@@ -30,6 +32,7 @@ import numpy as np
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.distance import closest_parameters
+from motor.body.hands_parting import EASE_ARGUMENT, GAP_COLUMNS, gaps, pushes
 from motor.body.volumes import Capsule
 from motor.kernel_types import READ1, READ2, WRITE2
 
@@ -49,22 +52,6 @@ _HAND_REACH_SLACK = 0.02
 #: How far behind the torso's axis, in its half depths, lies the point from which
 #: :func:`kept_out_of_torso` pushes wrists out along rays.
 RAY_DEPTH = 3.0
-#: Depth (m) of the band below the palm thickness into which hands asked to come nearer
-#: are eased (:func:`separate_hands`): they overlap at most that much, while a contact
-#: placed at the palm thickness (:mod:`motor.program.fragment`) stays exactly as placed.
-HAND_BAND = 0.002
-#: Fractions of a hand's midline (from the wrist to the knuckles) over which hands whose
-#: nearest points both lie past them, and whose wrists lie as far apart, count as meeting
-#: fingers into fingers (:func:`_parting`).
-END_SHARE = (0.6, 0.8)
-#: Sine of the angle between the hands' long axes from which they count as crossing.
-CROSSING_SINE = 0.3
-#: Side the left hand takes where the hands cross: up, a little to the left and forward.
-_PREFERRED = np.array([0.1, 1.0, 0.01])
-#: Way the left hand takes from the right where the wrists are crossed over (the left one
-#: right of the right one): down, below the right hand, as the mirror image of a right-handed
-#: gesture whose arms cross is placed (:meth:`motor.program.fragment.Compiler.stacked`).
-_CROSSED_WAY = np.array([0.0, -1.0, 0.0])
 _TINY = 1e-12
 #: How far past a surface a pushed point lands at least (m): beyond rounding.
 _LANDED = 1e-9
@@ -124,7 +111,7 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     :data:`RAY_DEPTH` half depths behind the torso's axis (forward in front of the chest,
     forward and outward at its sides, where moving straight forward would jump as the
     front turns back); a point outside by less than :data:`SOFT_BAND` along that ray is
-    eased out with a C² curve (:func:`_eased`: a path meeting the surface bends instead
+    eased out with a C² curve (module docstring: a path meeting the surface bends instead
     of stopping dead); beyond the torso's top and bottom the push fades out over
     :data:`EDGE_BAND`. Points farther away are unchanged; no moved point is left inside."""
     torso = avatar.torso
@@ -141,7 +128,7 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
 #: The columns :func:`_torso_rays` keeps per point: its coordinates in units of the grown
 #: ellipse (from the ray's origin), where the ray leaves it, the ray's length (m), how far
 #: out the point lies (at most :data:`SOFT_BAND`), the edges' fade and the argument of
-#: :func:`_eased`'s exponential.
+#: easing's exponential (module docstring).
 _RAY_COLUMNS = 7
 _EASE_ARGUMENT = 6
 
@@ -160,7 +147,8 @@ def _minimum(a, b):  # noqa: ANN001, ANN202
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def _faded(beyond):  # noqa: ANN001, ANN202
-    """:func:`_fade` of one number, the same operations."""
+    """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly (smoothstep) to 0 at
+    :data:`EDGE_BAND`."""
     u = _minimum(_maximum(beyond / EDGE_BAND, 0.0), 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
@@ -280,20 +268,6 @@ def inside_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGI
     return (np.abs(dx) < 1.0) & (points[:, 2] < front) & (points[:, 1] > torso.bottom) & (points[:, 1] < torso.top)
 
 
-def _eased(gap: np.ndarray, band: float) -> np.ndarray:
-    """Distances (m) past a limit kept positive, smoothly: unchanged from ``band`` on,
-    below it ``band (1 + tanh(gap / band - 1))`` — equal in value, slope and curvature at
-    ``band`` (C²), rising monotonically from 0 (however deep the point was) to ``band``."""
-    rise = np.exp(2.0 * (np.minimum(gap, band) / band - 1.0))  # 1 + tanh(x) = 2 e^2x / (1 + e^2x), > 0
-    return np.where(gap >= band, gap, 2.0 * band * rise / (1.0 + rise))
-
-
-def _fade(beyond: np.ndarray) -> np.ndarray:
-    """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly to 0 at :data:`EDGE_BAND`."""
-    u = np.minimum(np.maximum(beyond / EDGE_BAND, 0.0), 1.0)
-    return 1.0 - u * u * (3.0 - 2.0 * u)
-
-
 def hand_segments(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """End points ``(n, 3)`` of a hand's capsule for wrist positions and global hand
     rotations ``(n, 4)``."""
@@ -323,9 +297,9 @@ def hand_separation(
     ``(n, 4)`` would come closer than the palm thickness (the distance of the hands'
     midlines when palm meets palm): half the deficit each, along the line between the
     hands' nearest points. Where the hands cross or coincide that line is tilted toward
-    :func:`_parting`, which it becomes where they meet. Hands at least the thickness
+    :func:`motor.body.hands_parting._parting`, which it becomes where they meet. Hands at least the thickness
     apart are not moved (a contact placed at the thickness stays as placed); nearer ones
-    are eased apart in C² (:func:`_eased`, shifted) into :data:`HAND_BAND` below it, so
+    are eased apart in C² (module docstring, shifted) into :data:`motor.body.hands_parting.HAND_BAND` below it, so
     hands asked through each other bend apart without a speed or acceleration step as
     their gap changes and overlap at most that much. With an ``allowance`` (m) the
     thickness is taken that much smaller (a second look at hands already eased apart as
@@ -336,46 +310,21 @@ def hand_separation(
     near = np.flatnonzero(hands_may_meet(avatar, left, right))
     if near.size == 0:
         return out
-    l0, l1 = hand_segments(avatar, "l", left[near], left_hands[near])
-    r0, r1 = hand_segments(avatar, "r", right[near], right_hands[near])
+    left, right = np.ascontiguousarray(left[near], dtype=float), np.ascontiguousarray(right[near], dtype=float)
+    left_hands, right_hands = np.ascontiguousarray(left_hands[near], dtype=float), np.ascontiguousarray(right_hands[near], dtype=float)
+    l0, l1 = hand_segments(avatar, "l", left, left_hands)
+    r0, r1 = hand_segments(avatar, "r", right, right_hands)
     s, t = closest_parameters(l0, l1, r0, r1)
-    between = (l0 + s[:, None] * (l1 - l0)) - (r0 + t[:, None] * (r1 - r0))
-    gap = quat.norm(between) - thickness
-    if not np.any(gap < 0.0):
+    table = np.empty((near.size, GAP_COLUMNS))
+    if not gaps(l0, l1, r0, r1, s, t, thickness, table):
         return out
-    eased = _eased(gap + HAND_BAND, HAND_BAND) - HAND_BAND
-    # where the hands (nearly) pass through each other, the line between them means little:
-    # tilt it toward the way they part
-    meeting = np.maximum(1.0 - quat.norm(between) / (0.5 * palm), 0.0)[:, None]
-    length = float(np.linalg.norm(avatar.collision.arm("r", "hand").b - avatar.collision.arm("r", "hand").a))
-    direction = between + 0.25 * palm * meeting * _parting(l1 - l0, r1 - r0, left[near] - right[near], s, t, length)
-    crossed = _crossed(avatar, left[near, 0] - right[near, 0], left_hands[near], right_hands[near])
-    direction[:, 0] *= 1.0 - crossed
-    # the side the hands are on already, else (where they are level) the left one below
-    level = np.maximum(1.0 - np.abs(direction[:, 1]) / (0.25 * palm), 0.0)
-    direction += (0.25 * palm * crossed * level)[:, None] * _CROSSED_WAY
-    direction = direction / np.maximum(quat.norm(direction), _TINY)[:, None]
-    # how far along that way the hands part to be ``eased`` beyond the thickness
-    along = np.einsum("ij,ij->i", between, direction)
-    wanted = eased + thickness
-    push = np.sqrt(np.maximum(along * along - quat.norm(between) ** 2 + wanted * wanted, 0.0)) - along
-    out[near] = (0.5 * push)[:, None] * direction
+    rise = np.exp(table[:, EASE_ARGUMENT])
+    capsule = avatar.collision.arm("r", "hand")
+    constants = np.array([palm, thickness, float(np.linalg.norm(capsule.b - capsule.a)), *avatar.hand_frames["l"].palm_normal, *avatar.hand_frames["r"].palm_normal])
+    parted = np.empty((near.size, 3))
+    pushes(l0, l1, r0, r1, s, t, left, right, left_hands, right_hands, table, rise, constants, parted)
+    out[near] = parted
     return out
-
-
-def _crossed(avatar: Avatar, spread: np.ndarray, left_hands: np.ndarray, right_hands: np.ndarray) -> np.ndarray:
-    """How far (0 … 1) hands whose wrists lie ``spread`` apart along x (left less right,
-    m), turned by global rotations ``(n, 4)``, are crossed over: they then pass one over the
-    other, never through each other sideways (which would flip the way they part as they
-    pass). Wholly so where the left wrist lies right of the right one; hands whose palms
-    face each other across x only once they are a palm thickness past each other (at one
-    point they meet side by side, palm to palm), other hands already half where their
-    wrists are level."""
-    palm = avatar.collision.palm_thickness
-    normals = (quat.rotate(hands, avatar.hand_frames[side].palm_normal) for side, hands in (("l", left_hands), ("r", right_hands)))
-    facing = 0.5 * sum(np.abs(normal[:, 0]) for normal in normals)
-    u = np.clip((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0, 1.0)
-    return 1.0 - u * u * (3.0 - 2.0 * u)
 
 
 def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.ndarray:
@@ -384,33 +333,6 @@ def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.nd
     reach = max(float(np.linalg.norm(avatar.collision.arm(side, "hand").b - avatar.collision.arm(side, "hand").a)) for side in "lr")
     return quat.norm(left - right) < 2.0 * reach + avatar.collision.palm_thickness
 
-
-def _parting(left: np.ndarray, right: np.ndarray, apart: np.ndarray, s: np.ndarray, t: np.ndarray, length: float) -> np.ndarray:
-    """The way the left hand leaves the right where they touch, for hands with long axes
-    ``left``, ``right`` (n, 3), wrists ``apart`` (left less right, (n, 3)), nearest
-    points at the fractions ``s``, ``t`` of their midlines and midlines ``length`` (m)
-    long: where the fingers of hands whose wrists are most of a hand apart run into each
-    other, they are drawn apart along the line between the wrists (mirrored hands stay
-    mirrored); where they cross otherwise (one hand over the other, wrists near), across
-    both hands (perpendicular to their long axes) — the side toward the avatar's top and
-    left — and toward the avatar's left where they lie side by side (palm against palm);
-    blended between."""
-    across = quat.cross(left, right)
-    sine = quat.norm(across) / np.maximum(quat.norm(left) * quat.norm(right), _TINY)
-    across = across * np.where(across @ _PREFERRED >= 0.0, 1.0, -1.0)[:, None]
-    across = across / np.maximum(quat.norm(across), _TINY)[:, None]
-    weight = np.minimum(np.maximum(sine / CROSSING_SINE, 0.0), 1.0)[:, None]
-    parting = weight * across + (1.0 - weight) * np.array([1.0, 0.0, 0.0])
-    spread = quat.norm(apart)
-    drawn = (_smooth_ramp(np.minimum(s, t), END_SHARE) * _smooth_ramp(spread / length, END_SHARE))[:, None]
-    parting = drawn * apart / np.maximum(spread, _TINY)[:, None] + (1.0 - drawn) * parting
-    return parting / np.maximum(quat.norm(parting), _TINY)[:, None]
-
-
-def _smooth_ramp(value: np.ndarray, edges: tuple[float, float]) -> np.ndarray:
-    """0 below ``edges[0]``, 1 above ``edges[1]``, smoothstep between."""
-    u = np.minimum(np.maximum((value - edges[0]) / (edges[1] - edges[0]), 0.0), 1.0)
-    return u * u * (3.0 - 2.0 * u)
 
 
 def load_kernels() -> None:

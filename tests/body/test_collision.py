@@ -13,7 +13,6 @@ from motor import quaternion as quat
 from motor.body.avatar import load_avatar
 from motor.body.conventions import AVATAR_DIR, AvatarError
 from motor.body.collision import (
-    HAND_BAND,
     SOFT_BAND,
     TORSO_MARGIN,
     hand_segments,
@@ -24,6 +23,7 @@ from motor.body.collision import (
     separate_hands,
 )
 from motor.body.distance import capsule_distance, segment_distance
+from motor.body.hands_parting import HAND_BAND
 from motor.body.volumes import BODY_NAMES, Capsule, Ellipsoid, EllipticCylinder, derived_volumes, required_volumes
 
 RNG = np.random.default_rng(11)
