@@ -18,6 +18,7 @@ weight can pay for); near a half turn the fingers decide.
 from __future__ import annotations
 
 import functools
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -36,8 +37,21 @@ def turn_way(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray, f
     ``after``) of the turn of the hand on ``side`` between two global rotations ``(4,)``,
     along the arc of least cost (module docstring). At fraction 1 the rotation is
     ``after`` up to sign."""
-    axis, turn = _arc(avatar, side, before, after)
-    return _along_arc(before, axis, turn, np.asarray(fractions, dtype=float))
+    return turn_ways(avatar, side, [before], [after], [fractions])
+
+
+def turn_ways(avatar: Avatar, side: str, befores: Sequence[np.ndarray], afters: Sequence[np.ndarray], fractions: Sequence[np.ndarray]) -> np.ndarray:
+    """:func:`turn_way` of many turns, their rotations one after another ``(Σk, 4)``: each
+    arc found (and remembered) on its own, the rotations along all of them in one
+    vectorized pass — the very numbers of turning one at a time (a sequence of signs turns
+    its hands in every transition)."""
+    counts = [len(part) for part in fractions]
+    if not counts:
+        return np.empty((0, 4))
+    arcs = [_arc(avatar, side, before, after) for before, after in zip(befores, afters)]
+    axes = np.repeat(np.array([axis for axis, _ in arcs]), counts, axis=0)
+    angles = np.repeat(np.array([turn for _, turn in arcs]), counts) * np.concatenate([np.asarray(part, dtype=float) for part in fractions])
+    return quat.multiply(quat.from_axis_angle(axes, angles), np.repeat(np.asarray(befores, dtype=float).reshape(-1, 4), counts, axis=0))
 
 
 def turn_vector(avatar: Avatar, side: str, before: np.ndarray, after: np.ndarray) -> np.ndarray:

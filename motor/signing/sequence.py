@@ -30,7 +30,7 @@ from functools import cache
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.hand_turn import takes_long_way, turn_way
+from motor.arm.hand_turn import takes_long_way, turn_ways
 from motor.body.avatar import Avatar
 from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.body.collision import joint_placement, posed_capsule, to_rest
@@ -123,15 +123,16 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         [(start, ready, manner, leg[arm]) for (start, ready, _), manner, leg in zip(spans, manners, paths) for arm in ARMS],
         [sign.get((arm, "wrist_position"), ()) for sign in [*moves, {}] for arm in ARMS],
     ))  # fmt: skip
+    traced = [{arm: next(chains) for arm in ARMS} for _ in legs]
+    turns = _hand_turns(avatar, legs, ways, traced)
     timings: list[SignTiming] = []
     warnings: list[str] = []
-    for plan, (here, targets), way, (start, ready, end), manner, sign in zip(plans, legs, ways, spans, manners, moves):
+    for plan, (_, targets), way, chain, turn, (start, ready, end), manner, sign in zip(plans, legs, ways, traced, turns, spans, manners, moves):
         pegs = TimePegs(start, ready, ready, ready + 0.5 * plan.duration, end, end, end)
-        traced = {arm: next(chains) for arm in ARMS}
         lmps = [
             SignChannelLMP(
                 (arm, channel), pegs, targets[arm].channel(channel), sign[(arm, channel)], manner,
-                *_transition_keys(avatar, arm, channel, here[arm], targets[arm], way[arm], traced[arm]),
+                *_transition_keys(channel, way[arm], chain[arm], turn[arm]),
             )
             for arm in ARMS for channel in CHANNELS
         ]  # fmt: skip
@@ -141,12 +142,10 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
         warnings.extend(plan.warnings)
         warnings.extend(nonmanual.warnings)
     retract = TimePegs.movement(clock, clock + back)
-    traced = {arm: next(chains) for arm in ARMS}
-    last = legs[-1][0]
     control.activate(SignProgram("rest", tuple(
         SignChannelLMP(
             (arm, channel), retract, rest[arm].channel(channel), (), "lax",
-            *_transition_keys(avatar, arm, channel, last[arm], rest[arm], ways[-1][arm], traced[arm]),
+            *_transition_keys(channel, ways[-1][arm], traced[-1][arm], turns[-1][arm]),
         )
         for arm in ARMS for channel in CHANNELS
     )))  # fmt: skip
@@ -224,10 +223,9 @@ def _transition_ways(
         leg = np.repeat(np.arange(len(legs)), counts)
         points = starts[leg] + fractions[:, None] * steps[leg]
         # the hand's turn between the leg's two rotations (the way _transition_keys turns it)
-        turns = np.concatenate([
-            turn_way(avatar, AVATAR_SIDE[arm], before[arm].rotation, after[arm].rotation, _even_fractions(int(count)))
-            for (before, after), count in zip(legs, counts)
-        ])  # fmt: skip
+        turns = turn_ways(
+            avatar, AVATAR_SIDE[arm], [before[arm].rotation for before, _ in legs], [after[arm].rotation for _, after in legs], [_even_fractions(int(count)) for count in counts]
+        )
         split = np.cumsum(counts)[:-1]
         cleared, _ = clear_paths(avatar, arm, np.split(points, split), np.split(turns, split), keep_ends=True, across=False)
         for way, path in zip(ways, cleared):
@@ -236,28 +234,50 @@ def _transition_ways(
 
 
 def _transition_keys(
-    avatar: Avatar, arm: str, channel: str, before: HandPose, after: HandPose, way: np.ndarray, traced: TracedChain
+    channel: str, way: np.ndarray, traced: TracedChain, turn: tuple[np.ndarray | None, np.ndarray | None]
 ) -> tuple[np.ndarray | None, TracedChain | None, np.ndarray | None]:
     """The ``via``, ``traced`` and ``via_fractions`` of one channel's transition: the wrist
-    passes its way points (along its traced chain); the hand turns with it, through the
-    turns its way was kept clear of the torso with (:func:`_transition_ways`: the hand's
-    turn between the two postures, :func:`motor.arm.hand_turn.turn_way`, at the way
-    points' even fractions), each reached when the wrist reaches its way point
-    (:func:`_way_fractions`); a way whose wrist stops on the way (a reversal) or whose
-    points the trace merged, and the hand shape, change evenly — a hand turning the long
-    way round then through :data:`LONG_WAY_KEYS` keys, as a slerp between the two ends
-    would take the short way."""
+    passes its way points (along its traced chain), the hand turns through ``turn``
+    (:func:`_hand_turns`), the hand shape changes evenly."""
     if channel == "wrist_position":
         return way, traced, None
-    if channel != "hand_rotation":
-        return None, None, None
-    side = AVATAR_SIDE[arm]
-    fractions = None if way.shape[0] == 0 else _way_fractions(traced, way.shape[0])
-    if fractions is None:
-        if not takes_long_way(avatar, side, before.rotation, after.rotation):
-            return None, None, None
-        return turn_way(avatar, side, before.rotation, after.rotation, _even_fractions(LONG_WAY_KEYS + 2)[1:-1]), None, None
-    return turn_way(avatar, side, before.rotation, after.rotation, _even_fractions(way.shape[0] + 2)[1:-1]), None, fractions
+    if channel == "hand_rotation":
+        return turn[0], None, turn[1]
+    return None, None, None
+
+
+def _hand_turns(
+    avatar: Avatar, legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]], ways: Sequence[dict[str, np.ndarray]], traced: Sequence[dict[str, TracedChain]]
+) -> list[dict[str, tuple[np.ndarray | None, np.ndarray | None]]]:
+    """Per leg and arm, the hand rotations the hand turns through in the transition and
+    the fractions of the way at which it reaches them (None, None: it turns as a slerp
+    between the two ends). The hand turns through the turns its way was kept clear of
+    the torso with (:func:`_transition_ways`: the hand's turn between the two postures,
+    :func:`motor.arm.hand_turn.turn_way`, at the way points' even fractions), each reached
+    when the wrist reaches its way point (:func:`_way_fractions`); a way whose wrist stops
+    on the way (a reversal) or whose points the trace merged changes evenly — a hand
+    turning the long way round then through :data:`LONG_WAY_KEYS` keys, as a slerp
+    between the two ends would take the short way. The turns of all legs are computed
+    together, per arm (:func:`motor.arm.hand_turn.turn_ways`)."""
+    turns: list[dict[str, tuple[np.ndarray | None, np.ndarray | None]]] = [{} for _ in legs]
+    for arm in ARMS:
+        side = AVATAR_SIDE[arm]
+        asked = []  # (leg, the turn's fractions, the way's fractions)
+        for index, ((before, after), way, chain) in enumerate(zip(legs, ways, traced)):
+            points = way[arm].shape[0]
+            fractions = None if points == 0 else _way_fractions(chain[arm], points)
+            if fractions is not None:
+                asked.append((index, _even_fractions(points + 2)[1:-1], fractions))
+            elif takes_long_way(avatar, side, before[arm].rotation, after[arm].rotation):
+                asked.append((index, _even_fractions(LONG_WAY_KEYS + 2)[1:-1], None))
+            else:
+                turns[index][arm] = (None, None)
+        rows = turn_ways(
+            avatar, side, [legs[index][0][arm].rotation for index, _, _ in asked], [legs[index][1][arm].rotation for index, _, _ in asked], [part for _, part, _ in asked]
+        )
+        for (index, _, fractions), turn in zip(asked, np.split(rows, np.cumsum([len(part) for _, part, _ in asked])[:-1])):
+            turns[index][arm] = (turn, fractions)
+    return turns
 
 
 def _way_fractions(traced: TracedChain, count: int) -> np.ndarray | None:
