@@ -35,20 +35,19 @@ then the wrist offsets of all moves, then every move's wrist path and every wris
 of the torso in one pass (:func:`motor.signing.layout.placed`), then the reach of every distinct wrist position
 of the collection (:func:`motor.signing.reach.within_reach_all`), then the timing lengths
 of all wrist moves for the retiming (:func:`motor.signing.retiming.timing_lengths`); the
-garbage collector waits meanwhile. The plans are those of planning each sign alone, bit
+garbage collector waits meanwhile (:mod:`motor.signing.collector`). The plans are those of planning each sign alone, bit
 for bit (``tests/signing_speed``, ``tests/perf_equivalence/test_planning_fast_paths.py``).
 """
 
 from __future__ import annotations
 
-import gc
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from functools import partial
 from typing import TypeVar
 
 from motor.body.avatar import Avatar
+from motor.signing.collector import collector_paused
 from motor.signing.hand_geometry import GeometryPending, HandGeometry
 from motor.signing.layout import Layout, placed
 from motor.signing.orientations import written_orientations
@@ -79,30 +78,12 @@ def plan_signs(avatar: Avatar, signs: Sequence[Sign], memoize: bool = True) -> l
     (:class:`motor.signing.hand_geometry.HandGeometry`; ``memoize=False`` computes it
     afresh every time, the plain path the tests compare with), and the reach of every
     wrist position of all the signs is checked in one vectorized IK call per arm."""
-    with _collector_paused():
+    with collector_paused():
         geometry = HandGeometry(avatar, memoize)
         compiled = _compile_all(geometry, signs)
         geometry.prefetch_site_offsets([r for c in compiled if isinstance(c, SignCompiler) for r in c.palm_offset_requests()])
         drafts = _plan_all(avatar, compiled) if memoize else [c if isinstance(c, SignPlanningError) else _attempt(c.sign, c.plan) for c in compiled]
         return retimed_all(within_reach_all(avatar, drafts), batched=memoize)
-
-
-@contextmanager
-def _collector_paused() -> Iterator[None]:
-    """Python's cyclic garbage collector paused for the duration (and resumed only if it
-    was running): planning a collection allocates hundreds of thousands of small objects
-    and keeps most of them, so the collector's passes over the whole heap took about a
-    tenth of the planning time, while planning itself leaves almost no reference cycles
-    (150 objects for both corpora). The price: cyclic garbage made *before* planning (a
-    parsed corpus leaves ~42,000 objects) waits until the collector resumes — 24 MB more
-    at the peak when both corpora are planned right after parsing them."""
-    running = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if running:
-            gc.enable()
 
 
 def without_initial_hold(plan: SignPlan) -> SignPlan:

@@ -40,6 +40,7 @@ from motor.control import MotorControl
 from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
+from motor.signing.collector import collector_paused
 from motor.signing.lmp import PATH_DENSITY, SignChannelLMP, TracedChain
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.path_batch import stopping_lengths, trace_chains
@@ -100,12 +101,19 @@ class SignProgram:
 
 
 def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float = 25.0) -> SignedMotion:
-    """Signs (or their plans) one after another as one motion at ``fps`` frames/s.
+    """Signs (or their plans) one after another as one motion at ``fps`` frames/s; the
+    garbage collector waits meanwhile (:mod:`motor.signing.collector`).
 
     Raises :class:`motor.signing.planning.SignPlanningError` for a sign that cannot be
     planned (plan signs first with :func:`plan_sign` to skip such signs one by one).
     """
     plans = [item if isinstance(item, SignPlan) else plan_sign(avatar, item) for item in signs]
+    with collector_paused():
+        return _realized(avatar, plans, fps)
+
+
+def _realized(avatar: Avatar, plans: Sequence[SignPlan], fps: float) -> SignedMotion:
+    """:func:`realize_signs` of planned signs."""
     control = MotorControl(avatar, fps)
     rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
     legs = _legs(plans, rest)

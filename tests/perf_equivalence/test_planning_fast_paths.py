@@ -20,11 +20,13 @@ import pytest
 from motor.body.avatar import load_avatar
 from motor.body.conventions import ARMS
 from motor.signing import path_shapes, planning
+from motor.signing.collector import collector_paused
 from motor.signing.lmp import REVERSAL_ANGLE, stopping_length
 from motor.signing.path_batch import stopping_length_of
 from motor.signing.plan import SignPlan
 from motor.signing.reach import path_shift, path_shifts
 from motor.signing.retiming import retimed_all, timing_length, timing_lengths
+from motor.signing.sequence import realize_signs
 from motor.signing.spreading import _spread_chains, spread_along_chains
 from motor.trajectory.biocontrol import MANNERS, shortest_duration, shortest_durations
 from mura.hamnosys import hamnosys_string, parse_hamnosys
@@ -193,14 +195,32 @@ def test_one_path_stopping_length_of_a_turning_path_equals_the_plain_one(turn):
 
 
 @pytest.mark.parametrize("running", [True, False])
-def test_planning_leaves_the_garbage_collector_as_it_found_it(running):
-    """The collector is paused while planning (a fast path) and resumed only if it ran."""
+@pytest.mark.parametrize("work", ["plan", "realize"])
+def test_planning_and_realizing_leave_the_garbage_collector_as_they_found_it(running, work):
+    """The collector is paused while signs are planned or realized (a fast path) and
+    resumed only if it ran."""
     sign = parse_hamnosys(hamnosys_string(["hamflathand", "hamextfingero", "hampalmd", "hamchest", "hammoveu"]), gloss="move up")
     was = gc.isenabled()
     try:
         gc.enable() if running else gc.disable()
-        (plan,) = planning.plan_signs(load_avatar("max"), [sign])
-        assert isinstance(plan, SignPlan) and gc.isenabled() == running
+        if work == "plan":
+            (plan,) = planning.plan_signs(load_avatar("max"), [sign])
+            assert isinstance(plan, SignPlan)
+        else:
+            assert realize_signs(load_avatar("max"), [sign]).motion.frame_count > 0
+        assert gc.isenabled() == running
+    finally:
+        gc.enable() if was else gc.disable()
+
+
+def test_the_collector_waits_within_the_pause_and_resumes_after_an_error():
+    was = gc.isenabled()
+    try:
+        gc.enable()
+        with pytest.raises(RuntimeError), collector_paused():
+            assert not gc.isenabled()
+            raise RuntimeError("planning failed")
+        assert gc.isenabled()
     finally:
         gc.enable() if was else gc.disable()
 
