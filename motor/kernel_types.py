@@ -1,9 +1,13 @@
-"""The array types compiled kernels state in their signatures, stated once.
+"""The array types compiled kernels state in their signatures, and numpy's rules for the
+least and greatest of two numbers they follow, stated once.
 
 Every loop compiled with numba (:mod:`motor.compiled` loads them) declares the one
 signature it takes, so that a process loads it from the cache at import and never
 compiles it in the middle of an utterance. Its inputs are read-only C-contiguous arrays
-(what a broadcast or a frozen table is), its outputs writable C-contiguous ones.
+(what a broadcast or a frozen table is), its outputs writable C-contiguous ones. A loop
+that replaces numpy's ``np.maximum`` or ``np.minimum`` (or ``np.clip``) of an element
+uses :func:`maximum` and :func:`minimum`: a NaN in either number wins, as in numpy
+(Python's ``max`` and ``min`` keep the first number instead).
 """
 
 from __future__ import annotations
@@ -18,3 +22,15 @@ READ_FLAGS1 = numba.types.Array(numba.boolean, 1, "C", readonly=True)
 #: Writable C-contiguous float64 arrays of one, two and three dimensions, and int64 rows.
 WRITE1, WRITE2, WRITE3 = numba.float64[::1], numba.float64[:, ::1], numba.float64[:, :, ::1]
 WRITE_INTS1 = numba.int64[::1]
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def maximum(a, b):  # noqa: ANN001, ANN201
+    """``np.maximum`` of two numbers: a NaN in either wins, a tie gives the first."""
+    return a if a >= b or a != a else b
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def minimum(a, b):  # noqa: ANN001, ANN201
+    """``np.minimum`` of two numbers: a NaN in either wins, a tie gives the first."""
+    return a if a <= b or a != a else b

@@ -34,7 +34,7 @@ from motor.body.avatar import Avatar
 from motor.body.distance import closest_parameters
 from motor.body.hands_parting import EASE_ARGUMENT, GAP_COLUMNS, gaps, pushes
 from motor.body.volumes import Capsule
-from motor.kernel_types import READ1, READ2, WRITE2
+from motor.kernel_types import READ1, READ2, WRITE2, maximum, minimum
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
@@ -134,22 +134,10 @@ _EASE_ARGUMENT = 6
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _maximum(a, b):  # noqa: ANN001, ANN202
-    """``np.maximum`` of two numbers: a NaN in either wins, a tie gives the first."""
-    return a if a >= b or a != a else b
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _minimum(a, b):  # noqa: ANN001, ANN202
-    """``np.minimum`` of two numbers: a NaN in either wins, a tie gives the first."""
-    return a if a <= b or a != a else b
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
 def _faded(beyond):  # noqa: ANN001, ANN202
     """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly (smoothstep) to 0 at
     :data:`EDGE_BAND`."""
-    u = _minimum(_maximum(beyond / EDGE_BAND, 0.0), 1.0)
+    u = minimum(maximum(beyond / EDGE_BAND, 0.0), 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
 
@@ -165,14 +153,14 @@ def _torso_rays(points, shape, rays):  # noqa: ANN001, ANN202
         square = u * u + w * w
         ahead = RAY_DEPTH * w
         disc = ahead * ahead - square * (RAY_DEPTH**2 - 1.0)
-        exit_ = (ahead + math.sqrt(_maximum(disc, 0.0))) / _maximum(square, _TINY)
+        exit_ = (ahead + math.sqrt(maximum(disc, 0.0))) / maximum(square, _TINY)
         across, deep = u * a, w * b
         length = math.sqrt(across * across + deep * deep)
         gap = (1.0 - exit_) * length if disc > 0.0 and w > 0.0 else math.inf
-        near = _minimum(gap, SOFT_BAND)
+        near = minimum(gap, SOFT_BAND)
         rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4] = u, w, exit_, length, near
         rays[i, 5] = _faded(bottom - points[i, 1]) * _faded(points[i, 1] - top)
-        rays[i, _EASE_ARGUMENT] = 2.0 * (_minimum(near, SOFT_BAND) / SOFT_BAND - 1.0)
+        rays[i, _EASE_ARGUMENT] = 2.0 * (minimum(near, SOFT_BAND) / SOFT_BAND - 1.0)
 
 
 @numba.njit([numba.boolean(READ1, READ2, READ1, WRITE2)], cache=True, error_model="numpy")
@@ -183,14 +171,14 @@ def _pushed_out(shape, rays, rise, out):  # noqa: ANN001, ANN202
     moved = False
     for i in range(rays.shape[0]):
         u, w, exit_, length, near, fade = rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5]
-        eased = _maximum(near if near >= SOFT_BAND else 2.0 * SOFT_BAND * rise[i] / (1.0 + rise[i]), _LANDED)
+        eased = maximum(near if near >= SOFT_BAND else 2.0 * SOFT_BAND * rise[i] / (1.0 + rise[i]), _LANDED)
         if not (eased > near and fade > 0.0):
             continue
         moved = True
         # measured from the exit point, so that a point pushed whole lands past the surface
         beyond = fade * eased + (1.0 - fade) * near
-        out[i, 0] = cx + (u * exit_ * a) + beyond * u * a / _maximum(length, _TINY)
-        out[i, 2] = cz + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / _maximum(length, _TINY)
+        out[i, 0] = cx + (u * exit_ * a) + beyond * u * a / maximum(length, _TINY)
+        out[i, 2] = cz + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / maximum(length, _TINY)
     return moved
 
 

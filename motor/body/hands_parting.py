@@ -21,7 +21,7 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.kernel_types import READ1, READ2, WRITE2
+from motor.kernel_types import READ1, READ2, WRITE2, maximum, minimum
 
 #: Depth (m) of the band below the palm thickness into which hands asked to come nearer
 #: are eased (:func:`motor.body.collision.separate_hands`): they overlap at most that
@@ -52,18 +52,6 @@ CONSTANTS = ("palm", "thickness", "length", "left_normal_x", "left_normal_y", "l
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _maximum(a, b):  # noqa: ANN001, ANN202
-    """``np.maximum`` of two numbers: a NaN in either wins, a tie gives the first."""
-    return a if a >= b or a != a else b
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _minimum(a, b):  # noqa: ANN001, ANN202
-    """``np.minimum`` of two numbers: a NaN in either wins, a tie gives the first."""
-    return a if a <= b or a != a else b
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
 def _norm(x, y, z):  # noqa: ANN001, ANN202
     """:func:`motor.quaternion.norm` of one vector: its squares summed first to last."""
     return math.sqrt((x * x + y * y) + z * z)
@@ -83,7 +71,7 @@ def gaps(l0, l1, r0, r1, s, t, thickness, table):  # noqa: ANN001, ANN201
         gap = apart - thickness
         shifted = gap + HAND_BAND
         table[i, 3], table[i, 4], table[i, 5] = apart, gap, shifted
-        table[i, EASE_ARGUMENT] = 2.0 * (_minimum(shifted, HAND_BAND) / HAND_BAND - 1.0)
+        table[i, EASE_ARGUMENT] = 2.0 * (minimum(shifted, HAND_BAND) / HAND_BAND - 1.0)
         nearer |= gap < 0.0
     return nearer
 
@@ -91,7 +79,7 @@ def gaps(l0, l1, r0, r1, s, t, thickness, table):  # noqa: ANN001, ANN201
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def _ramp(value, low, high):  # noqa: ANN001, ANN202
     """0 below ``low``, 1 above ``high``, smoothstep between."""
-    u = _minimum(_maximum((value - low) / (high - low), 0.0), 1.0)
+    u = minimum(maximum((value - low) / (high - low), 0.0), 1.0)
     return u * u * (3.0 - 2.0 * u)
 
 
@@ -107,20 +95,20 @@ def _parting(left, right, apart, s, t, length):  # noqa: ANN001, ANN202
     the avatar's top and left — and toward the avatar's left where they lie side by side
     (palm against palm); blended between."""
     ax, ay, az = quat.crossed(left[0], left[1], left[2], right[0], right[1], right[2])
-    sine = _norm(ax, ay, az) / _maximum(_norm(left[0], left[1], left[2]) * _norm(right[0], right[1], right[2]), _TINY)
+    sine = _norm(ax, ay, az) / maximum(_norm(left[0], left[1], left[2]) * _norm(right[0], right[1], right[2]), _TINY)
     side = 1.0 if (ax * _PREFERRED[0] + ay * _PREFERRED[1]) + az * _PREFERRED[2] >= 0.0 else -1.0
     ax, ay, az = ax * side, ay * side, az * side
-    size = _maximum(_norm(ax, ay, az), _TINY)
+    size = maximum(_norm(ax, ay, az), _TINY)
     ax, ay, az = ax / size, ay / size, az / size
-    weight = _minimum(_maximum(sine / CROSSING_SINE, 0.0), 1.0)
+    weight = minimum(maximum(sine / CROSSING_SINE, 0.0), 1.0)
     px, py, pz = weight * ax + (1.0 - weight) * 1.0, weight * ay + (1.0 - weight) * 0.0, weight * az + (1.0 - weight) * 0.0
     spread = _norm(apart[0], apart[1], apart[2])
-    drawn = _ramp(_minimum(s, t), END_SHARE[0], END_SHARE[1]) * _ramp(spread / length, END_SHARE[0], END_SHARE[1])
-    wide = _maximum(spread, _TINY)
+    drawn = _ramp(minimum(s, t), END_SHARE[0], END_SHARE[1]) * _ramp(spread / length, END_SHARE[0], END_SHARE[1])
+    wide = maximum(spread, _TINY)
     px = drawn * apart[0] / wide + (1.0 - drawn) * px
     py = drawn * apart[1] / wide + (1.0 - drawn) * py
     pz = drawn * apart[2] / wide + (1.0 - drawn) * pz
-    size = _maximum(_norm(px, py, pz), _TINY)
+    size = maximum(_norm(px, py, pz), _TINY)
     return px / size, py / size, pz / size
 
 
@@ -137,7 +125,7 @@ def _crossed(spread, left_hand, right_hand, constants):  # noqa: ANN001, ANN202
     left_x, _, _ = quat.rotated(left_hand[0], left_hand[1], left_hand[2], left_hand[3], constants[3], constants[4], constants[5])
     right_x, _, _ = quat.rotated(right_hand[0], right_hand[1], right_hand[2], right_hand[3], constants[6], constants[7], constants[8])
     facing = 0.5 * (abs(left_x) + abs(right_x))
-    u = _minimum(_maximum((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0), 1.0)
+    u = minimum(maximum((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0), 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
 
@@ -154,7 +142,7 @@ def pushes(l0, l1, r0, r1, s, t, left, right, left_hands, right_hands, table, ri
     for i in range(out.shape[0]):
         bx, by, bz, apart, shifted = table[i, 0], table[i, 1], table[i, 2], table[i, 3], table[i, 5]
         eased = (shifted if shifted >= HAND_BAND else 2.0 * HAND_BAND * rise[i] / (1.0 + rise[i])) - HAND_BAND
-        meeting = _maximum(1.0 - apart / (0.5 * palm), 0.0)
+        meeting = maximum(1.0 - apart / (0.5 * palm), 0.0)
         axis_l = (l1[i, 0] - l0[i, 0], l1[i, 1] - l0[i, 1], l1[i, 2] - l0[i, 2])
         axis_r = (r1[i, 0] - r0[i, 0], r1[i, 1] - r0[i, 1], r1[i, 2] - r0[i, 2])
         wrists = (left[i, 0] - right[i, 0], left[i, 1] - right[i, 1], left[i, 2] - right[i, 2])
@@ -164,14 +152,14 @@ def pushes(l0, l1, r0, r1, s, t, left, right, left_hands, right_hands, table, ri
         crossed = _crossed(wrists[0], left_hands[i], right_hands[i], constants)
         dx *= 1.0 - crossed
         # the side the hands are on already, else (where they are level) the left one below
-        level = _maximum(1.0 - abs(dy) / (0.25 * palm), 0.0)
+        level = maximum(1.0 - abs(dy) / (0.25 * palm), 0.0)
         way = 0.25 * palm * crossed * level
         dx, dy, dz = dx + way * _CROSSED_WAY[0], dy + way * _CROSSED_WAY[1], dz + way * _CROSSED_WAY[2]
-        size = _maximum(_norm(dx, dy, dz), _TINY)
+        size = maximum(_norm(dx, dy, dz), _TINY)
         dx, dy, dz = dx / size, dy / size, dz / size
         along = (bx * dx + bz * dz) + by * dy  # np.einsum's pairing of three products
         wanted = eased + thickness
-        push = math.sqrt(_maximum(along * along - apart * apart + wanted * wanted, 0.0)) - along
+        push = math.sqrt(maximum(along * along - apart * apart + wanted * wanted, 0.0)) - along
         half = 0.5 * push
         out[i, 0], out[i, 1], out[i, 2] = half * dx, half * dy, half * dz
 

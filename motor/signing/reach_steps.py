@@ -20,7 +20,7 @@ import numba
 import numpy as np
 
 from motor.arm.ik import ArmReach
-from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE2, WRITE_INTS1
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE2, WRITE_INTS1, maximum
 
 #: Where :func:`reach_step` reads its constants in the ``limits`` it is given.
 MARGIN, TOLERANCE, PENETRATION, STEP, INNER = range(5)
@@ -53,12 +53,6 @@ def reach_step(
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _maximum(a, b):  # noqa: ANN001, ANN202
-    """``np.maximum`` of two numbers: a NaN in either wins, a tie gives the first."""
-    return a if a >= b or a != a else b
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
 def _length(x, y, z):  # noqa: ANN001, ANN202
     """``np.linalg.norm`` of one row of three: its squares summed first to last."""
     return math.sqrt((x * x + y * y) + z * z)
@@ -71,7 +65,7 @@ def _probe_rows(fixed, open_, shoulder, margin, away, targets):  # noqa: ANN001,
     for j in range(n):
         i = open_[j]
         ax, ay, az = fixed[i, 0] - shoulder[0], fixed[i, 1] - shoulder[1], fixed[i, 2] - shoulder[2]
-        scale = _maximum(_length(ax, ay, az), 1e-9)
+        scale = maximum(_length(ax, ay, az), 1e-9)
         away[j, 0], away[j, 1], away[j, 2] = ax / scale, ay / scale, az / scale
         for c in range(3):
             targets[j, c] = fixed[i, c] + margin * away[j, c]
@@ -94,10 +88,10 @@ def _step_rows(fixed, open_, away, wrist, shortfall, penetration, shoulder, limi
         # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
         short = far > tolerance or near > tolerance
         too_far, too_near = short and outer, short and not outer
-        crossing = _maximum(penetration[j], penetration[n + j]) > deep and across
-        lacking = (1.0 if too_near else 0.0) * _maximum(_maximum(far, near), step)
+        crossing = maximum(penetration[j], penetration[n + j]) > deep and across
+        lacking = (1.0 if too_near else 0.0) * maximum(maximum(far, near), step)
         rx, ry, rz = away[j, 0] + ahead[0], away[j, 1] + ahead[1], away[j, 2] + ahead[2]
-        scale = _maximum(_length(rx, ry, rz), 1e-9)
+        scale = maximum(_length(rx, ry, rz), 1e-9)
         around = (rx / scale, ry / scale, rz / scale)
         back = 1.0 if crossing else 0.0
         for c in range(3):
