@@ -35,6 +35,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.interpolate import BSpline
@@ -45,6 +46,9 @@ from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs
 from motor.trajectory.biocontrol import MANNERS, profile
 from motor.trajectory.power_law import EXPONENT, clamped_curvature, path_spline
 from motor.trajectory.spline import HOLD_LENGTH, turning_angles
+
+if TYPE_CHECKING:
+    from motor.signing.joined_tracks import JoinedTracks
 
 #: Turning angle (radians) at which a wrist path reverses: the hand stops there. Sharper
 #: than the utterances' cusp (:data:`motor.trajectory.spline.CUSP_ANGLE`), because a
@@ -250,13 +254,16 @@ def path_fractions(values: np.ndarray, by_distance: bool) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class _Track:
+class SignTrack:
     """A realized channel: moves with their profiles, holds between, sampled at once.
 
     The moves' values are flattened into one array; each value's *key* is
     ``2 · move + fraction of the way`` (strictly increasing), so one ``searchsorted``
     finds every sample's segment in every move. ``manners`` are the moves' rows in
-    :func:`manner_tables`.
+    :func:`manner_tables`. A track activated with others of its channel
+    (:func:`motor.signing.track_batch.activate_in_turn`) is a part of their
+    :class:`motor.signing.joined_tracks.JoinedTracks`, ``batch``, the ``index``-th; its arrays
+    are views of the batch's, so that the batch samples it with its neighbours at once.
     """
 
     rotation: bool
@@ -269,14 +276,16 @@ class _Track:
     first: np.ndarray
     last: np.ndarray
     warnings: tuple[str, ...] = ()
+    batch: JoinedTracks | None = None
+    index: int = 0
 
     @classmethod
-    def traced(cls, initial: np.ndarray, chain: TracedChain) -> _Track:
+    def traced(cls, initial: np.ndarray, chain: TracedChain) -> SignTrack:
         """The wrist track of a chain traced ahead: what :meth:`of` makes of the same moves."""
         return cls.keyed(False, initial, chain.starts, chain.ends, chain.manners, chain.values, chain.fractions)
 
     @classmethod
-    def of(cls, rotation: bool, initial: np.ndarray, moves: list[Move], by_distance: bool) -> _Track:
+    def of(cls, rotation: bool, initial: np.ndarray, moves: list[Move], by_distance: bool) -> SignTrack:
         return cls.keyed(
             rotation, initial, np.array([m.start for m in moves]), np.array([m.end for m in moves]), [m.manner for m in moves],
             [m.values for m in moves], [path_fractions(m.values, by_distance) for m in moves],
@@ -286,7 +295,7 @@ class _Track:
     def keyed(
         cls, rotation: bool, initial: np.ndarray, starts: np.ndarray, ends: np.ndarray, manners: Sequence[str],
         values: Sequence[np.ndarray], fractions: Sequence[np.ndarray] | None,
-    ) -> _Track:  # fmt: skip
+    ) -> SignTrack:  # fmt: skip
         """The track of moves given by their times, manners, values and fractions of the way
         (None: even fractions)."""
         if fractions is None:
@@ -344,7 +353,7 @@ class _Carried:
     as a rotation vector onto a rotation channel. Position and velocity are continuous at
     the activation; the blend and its rate are zero from the sign's first posture on."""
 
-    track: _Track
+    track: SignTrack
     velocity: np.ndarray
     time: float
     window: float
@@ -368,7 +377,7 @@ class _Carried:
         return _state_of(self, time)
 
 
-def _state_of(track: _Track | _Carried, time: float) -> ChannelState:
+def _state_of(track: SignTrack | _Carried, time: float) -> ChannelState:
     """Value and velocity (angular velocity for rotations) of ``track`` looking back from ``time``."""
     v = track.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
     if track.rotation:
@@ -464,7 +473,7 @@ class SignChannelLMP:
                 raise ValueError(f"{self.channel}: moves overlap or start before ready at {move.start:.4f} s")
             previous = move.end
 
-    def activate(self, state: ChannelState) -> _Track | _Carried:
+    def activate(self, state: ChannelState) -> SignTrack | _Carried:
         """The track from ``state``; a channel still moving (a retraction the sign takes
         over) carries its velocity into the transition (:class:`_Carried`), so the hand
         does not stop dead in one frame."""
@@ -474,12 +483,12 @@ class SignChannelLMP:
             return track
         return _Carried(track, velocity, state.time, self.pegs.ready - state.time)
 
-    def realize(self, here: np.ndarray, time: float) -> _Track:
+    def realize(self, here: np.ndarray, time: float) -> SignTrack:
         """The track of an activation at ``time`` seconds with the channel at ``here``
         (only the state's value and time matter, not its velocity)."""
         rotation = self.channel[1] in ROTATION_CHANNELS
         if self.traced is not None and self.traced.fits(here, time):
-            return _Track.traced(here, self.traced)
+            return SignTrack.traced(here, self.traced)
         first = np.asarray(self.first, dtype=float)
         flip = bool(rotation and here @ first < 0.0)
         if flip:
@@ -500,8 +509,8 @@ class SignChannelLMP:
                 chain.append(move)
             previous = chain[-1].values[-1]
         if by_distance or self.via_fractions is None:
-            return _Track.of(rotation, here, chain, by_distance)
-        return _Track.keyed(
+            return SignTrack.of(rotation, here, chain, by_distance)
+        return SignTrack.keyed(
             rotation, here, np.array([m.start for m in chain]), np.array([m.end for m in chain]), [m.manner for m in chain],
             [m.values for m in chain], self._key_fractions(),
         )  # fmt: skip
@@ -526,7 +535,7 @@ class SignChannelLMP:
             values = [way]
             for move in self.moves:
                 values.append(quat.continuous(np.concatenate([values[-1][-1:], move.values]))[1:] if rotation else move.values)
-            templates[flip] = _Template(_Track.keyed(
+            templates[flip] = _Template(SignTrack.keyed(
                 rotation, first, np.array([self.pegs.start, *(m.start for m in self.moves)]), np.array([self.pegs.ready, *(m.end for m in self.moves)]),
                 [self.transition, *(m.manner for m in self.moves)], values, None if self.via_fractions is None else self._key_fractions(),
             ))  # fmt: skip
@@ -537,15 +546,15 @@ class SignChannelLMP:
 class _Template:
     """A keyframe channel's track with the place and time it starts left open."""
 
-    base: _Track
+    base: SignTrack
 
-    def track(self, here: np.ndarray, time: float) -> _Track:
+    def track(self, here: np.ndarray, time: float) -> SignTrack:
         values = self.base.values.copy()
         values[0] = here
         starts = self.base.starts.copy()
         starts[0] = time
         base = self.base
-        return _Track(base.rotation, here, starts, base.ends, base.manners, values, base.keys, base.first, base.last, base.warnings)
+        return SignTrack(base.rotation, here, starts, base.ends, base.manners, values, base.keys, base.first, base.last, base.warnings)
 
 
 def _layout(sizes: Sequence[int], fractions: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

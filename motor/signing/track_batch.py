@@ -1,14 +1,13 @@
 """Sign tracks many at once: sampled in one pass, activated one after another in
-vectorized passes.
+vectorized rounds.
 
 A sequence of signs puts thousands of :class:`motor.signing.lmp.SignChannelLMP` on each
-channel. Sampled and activated one by one, each costs a few dozen small numpy calls, and
-the calls' overhead is most of the time. :func:`sample_tracks` joins the tracks' arrays
-and finds every sample's move and value by pairs (track, time), so that each number is
-computed as the track's own ``sample`` computes it; :func:`activate_in_turn` makes the
-tracks :meth:`motor.program.lmp.ChannelTimeline.build` makes, guessing each activation's
-value and checking the guesses in vectorized passes. ``tests/perf_equivalence/test_path_batch.py``
-pins both to the one-by-one results.
+channel. Activated and sampled one by one, each costs a few dozen small numpy calls, and
+the calls' overhead is most of the time. :func:`activate_in_turn` makes the tracks
+:meth:`motor.program.lmp.ChannelTimeline.build` makes, as parts of one
+:class:`motor.signing.joined_tracks.JoinedTracks`; :func:`sample_tracks` samples a run of
+them through it. ``tests/perf_equivalence/test_path_batch.py`` and
+``tests/perf_equivalence/test_track_batch.py`` pin both to the one-by-one results.
 """
 
 from __future__ import annotations
@@ -17,8 +16,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from motor import quaternion as quat
-from motor.signing.lmp import NEGLIGIBLE, SignChannelLMP, _Track, manner_tables
+from motor.signing.joined_tracks import JoinedTracks
+from motor.signing.lmp import SignChannelLMP, SignTrack
+from motor.signing.prepared_tracks import prepare
 
 
 def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.ndarray) -> np.ndarray | None:
@@ -26,87 +26,99 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     into ``realizations``, non-decreasing), all in one pass: what each realization's
     ``sample`` gives for its times, when all are sign tracks of one kind; else None.
 
-    The tracks' arrays are joined; a move or value is found by the pair (track, time) or
-    (track, key) — complex numbers, which numpy orders lexicographically — so that every
-    number is computed as the track's own :meth:`_Track.sample` computes it."""
-    if not realizations or not all(type(r) is _Track for r in realizations):
+    A run of tracks activated together is sampled through their batch; others are joined first."""
+    if not realizations or not all(type(r) is SignTrack for r in realizations):
         return None
     rotation = realizations[0].rotation
     if any(r.rotation != rotation for r in realizations):
         return None
-    moves = np.array([r.starts.size for r in realizations])
-    sizes = np.array([r.values.shape[0] for r in realizations])
-    move_base = np.concatenate([[0], np.cumsum(moves)[:-1]])
-    value_base = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-    starts = np.concatenate([r.starts for r in realizations])
-    ends = np.concatenate([r.ends for r in realizations])
-    manners = np.concatenate([r.manners for r in realizations])
-    tables = manner_tables()
-    values = np.concatenate([r.values for r in realizations])
-    keys = np.concatenate([r.keys for r in realizations])
-    first = np.concatenate([r.first for r in realizations]) + np.repeat(value_base, moves)
-    last = np.concatenate([r.last for r in realizations]) + np.repeat(value_base, moves)
-    t = np.asarray(times, dtype=float)
-    tracks = owner.astype(float)
-    found = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), moves) + 1j * starts, tracks + 1j * t, side="right") - 1
-    local = found - move_base[owner]
-    before = local < 0
-    move = np.maximum(local, 0)
-    row = move_base[owner] + move
-    u = np.clip((t - starts[row]) / (ends[row] - starts[row]), 0.0, 1.0)
-    position = u * (tables.shape[1] - 1)
-    low = np.minimum(position.astype(int), tables.shape[1] - 2)
-    weight = position - low
-    s = (1.0 - weight) * tables[manners[row], low] + weight * tables[manners[row], low + 1]
-    wanted = 2.0 * move + s
-    index = np.searchsorted(np.repeat(np.arange(len(realizations), dtype=float), sizes) + 1j * keys, tracks + 1j * wanted, side="right") - 1
-    index = np.clip(index, first[row], last[row] - 1)
-    width = keys[index + 1] - keys[index]
-    fraction = np.clip((wanted - keys[index]) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0, 1.0)
-    if rotation:
-        out = quat.slerp(values[index], values[index + 1], fraction)
-    else:
-        out = values[index] + fraction[:, None] * (values[index + 1] - values[index])
-    if np.any(before):
-        out[before] = np.stack([realizations[i].initial for i in owner[before]])
-    return out
+    batch, base = realizations[0].batch, realizations[0].index
+    if batch is not None and all(r.batch is batch and r.index == base + k for k, r in enumerate(realizations)):
+        return batch.sample(owner + base, times)
+    return JoinedTracks.of(realizations).sample(owner, times)
 
 
-#: Rounds that correct the guessed activation values of :func:`activate_in_turn` before
-#: its pass in order.
-GUESS_ROUNDS = 1
+#: Rounds of guessed activation values checked at once before the LMPs whose guesses are
+#: still wrong are activated one after another.
+GUESS_ROUNDS = 3
 
 
-def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[_Track]:
+def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[SignTrack]:
     """The tracks of sign LMPs of one channel activated one after another, as
     :meth:`motor.program.lmp.ChannelTimeline.build` activates them: the first at ``time``
     from ``here``, each next at its start from the value the track before has then.
 
-    Each activation's value is first guessed: the value the previous LMP's track has at
-    its start when that track is made from a guess of its own value (:data:`GUESS_ROUNDS`
-    times, after which most guesses are exact), all tracks sampled at once (:func:`sample_tracks`). Then the LMPs
-    are taken in order: an activation whose guess is the value the track before gives
-    keeps its track; any other is made again from that value, and the value after it is
-    sampled anew. The result is the sequential one, with most of its work in vectorized
-    passes."""
-    starts = [lmp.pegs.start for lmp in lmps]
+    Each activation's value is guessed: at first where the LMP before ends, then what the
+    tracks made from the guesses give, all of them made and sampled at once
+    (:mod:`motor.signing.prepared_tracks`) — for a rotation, negated where a guess started
+    the track before in the wrong hemisphere — for :data:`GUESS_ROUNDS` rounds or until
+    every guess is the value the track before gives: then the tracks are the sequential
+    ones. From the first guess still wrong on, the LMPs are taken in order, each made again
+    from the value the track before gives. Most of the work is in vectorized passes."""
+    here = np.asarray(here, dtype=float)
+    prepared = prepare(lmps)
+    count = len(lmps)
+    starts = np.array([lmp.pegs.start for lmp in lmps], dtype=float)
+    times = starts.copy()
+    times[0] = time
     guesses = [here] + [_last_value(lmp) for lmp in lmps[:-1]]
-    tracks = [lmps[0].realize(here, time)] + [lmp.realize(guess, start) for lmp, guess, start in zip(lmps[1:], guesses[1:], starts[1:])]
-    for _ in range(GUESS_ROUNDS):
-        sampled = _values_at(tracks[:-1], starts[1:])
-        if sampled is None:
+    if prepared is None or any(guess.shape != here.shape for guess in guesses) or here.shape != prepared.firsts.shape[1:]:
+        return _in_order(lmps, here, time)
+    heres = np.stack(guesses)
+    for attempt in range(GUESS_ROUNDS):
+        batch, fits = prepared.activated(heres, times)
+        own = {int(i): lmps[i].realize(heres[i], float(times[i])) for i in np.flatnonzero(~fits)}
+        values = _next_values(batch, fits, own, starts)
+        wrong = np.flatnonzero(~(values == heres[1:]).all(axis=1)) + 1
+        if wrong.size == 0 or attempt == GUESS_ROUNDS - 1:
             break
-        for i in range(1, len(lmps)):
-            if not np.array_equal(sampled[i - 1], guesses[i]):
-                guesses[i] = sampled[i - 1]
-                tracks[i] = lmps[i].realize(guesses[i], starts[i])
-    sampled = _values_at(tracks[:-1], starts[1:])
+        if prepared.rotation:
+            values = _chosen(values, _next_values(*prepared.activated(-heres, times), dict.fromkeys(own), starts, values), heres)
+        heres = np.concatenate([heres[:1], values])
+    tracks: list[SignTrack | None] = [own.get(i) for i in range(count)]
     fresh = False  # the track before was made again after the values were sampled
-    for i in range(1, len(lmps)):
-        value = tracks[i - 1].sample(np.array([starts[i]]))[0] if fresh or sampled is None else sampled[i - 1]
-        fresh = not np.array_equal(value, guesses[i])
+    for i in range(int(wrong[0]) if wrong.size else count, count):
+        value = tracks[i - 1].sample(starts[i : i + 1])[0] if fresh else values[i - 1]
+        fresh = not np.array_equal(value, heres[i])
         if fresh:
-            tracks[i] = lmps[i].realize(value, starts[i])
+            tracks[i] = lmps[i].realize(value, float(starts[i]))
+    if all(track is None for track in tracks):
+        return batch.tracks()
+    parts = batch.tracks()
+    return JoinedTracks.of([part if track is None else track for part, track in zip(parts, tracks)]).tracks()
+
+
+def _next_values(batch: JoinedTracks, fits: np.ndarray, own: dict[int, SignTrack | None], starts: np.ndarray, otherwise: np.ndarray | None = None) -> np.ndarray:
+    """Each track's value at the next LMP's start: the batch's where it ``fits``, else the
+    LMP's own track's (``otherwise``'s row where it has none)."""
+    values = np.empty((starts.size - 1, batch.values.shape[1]))
+    rows = np.flatnonzero(fits[:-1])
+    values[rows] = batch.sample(rows, starts[rows + 1])
+    for i, track in own.items():
+        if i < starts.size - 1:
+            values[i] = otherwise[i] if track is None else track.sample(starts[i + 1 : i + 2])[0]
+    return values
+
+
+def _chosen(values: np.ndarray, negated: np.ndarray, heres: np.ndarray) -> np.ndarray:
+    """The next activation values of a rotation channel, whose values' signs chain from
+    each activation to the next: ``values`` ``(n - 1, 4)`` are the tracks' values at the
+    next starts made from the guesses ``heres`` ``(n, 4)``, ``negated`` from their
+    negations. Taken in order from the first LMP (whose activation value is given), each
+    value, nearer a guess or its negation, tells which of the LMP's values to take next."""
+    nearer = (np.einsum("ij,ij->i", values, heres[1:]) < 0.0).tolist()
+    negated_nearer = (np.einsum("ij,ij->i", negated, heres[1:]) < 0.0).tolist()
+    other = [False] * len(nearer)  # the LMP's activation value is nearer its guess's negation
+    for i in range(len(nearer) - 1):
+        other[i + 1] = negated_nearer[i] if other[i] else nearer[i]
+    return np.where(np.array(other)[:, None], negated, values)
+
+
+def _in_order(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[SignTrack]:
+    """The tracks made one after another, each from the value the track before has at its start."""
+    tracks = [lmps[0].realize(here, time)]
+    for lmp in lmps[1:]:
+        tracks.append(lmp.realize(tracks[-1].sample(np.array([lmp.pegs.start]))[0], lmp.pegs.start))
     return tracks
 
 
@@ -115,10 +127,3 @@ def _last_value(lmp: SignChannelLMP) -> np.ndarray:
     if lmp.traced is not None:
         return lmp.traced.values[-1][-1]
     return np.asarray(lmp.moves[-1].values[-1] if lmp.moves else lmp.first, dtype=float)
-
-
-def _values_at(tracks: Sequence[_Track], times: Sequence[float]) -> np.ndarray | None:
-    """Each track's value at its time, all at once (the values its own ``sample`` gives)."""
-    if not tracks:
-        return np.empty((0, 0))
-    return sample_tracks(tracks, np.arange(len(tracks)), np.asarray(times, dtype=float))

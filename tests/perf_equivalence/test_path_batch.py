@@ -18,7 +18,7 @@ from motor.body.conventions import ARMS
 from motor.control import _sample
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
-from motor.signing.lmp import Move, SignChannelLMP, _Track, law_fractions, smooth_pieces, stopping_length
+from motor.signing.lmp import Move, SignChannelLMP, SignTrack, law_fractions, smooth_pieces, stopping_length
 from motor.signing.law_time import pairwise_sum
 from motor.signing.path_batch import law_fractions_many, smooth_pieces_many, stopping_lengths, trace_chains
 from motor.signing.plan import HandPose
@@ -163,7 +163,7 @@ def test_keyframe_activation_equals_the_chain_of_moves(channel: str, seed: int, 
     for move in lmp.moves:
         values = continuous(np.concatenate([chain[-1].values[-1:], move.values]))[1:] if channel == "hand_rotation" else move.values
         chain.append(Move(move.start, move.end, move.manner, values))
-    expected = _Track.of(channel == "hand_rotation", here, chain, by_distance=False)
+    expected = SignTrack.of(channel == "hand_rotation", here, chain, by_distance=False)
     times = np.linspace(lmp.pegs.start - 0.1, lmp.pegs.end + 0.2, 301)
     np.testing.assert_array_equal(lmp.activate(state).sample(times), expected.sample(times))
 

@@ -1,0 +1,114 @@
+"""Sign tracks joined end to end, sampled in one pass.
+
+A sequence of signs puts thousands of :class:`motor.signing.lmp.SignTrack` on each channel;
+sampled one by one, each costs a few dozen small numpy calls, most of the time their
+overhead. :class:`JoinedTracks` holds the arrays of many tracks one after another and finds
+every sample's move and value by the pair (track, time) or (track, key) — complex numbers,
+which numpy orders lexicographically — so that each number is computed as the track's own
+:meth:`motor.signing.lmp.SignTrack.sample` computes it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from motor import quaternion as quat
+from motor.signing.lmp import NEGLIGIBLE, SignTrack, manner_tables
+
+
+@dataclass(frozen=True, eq=False)
+class JoinedTracks:
+    """``n`` sign tracks of one kind (rotations or vectors) one after another.
+
+    Attributes:
+        rotation: the values are quaternions.
+        initial: ``(n, D)`` each track's value before its first move.
+        move_base, value_base: ``(n + 1,)`` where each track's moves and values begin.
+        starts, ends, manners: ``(M,)`` the moves' seconds and rows of
+            :func:`motor.signing.lmp.manner_tables`.
+        values: ``(V, D)``; keys: ``(V,)`` each value's key within its track
+            (``2 · move + fraction of the way``).
+        first, last: ``(M,)`` each move's first and last value (rows of ``values``).
+    """
+
+    rotation: bool
+    initial: np.ndarray
+    move_base: np.ndarray
+    value_base: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+    manners: np.ndarray
+    values: np.ndarray
+    keys: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+    value_keys: np.ndarray | None = field(default=None, repr=False)
+    _move_keys: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        """``value_keys``: the pairs (track, key) as complex numbers, given when shared with
+        tracks of the same values' keys."""
+        tracks = np.arange(self.move_base.size - 1, dtype=float)
+        object.__setattr__(self, "_move_keys", np.repeat(tracks, np.diff(self.move_base)) + 1j * self.starts)
+        if self.value_keys is None:
+            object.__setattr__(self, "value_keys", np.repeat(tracks, np.diff(self.value_base)) + 1j * self.keys)
+
+    @classmethod
+    def of(cls, tracks: Sequence[SignTrack]) -> JoinedTracks:
+        """The tracks (all rotations or all vectors) joined."""
+        moves = np.array([track.starts.size for track in tracks])
+        sizes = np.array([track.values.shape[0] for track in tracks])
+        move_base = np.concatenate([[0], np.cumsum(moves)])
+        value_base = np.concatenate([[0], np.cumsum(sizes)])
+        offsets = np.repeat(value_base[:-1], moves)
+        return cls(
+            tracks[0].rotation, np.stack([track.initial for track in tracks]), move_base, value_base,
+            np.concatenate([track.starts for track in tracks]), np.concatenate([track.ends for track in tracks]),
+            np.concatenate([track.manners for track in tracks]), np.concatenate([track.values for track in tracks]),
+            np.concatenate([track.keys for track in tracks]), np.concatenate([track.first for track in tracks]) + offsets,
+            np.concatenate([track.last for track in tracks]) + offsets,
+        )  # fmt: skip
+
+    def sample(self, owner: np.ndarray, times: np.ndarray) -> np.ndarray:
+        """Values at sorted ``times`` of the tracks ``owner`` ``(n,)`` (non-decreasing
+        indices): what each track's own ``sample`` gives for its times."""
+        t = np.asarray(times, dtype=float)
+        found = np.searchsorted(self._move_keys, owner.astype(float) + 1j * t, side="right") - 1
+        local = found - self.move_base[owner]
+        before = local < 0
+        move = np.maximum(local, 0)
+        row = self.move_base[owner] + move
+        u = np.clip((t - self.starts[row]) / (self.ends[row] - self.starts[row]), 0.0, 1.0)
+        tables = manner_tables()
+        position = u * (tables.shape[1] - 1)
+        low = np.minimum(position.astype(int), tables.shape[1] - 2)
+        weight = position - low
+        s = (1.0 - weight) * tables[self.manners[row], low] + weight * tables[self.manners[row], low + 1]
+        wanted = 2.0 * move + s
+        index = np.searchsorted(self.value_keys, owner.astype(float) + 1j * wanted, side="right") - 1
+        index = np.clip(index, self.first[row], self.last[row] - 1)
+        width = self.keys[index + 1] - self.keys[index]
+        fraction = np.clip((wanted - self.keys[index]) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0, 1.0)
+        if self.rotation:
+            out = quat.slerp(self.values[index], self.values[index + 1], fraction)
+        else:
+            out = self.values[index] + fraction[:, None] * (self.values[index + 1] - self.values[index])
+        if np.any(before):
+            out[before] = self.initial[owner[before]]
+        return out
+
+    def tracks(self) -> list[SignTrack]:
+        """Each track on its own, its arrays views of these, part of this batch."""
+        moves, values = self.move_base.tolist(), self.value_base.tolist()
+        offsets = np.repeat(self.value_base[:-1], np.diff(self.move_base))
+        first, last = self.first - offsets, self.last - offsets
+        return [
+            SignTrack(
+                self.rotation, self.initial[i], self.starts[m:m_end], self.ends[m:m_end], self.manners[m:m_end], self.values[v:v_end],
+                self.keys[v:v_end], first[m:m_end], last[m:m_end], (), self, i,
+            )  # fmt: skip
+            for i, (m, m_end, v, v_end) in enumerate(zip(moves, moves[1:], values, values[1:]))
+        ]
