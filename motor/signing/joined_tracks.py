@@ -5,7 +5,8 @@ sampled one by one, each costs a few dozen small numpy calls, most of the time t
 overhead. :class:`JoinedTracks` holds the arrays of many tracks one after another and finds
 every sample's move and value by the pair (track, time) or (track, key) — complex numbers,
 which numpy orders lexicographically — so that each number is computed as the track's own
-:meth:`motor.signing.lmp.SignTrack.sample` computes it.
+:meth:`motor.signing.lmp.SignTrack.sample` computes it. Its tracks one by one are
+:class:`BatchedTrack`, which sample through it.
 """
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motor import quaternion as quat
-from motor.signing.lmp import NEGLIGIBLE, SignTrack, manner_tables
+from motor.program.lmp import ChannelState
+from motor.signing.lmp import NEGLIGIBLE, SignTrack, manner_tables, track_state
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,10 +75,16 @@ class JoinedTracks:
         )  # fmt: skip
 
     def sample(self, owner: np.ndarray, times: np.ndarray) -> np.ndarray:
-        """Values at sorted ``times`` of the tracks ``owner`` ``(n,)`` (non-decreasing
-        indices): what each track's own ``sample`` gives for its times."""
+        """Values at ``times`` of the tracks ``owner`` ``(n,)`` (non-decreasing indices),
+        sorted for each track: what each track's own ``sample`` gives for its times."""
         t = np.asarray(times, dtype=float)
-        found = np.searchsorted(self._move_keys, owner.astype(float) + 1j * t, side="right") - 1
+        if owner.size == 0:
+            return np.empty((0, self.values.shape[1]))
+        # searched among the owners' keys alone: a window's, not the whole batch's
+        moves = self.move_base[[owner[0], owner[-1] + 1]]
+        values = self.value_base[[owner[0], owner[-1] + 1]]
+        tracks = owner.astype(float)
+        found = np.searchsorted(self._move_keys[moves[0] : moves[1]], tracks + 1j * t, side="right") - 1 + moves[0]
         local = found - self.move_base[owner]
         before = local < 0
         move = np.maximum(local, 0)
@@ -88,7 +96,7 @@ class JoinedTracks:
         weight = position - low
         s = (1.0 - weight) * tables[self.manners[row], low] + weight * tables[self.manners[row], low + 1]
         wanted = 2.0 * move + s
-        index = np.searchsorted(self.value_keys, owner.astype(float) + 1j * wanted, side="right") - 1
+        index = np.searchsorted(self.value_keys[values[0] : values[1]], tracks + 1j * wanted, side="right") - 1 + values[0]
         index = np.clip(index, self.first[row], self.last[row] - 1)
         width = self.keys[index + 1] - self.keys[index]
         fraction = np.clip((wanted - self.keys[index]) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0, 1.0)
@@ -100,15 +108,78 @@ class JoinedTracks:
             out[before] = self.initial[owner[before]]
         return out
 
-    def tracks(self) -> list[SignTrack]:
-        """Each track on its own, its arrays views of these, part of this batch."""
-        moves, values = self.move_base.tolist(), self.value_base.tolist()
-        offsets = np.repeat(self.value_base[:-1], np.diff(self.move_base))
-        first, last = self.first - offsets, self.last - offsets
-        return [
-            SignTrack(
-                self.rotation, self.initial[i], self.starts[m:m_end], self.ends[m:m_end], self.manners[m:m_end], self.values[v:v_end],
-                self.keys[v:v_end], first[m:m_end], last[m:m_end], (), self, i,
-            )  # fmt: skip
-            for i, (m, m_end, v, v_end) in enumerate(zip(moves, moves[1:], values, values[1:]))
-        ]
+    def replaced(self, parts: dict[int, SignTrack]) -> JoinedTracks:
+        """These tracks with those at the keys of ``parts`` replaced by the values."""
+        if not parts:
+            return self
+        order = sorted(parts)
+        moves, sizes = np.diff(self.move_base), np.diff(self.value_base)
+        offsets = np.repeat(self.value_base[:-1], moves)
+        local_first, local_last = self.first - offsets, self.last - offsets
+        moves[order] = [parts[i].starts.size for i in order]
+        sizes[order] = [parts[i].values.shape[0] for i in order]
+        move_base = np.concatenate([[0], np.cumsum(moves)])
+        value_base = np.concatenate([[0], np.cumsum(sizes)])
+        offsets = np.repeat(value_base[:-1], moves)
+
+        def spliced(array: np.ndarray, base: np.ndarray, new: list[np.ndarray]) -> np.ndarray:
+            pieces, at = [], 0
+            for i, piece in zip(order, new):
+                pieces += [array[base[at] : base[i]], piece]
+                at = i + 1
+            return np.concatenate([*pieces, array[base[at] :]])
+
+        def per_move(name: str, array: np.ndarray) -> np.ndarray:
+            return spliced(array, self.move_base, [getattr(parts[i], name) for i in order])
+
+        initial = self.initial.copy()
+        initial[order] = [parts[i].initial for i in order]
+        value_keys = spliced(self.value_keys, self.value_base, [i + 1j * parts[i].keys for i in order])
+        return JoinedTracks(
+            self.rotation, initial, move_base, value_base, per_move("starts", self.starts), per_move("ends", self.ends),
+            per_move("manners", self.manners), spliced(self.values, self.value_base, [parts[i].values for i in order]),
+            spliced(self.keys, self.value_base, [parts[i].keys for i in order]), per_move("first", local_first) + offsets,
+            per_move("last", local_last) + offsets, value_keys,
+        )  # fmt: skip
+
+    def tracks(self) -> list[BatchedTrack]:
+        """Each track, sampled through these."""
+        return [BatchedTrack(self, index) for index in range(self.initial.shape[0])]
+
+    def alone(self, index: int) -> SignTrack:
+        """The ``index``-th track on its own (its arrays views of these)."""
+        m, m_end = self.move_base[index : index + 2].tolist()
+        v, v_end = self.value_base[index : index + 2].tolist()
+        return SignTrack(
+            self.rotation, self.initial[index], self.starts[m:m_end], self.ends[m:m_end], self.manners[m:m_end], self.values[v:v_end],
+            self.keys[v:v_end], self.first[m:m_end] - v, self.last[m:m_end] - v,
+        )  # fmt: skip
+
+
+class BatchedTrack:
+    """A sign track that is part of a :class:`JoinedTracks` (``batch``, the ``index``-th),
+    sampled through it: what the track on its own (:meth:`JoinedTracks.alone`) gives.
+    Thousands are made at once, so it holds no arrays of its own."""
+
+    __slots__ = ("batch", "index")
+    warnings: tuple[str, ...] = ()
+
+    def __init__(self, batch: JoinedTracks, index: int) -> None:
+        self.batch = batch
+        self.index = index
+
+    @property
+    def rotation(self) -> bool:
+        return self.batch.rotation
+
+    @property
+    def initial(self) -> np.ndarray:
+        return self.batch.initial[self.index]
+
+    def sample(self, times: np.ndarray) -> np.ndarray:
+        t = np.asarray(times, dtype=float)
+        return self.batch.sample(np.full(t.size, self.index), t)
+
+    def state(self, time: float) -> ChannelState:
+        """Value and velocity (angular velocity for rotations) looking back from ``time``."""
+        return track_state(self, time)

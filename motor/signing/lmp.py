@@ -35,20 +35,16 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cache
-from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.interpolate import BSpline
 from scipy.ndimage import gaussian_filter1d
 
 from motor import quaternion as quat
-from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, TimePegs, incoming_blend
+from motor.program.lmp import ROTATION_CHANNELS, Channel, ChannelState, Realization, TimePegs, incoming_blend
 from motor.trajectory.biocontrol import MANNERS, profile
 from motor.trajectory.power_law import EXPONENT, clamped_curvature, path_spline
 from motor.trajectory.spline import HOLD_LENGTH, turning_angles
-
-if TYPE_CHECKING:
-    from motor.signing.joined_tracks import JoinedTracks
 
 #: Turning angle (radians) at which a wrist path reverses: the hand stops there. Sharper
 #: than the utterances' cusp (:data:`motor.trajectory.spline.CUSP_ANGLE`), because a
@@ -260,10 +256,7 @@ class SignTrack:
     The moves' values are flattened into one array; each value's *key* is
     ``2 · move + fraction of the way`` (strictly increasing), so one ``searchsorted``
     finds every sample's segment in every move. ``manners`` are the moves' rows in
-    :func:`manner_tables`. A track activated with others of its channel
-    (:func:`motor.signing.track_batch.activate_in_turn`) is a part of their
-    :class:`motor.signing.joined_tracks.JoinedTracks`, ``batch``, the ``index``-th; its arrays
-    are views of the batch's, so that the batch samples it with its neighbours at once.
+    :func:`manner_tables`.
     """
 
     rotation: bool
@@ -276,8 +269,6 @@ class SignTrack:
     first: np.ndarray
     last: np.ndarray
     warnings: tuple[str, ...] = ()
-    batch: JoinedTracks | None = None
-    index: int = 0
 
     @classmethod
     def traced(cls, initial: np.ndarray, chain: TracedChain) -> SignTrack:
@@ -342,7 +333,7 @@ class SignTrack:
 
     def state(self, time: float) -> ChannelState:
         """Value and velocity (angular velocity for rotations) looking back from ``time``."""
-        return _state_of(self, time)
+        return track_state(self, time)
 
 
 @dataclass(frozen=True, eq=False)
@@ -374,11 +365,12 @@ class _Carried:
         return planned + weight[:, None] * self.velocity
 
     def state(self, time: float) -> ChannelState:
-        return _state_of(self, time)
+        return track_state(self, time)
 
 
-def _state_of(track: SignTrack | _Carried, time: float) -> ChannelState:
-    """Value and velocity (angular velocity for rotations) of ``track`` looking back from ``time``."""
+def track_state(track: Realization, time: float) -> ChannelState:
+    """Value and velocity (angular velocity for rotations) of a sign ``track`` (its
+    ``rotation`` tells its kind) looking back from ``time``."""
     v = track.sample(np.array([time - 2 * _STEP, time - _STEP, time]))
     if track.rotation:
         one, two = quat.to_rotation_vector(quat.multiply(v[2], quat.conjugate(v[1::-1])))

@@ -108,79 +108,90 @@ def prepare(lmps: Sequence[SignChannelLMP]) -> PreparedTracks | None:
     values: list[np.ndarray] = []
     fractions: list[np.ndarray] = []
     counts: list[int] = []  # values of each move
-    moves = np.zeros(len(lmps), dtype=int)
-    way_rows = np.zeros(len(lmps), dtype=int)
-    traced = np.zeros(len(lmps), dtype=bool)
-    template = np.zeros(len(lmps), dtype=bool)
+    moves: list[int] = []  # of each LMP
+    way_rows: list[int] = []  # of each template
+    kinds: list[int] = []  # of each LMP: 0 none, 1 traced, 2 template
     firsts = [np.asarray(lmp.first, dtype=float) for lmp in lmps]
     if len({first.shape for first in firsts}) != 1 or firsts[0].ndim != 1:
         return None
     width = firsts[0].size
-    chain_here = np.full((len(lmps), width), np.nan)
-    chain_time = np.full(len(lmps), np.nan)
-    for index, (lmp, first) in enumerate(zip(lmps, firsts)):
+    nowhere = np.full(width, np.nan)
+    chain_here: list[np.ndarray] = []
+    chain_time: list[float] = []
+    for lmp, first in zip(lmps, firsts):
         chain = lmp.traced
-        if chain is not None:
-            if not all(f.shape[0] == v.shape[0] for f, v in zip(chain.fractions, chain.values)) or np.shape(chain.here) != (width,):
-                continue
-            traced[index] = True
-            chain_here[index] = chain.here
-            chain_time[index] = chain.time
-            starts.extend(chain.starts)
-            ends.extend(chain.ends)
-            manners.extend(chain.manners)
-            values.extend(chain.values)
-            fractions.extend(chain.fractions)
-            counts.extend(fraction.shape[0] for fraction in chain.fractions)
-            moves[index] = len(chain.values)
-        elif keyframes:
-            template[index] = True
-            via = None if lmp.via is None else np.asarray(lmp.via, dtype=float)
-            way = [first[None], first[None]] if via is None else [first[None], via, first[None]]
-            way_rows[index] = 2 + (0 if via is None else via.shape[0])
-            starts.append(lmp.pegs.start)
-            ends.append(lmp.pegs.ready)
-            manners.append(lmp.transition)
-            counts.append(int(way_rows[index]))
-            values.extend(way)
-            if lmp.via_fractions is None:
-                fractions.append(even_fractions(int(way_rows[index])))
-            else:
-                fractions.extend((_ENDS[0], np.asarray(lmp.via_fractions, dtype=float), _ENDS[1]))
-            for move in lmp.moves:
-                starts.append(move.start)
-                ends.append(move.end)
-                manners.append(move.manner)
-                values.append(move.values)
-                counts.append(move.values.shape[0])
-                fractions.append(even_fractions(move.values.shape[0]))
-            moves[index] = 1 + len(lmp.moves)
-    if any(value.ndim != 2 or value.shape[1] != width for value in values):
+        if chain is not None and chain.here.shape == (width,):
+            kinds.append(1)
+            chain_here.append(chain.here)
+            chain_time.append(chain.time)
+            starts += chain.starts.tolist()
+            ends += chain.ends.tolist()
+            manners += chain.manners
+            values += chain.values
+            fractions += chain.fractions
+            counts += [fraction.shape[0] for fraction in chain.fractions]
+            moves.append(len(chain.values))
+            continue
+        chain_here.append(nowhere)
+        chain_time.append(np.nan)
+        if chain is not None or not keyframes:
+            kinds.append(0)
+            moves.append(0)
+            continue
+        kinds.append(2)
+        via = lmp.via
+        if via is None:
+            way_rows.append(2)
+            values += (first[None], first[None])
+        else:
+            via = np.asarray(via, dtype=float)
+            way_rows.append(2 + via.shape[0])
+            values += (first[None], via, first[None])
+        starts.append(lmp.pegs.start)
+        ends.append(lmp.pegs.ready)
+        manners.append(lmp.transition)
+        counts.append(way_rows[-1])
+        if lmp.via_fractions is None:
+            fractions.append(even_fractions(way_rows[-1]))
+        else:
+            fractions += (_ENDS[0], np.asarray(lmp.via_fractions, dtype=float), _ENDS[1])
+        for move in lmp.moves:
+            starts.append(move.start)
+            ends.append(move.end)
+            manners.append(move.manner)
+            values.append(move.values)
+            counts.append(move.values.shape[0])
+            fractions.append(even_fractions(counts[-1]))
+        moves.append(1 + len(lmp.moves))
+    try:
+        joined = np.concatenate(values) if values else np.empty((0, width))
+    except ValueError:  # values of other widths
         return None
+    if joined.ndim != 2 or joined.shape != (sum(counts), width):
+        return None
+    kind = np.array(kinds)
+    traced, template = kind == 1, kind == 2
     for manner in set(manners):
         profile(manner)  # an unknown manner: the error a Move gives
     sizes = np.array(counts, dtype=int)
-    move_base = np.concatenate([[0], np.cumsum(moves)])
+    move_base = np.concatenate([[0], np.cumsum(moves)]).astype(int)
     owner = np.repeat(np.arange(len(lmps)), moves)
     in_track = np.arange(owner.size) - move_base[owner]
     first_row = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
     value_base = np.concatenate([[0], np.cumsum(sizes)])[move_base]
-    joined = np.concatenate(values) if values else np.empty((0, width))
     keys = np.repeat(2.0 * in_track, sizes) + (np.concatenate(fractions) if fractions else np.empty(0))
-    layout = JoinedTracks(
-        rotation, np.empty((len(lmps), width)), move_base, value_base, np.array(starts, dtype=float), np.array(ends, dtype=float),
-        np.array([MANNER_ROWS[manner] for manner in manners], dtype=int), joined, keys, first_row, first_row + sizes - 1,
-    )  # fmt: skip
-    flipped = joined
+    kept = flipped = joined
     if rotation:
         kept, flipped = _continued(joined, np.repeat(template[owner] & (in_track > 0), sizes))
-        last_way = value_base[:-1][template] + way_rows[template] - 1
+        last_way = value_base[:-1][template] + np.array(way_rows, dtype=int) - 1
         flipped[last_way] = -flipped[last_way]
         flipped[value_base[:-1][template]] = flipped[last_way]
-        layout = JoinedTracks(
-            rotation, layout.initial, move_base, value_base, layout.starts, layout.ends, layout.manners, kept, keys, layout.first, layout.last
-        )  # fmt: skip
-    return PreparedTracks(rotation, traced, template, chain_here, chain_time, np.stack(firsts), np.array([lmp.pegs.ready for lmp in lmps], dtype=float), layout, flipped)
+    layout = JoinedTracks(
+        rotation, np.empty((len(lmps), width)), move_base, value_base, np.array(starts, dtype=float), np.array(ends, dtype=float),
+        np.array([MANNER_ROWS[manner] for manner in manners], dtype=int), kept, keys, first_row, first_row + sizes - 1,
+    )  # fmt: skip
+    ready = np.array([lmp.pegs.ready for lmp in lmps], dtype=float)
+    return PreparedTracks(rotation, traced, template, np.stack(chain_here), np.array(chain_time), np.stack(firsts), ready, layout, flipped)
 
 
 def _continued(values: np.ndarray, chained: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

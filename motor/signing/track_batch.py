@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from motor.signing.joined_tracks import JoinedTracks
+from motor.signing.joined_tracks import BatchedTrack, JoinedTracks
 from motor.signing.lmp import SignChannelLMP, SignTrack
 from motor.signing.prepared_tracks import prepare
 
@@ -27,15 +27,15 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
     ``sample`` gives for its times, when all are sign tracks of one kind; else None.
 
     A run of tracks activated together is sampled through their batch; others are joined first."""
-    if not realizations or not all(type(r) is SignTrack for r in realizations):
+    if not realizations or not all(type(r) is SignTrack or type(r) is BatchedTrack for r in realizations):
         return None
     rotation = realizations[0].rotation
     if any(r.rotation != rotation for r in realizations):
         return None
-    batch, base = realizations[0].batch, realizations[0].index
-    if batch is not None and all(r.batch is batch and r.index == base + k for k, r in enumerate(realizations)):
-        return batch.sample(owner + base, times)
-    return JoinedTracks.of(realizations).sample(owner, times)
+    first = realizations[0]
+    if type(first) is BatchedTrack and all(type(r) is BatchedTrack and r.batch is first.batch and r.index == first.index + k for k, r in enumerate(realizations)):
+        return first.batch.sample(owner + first.index, times)
+    return JoinedTracks.of([r.batch.alone(r.index) if type(r) is BatchedTrack else r for r in realizations]).sample(owner, times)
 
 
 #: Rounds of guessed activation values checked at once before the LMPs whose guesses are
@@ -43,7 +43,7 @@ def sample_tracks(realizations: Sequence[object], owner: np.ndarray, times: np.n
 GUESS_ROUNDS = 3
 
 
-def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[SignTrack]:
+def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: float) -> list[SignTrack] | list[BatchedTrack]:
     """The tracks of sign LMPs of one channel activated one after another, as
     :meth:`motor.program.lmp.ChannelTimeline.build` activates them: the first at ``time``
     from ``here``, each next at its start from the value the track before has then.
@@ -82,10 +82,7 @@ def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: flo
         fresh = not np.array_equal(value, heres[i])
         if fresh:
             tracks[i] = lmps[i].realize(value, float(starts[i]))
-    if all(track is None for track in tracks):
-        return batch.tracks()
-    parts = batch.tracks()
-    return JoinedTracks.of([part if track is None else track for part, track in zip(parts, tracks)]).tracks()
+    return batch.replaced({i: track for i, track in enumerate(tracks) if track is not None}).tracks()
 
 
 def _next_values(batch: JoinedTracks, fits: np.ndarray, own: dict[int, SignTrack | None], starts: np.ndarray, otherwise: np.ndarray | None = None) -> np.ndarray:

@@ -18,6 +18,7 @@ import pytest
 
 from motor.program.lmp import ChannelState, ChannelTimeline, TimePegs
 from motor.quaternion import continuous
+from motor.signing.joined_tracks import BatchedTrack
 from motor.signing.lmp import Move, SignChannelLMP, SignTrack
 from motor.signing.path_batch import trace_chains
 from motor.signing.prepared_tracks import _continued
@@ -142,12 +143,19 @@ def test_batched_tracks_sample_as_the_plain_join(channel: str, signs: int) -> No
     alone = lmps[-1].realize(second[-1].initial, lmps[-1].pegs.start)
     starts = np.array([lmp.pegs.start for lmp in lmps])
     times = np.linspace(float(starts[0]), float(lmps[-1].pegs.end) + 0.5, 997)
-    for realizations in (first, second, first + second, first[1:] + second[:-1] + [alone], second[:1]):
-        owned = np.searchsorted(np.array([r.starts[0] for r in realizations]), times, side="right") - 1
+    windows = [
+        (first, starts[:signs]), (second, starts[signs:]), (first + second, starts), (first[1:] + second[:-1] + [alone], starts[1:]),
+        (second[:1], starts[signs : signs + 1]),
+    ]  # fmt: skip
+    for realizations, owners in windows:
+        owned = np.searchsorted(owners, times, side="right") - 1
         inside = owned >= 0
         fast = sample_tracks(realizations, owned[inside], times[inside])
-        slow = plain.sample_tracks(realizations, owned[inside], times[inside])
+        plain_join = [r.batch.alone(r.index) if isinstance(r, BatchedTrack) else r for r in realizations]
+        slow = plain.sample_tracks(plain_join, owned[inside], times[inside])
         np.testing.assert_array_equal(fast, slow)
+        for index, realization in enumerate(realizations):
+            np.testing.assert_array_equal(realization.sample(times[inside][owned[inside] == index]), fast[owned[inside] == index])
 
 
 @pytest.mark.parametrize("seed", range(6))
