@@ -1,14 +1,17 @@
 """The motor core's compiled kernels, loaded before the first frame is due.
 
 numba compiles each kernel (:mod:`motor.quaternion`'s products,
-:mod:`motor.body.distance`'s signed distances, :mod:`motor.arm.clearance`'s
+:mod:`motor.body.distance`'s signed distances, :mod:`motor.body.collision`'s torso
+push, :mod:`motor.body.hands_parting`'s hands kept apart, :mod:`motor.arm.clearance`'s
 arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
-:mod:`motor.arm.swivel`'s value tables, :mod:`motor.arm.cheapest_swivel`'s pruned search,
+:mod:`motor.arm.swivel`'s value tables and walk, :mod:`motor.arm.swivel_track`'s twist and
+wrist tracks, :mod:`motor.arm.cheapest_swivel`'s pruned search,
 :mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
 rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull,
 :mod:`motor.signing.law_time`'s law time of many paths, :mod:`motor.signing.retiming`'s
-law factors, :mod:`motor.signing.repeats`' repeated postures and
-:mod:`motor.signing.reach_steps`' steps of the reach check) once per checkout and
+law factors, :mod:`motor.signing.repeats`' repeated postures,
+:mod:`motor.signing.reach_steps`' steps of the reach check and
+:mod:`motor.signing.track_kernels`' samples of joined sign tracks) once per checkout and
 caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
@@ -30,7 +33,7 @@ from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost, swivel_track, upright_placement
 from motor.body import collision, distance, hands_parting
 from motor.hand import shape
-from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
+from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
 from motor.trajectory import biocontrol
 
 
@@ -38,7 +41,7 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel and compute the
     manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, collision, hands_parting, clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach):
+    for module in (quaternion, distance, collision, hands_parting, clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels):
         module.load_kernels()
     biocontrol.load_profiles()
     return time.perf_counter() - started

@@ -3,8 +3,8 @@
 A sequence of signs puts thousands of :class:`motor.signing.lmp.SignTrack` on each channel;
 sampled one by one, each costs a few dozen small numpy calls, most of the time their
 overhead. :class:`JoinedTracks` holds the arrays of many tracks one after another and finds
-every sample's move and value by the pair (track, time) or (track, key) — complex numbers,
-which numpy orders lexicographically — so that each number is computed as the track's own
+every sample's move and segment among its track's alone in one compiled loop
+(:mod:`motor.signing.track_kernels`), so that each number is computed as the track's own
 :meth:`motor.signing.lmp.SignTrack.sample` computes it. Its tracks one by one are
 :class:`BatchedTrack`, which sample through it.
 """
@@ -12,13 +12,14 @@ which numpy orders lexicographically — so that each number is computed as the 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from motor import quaternion as quat
 from motor.program.lmp import ChannelState
 from motor.signing.lmp import NEGLIGIBLE, SignTrack, manner_tables, track_state
+from motor.signing.track_kernels import segments
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,16 +48,6 @@ class JoinedTracks:
     keys: np.ndarray
     first: np.ndarray
     last: np.ndarray
-    value_keys: np.ndarray | None = field(default=None, repr=False)
-    _move_keys: np.ndarray = field(init=False, repr=False)
-
-    def __post_init__(self) -> None:
-        """``value_keys``: the pairs (track, key) as complex numbers, given when shared with
-        tracks of the same values' keys."""
-        tracks = np.arange(self.move_base.size - 1, dtype=float)
-        object.__setattr__(self, "_move_keys", np.repeat(tracks, np.diff(self.move_base)) + 1j * self.starts)
-        if self.value_keys is None:
-            object.__setattr__(self, "value_keys", np.repeat(tracks, np.diff(self.value_base)) + 1j * self.keys)
 
     @classmethod
     def of(cls, tracks: Sequence[SignTrack]) -> JoinedTracks:
@@ -75,31 +66,15 @@ class JoinedTracks:
         )  # fmt: skip
 
     def sample(self, owner: np.ndarray, times: np.ndarray) -> np.ndarray:
-        """Values at ``times`` of the tracks ``owner`` ``(n,)`` (non-decreasing indices),
-        sorted for each track: what each track's own ``sample`` gives for its times."""
+        """Values at ``times`` of the tracks ``owner`` ``(n,)``: what each track's own
+        ``sample`` gives for its times."""
         t = np.asarray(times, dtype=float)
-        if owner.size == 0:
-            return np.empty((0, self.values.shape[1]))
-        # searched among the owners' keys alone: a window's, not the whole batch's
-        moves = self.move_base[[owner[0], owner[-1] + 1]]
-        values = self.value_base[[owner[0], owner[-1] + 1]]
-        tracks = owner.astype(float)
-        found = np.searchsorted(self._move_keys[moves[0] : moves[1]], tracks + 1j * t, side="right") - 1 + moves[0]
-        local = found - self.move_base[owner]
-        before = local < 0
-        move = np.maximum(local, 0)
-        row = self.move_base[owner] + move
-        u = np.clip((t - self.starts[row]) / (self.ends[row] - self.starts[row]), 0.0, 1.0)
-        tables = manner_tables()
-        position = u * (tables.shape[1] - 1)
-        low = np.minimum(position.astype(int), tables.shape[1] - 2)
-        weight = position - low
-        s = (1.0 - weight) * tables[self.manners[row], low] + weight * tables[self.manners[row], low + 1]
-        wanted = 2.0 * move + s
-        index = np.searchsorted(self.value_keys[values[0] : values[1]], tracks + 1j * wanted, side="right") - 1 + values[0]
-        index = np.clip(index, self.first[row], self.last[row] - 1)
-        width = self.keys[index + 1] - self.keys[index]
-        fraction = np.clip((wanted - self.keys[index]) / np.where(width > NEGLIGIBLE, width, 1.0), 0.0, 1.0)
+        index, fraction = segments(
+            owner, t, self.move_base, self.value_base, self.starts, self.ends, self.manners, manner_tables(), self.keys, self.first, self.last,
+            NEGLIGIBLE,
+        )  # fmt: skip
+        before = index < 0
+        index[before] = 0
         if self.rotation:
             out = quat.slerp(self.values[index], self.values[index + 1], fraction)
         else:
@@ -134,12 +109,11 @@ class JoinedTracks:
 
         initial = self.initial.copy()
         initial[order] = [parts[i].initial for i in order]
-        value_keys = spliced(self.value_keys, self.value_base, [i + 1j * parts[i].keys for i in order])
         return JoinedTracks(
             self.rotation, initial, move_base, value_base, per_move("starts", self.starts), per_move("ends", self.ends),
             per_move("manners", self.manners), spliced(self.values, self.value_base, [parts[i].values for i in order]),
             spliced(self.keys, self.value_base, [parts[i].keys for i in order]), per_move("first", local_first) + offsets,
-            per_move("last", local_last) + offsets, value_keys,
+            per_move("last", local_last) + offsets,
         )  # fmt: skip
 
     def tracks(self) -> list[BatchedTrack]:

@@ -77,7 +77,7 @@ class PreparedTracks:
             starts[layout.move_base[chosen]] = times[chosen]
         batch = JoinedTracks(
             layout.rotation, heres.copy(), layout.move_base, layout.value_base, starts, layout.ends, layout.manners, values, layout.keys,
-            layout.first, layout.last, layout.value_keys,
+            layout.first, layout.last,
         )  # fmt: skip
         return batch, fits | keyframed
 
@@ -191,7 +191,7 @@ def prepare(lmps: Sequence[SignChannelLMP]) -> PreparedTracks | None:
         np.array([MANNER_ROWS[manner] for manner in manners], dtype=int), kept, keys, first_row, first_row + sizes - 1,
     )  # fmt: skip
     ready = np.array([lmp.pegs.ready for lmp in lmps], dtype=float)
-    return PreparedTracks(rotation, traced, template, np.stack(chain_here), np.array(chain_time), np.stack(firsts), ready, layout, flipped)
+    return PreparedTracks(rotation, traced, template, np.array(chain_here), np.array(chain_time), np.array(firsts), ready, layout, flipped)
 
 
 def _continued(values: np.ndarray, chained: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -64,7 +64,7 @@ def activate_in_turn(lmps: Sequence[SignChannelLMP], here: np.ndarray, time: flo
     guesses = [here] + [_last_value(lmp) for lmp in lmps[:-1]]
     if prepared is None or any(guess.shape != here.shape for guess in guesses) or here.shape != prepared.firsts.shape[1:]:
         return _in_order(lmps, here, time)
-    heres = np.stack(guesses)
+    heres = np.array(guesses)
     for attempt in range(GUESS_ROUNDS):
         batch, fits = prepared.activated(heres, times)
         own = {int(i): lmps[i].realize(heres[i], float(times[i])) for i in np.flatnonzero(~fits)}

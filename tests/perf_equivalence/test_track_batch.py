@@ -191,3 +191,25 @@ def test_timeline_of_batched_tracks_samples_as_built() -> None:
     owner = np.searchsorted(built.starts, times, side="right") - 1
     inside = owner >= 0
     np.testing.assert_array_equal(sample_tracks(tracks, owner[inside], times[inside]), built.sample(times)[inside])
+
+
+@pytest.mark.parametrize("channel", ["wrist_position", "hand_rotation", "handshape"])
+def test_samples_at_the_moves_edges_equal_each_track_alone(channel: str) -> None:
+    """At every move's start and end, just inside and outside them, before the first, long
+    after the last and at infinities, the compiled search gives what each track on its own gives."""
+    lmps = _lmps("right", channel, 12, seed=5, axes=channel == "hand_rotation")
+    tracks = activate_in_turn(lmps, _start(lmps, 5, False), lmps[0].pegs.start)
+    for track, lmp in zip(tracks, lmps, strict=True):
+        alone = track.batch.alone(track.index)
+        edges = np.concatenate([alone.starts, alone.ends])
+        times = np.sort(np.concatenate([edges, np.nextafter(edges, -np.inf), np.nextafter(edges, np.inf), [lmp.pegs.start - 1.0, lmp.pegs.end + 5.0, np.inf, -np.inf]]))
+        np.testing.assert_array_equal(track.sample(times), alone.sample(times))
+        finite = times[np.isfinite(times)]  # the plain join's complex keys take an infinite time's real part for NaN
+        np.testing.assert_array_equal(track.sample(finite), plain.sample_tracks([alone], np.zeros(finite.size, dtype=int), finite))
+
+
+def test_nan_times_are_refused() -> None:
+    lmps = _lmps("left", "handshape", 3, seed=1)
+    track = activate_in_turn(lmps, _start(lmps, 1, False), lmps[0].pegs.start)[1]
+    with pytest.raises(ValueError, match="not NaN"):
+        track.sample(np.array([0.5, np.nan]))
