@@ -3,7 +3,8 @@
 numba compiles each kernel (:mod:`motor.quaternion`'s products,
 :mod:`motor.body.distance`'s signed distances, :mod:`motor.body.collision`'s torso
 push, :mod:`motor.body.hands_parting`'s hands kept apart, :mod:`motor.arm.clearance`'s
-arm-against-body loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
+arm-against-body loop, :mod:`motor.arm.other_arm_clearance`'s arm-against-the-other-arm
+loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
 :mod:`motor.arm.swivel`'s value tables and walk, :mod:`motor.arm.swivel_track`'s twist and
 wrist tracks, :mod:`motor.arm.cheapest_swivel`'s pruned search,
 :mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
@@ -30,7 +31,7 @@ from __future__ import annotations
 import time
 
 from motor import quaternion
-from motor.arm import cheapest_swivel, clearance, given_swivel, swivel, swivel_cost, swivel_track, upright_placement
+from motor.arm import cheapest_swivel, clearance, given_swivel, other_arm_clearance, swivel, swivel_cost, swivel_track, upright_placement
 from motor.body import collision, distance, hands_parting
 from motor.hand import shape
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
@@ -41,7 +42,7 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel and compute the
     manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, collision, hands_parting, clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels):
+    for module in (quaternion, distance, collision, hands_parting, clearance, other_arm_clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels):
         module.load_kernels()
     biocontrol.load_profiles()
     return time.perf_counter() - started

@@ -43,8 +43,9 @@ def _to_rest(qx, qy, qz, qw, tx, ty, tz, px, py, pz):  # noqa: ANN001, ANN202
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _overlap_penalty(distance):  # noqa: ANN001, ANN202
-    """:func:`overlap_penalty` of one distance, the same operations in the same order."""
+def overlap_cost(distance):  # noqa: ANN001, ANN202
+    """:func:`motor.arm.clearance.overlap_penalty` of one distance, the same operations in
+    the same order; for compiled callers."""
     inside = max(CLEARANCE - distance, 0.0) * (1.0 / CLEARANCE)
     depth = max(-distance - TOLERATED_DEPTH, 0.0) * (1.0 / CLEARANCE)
     return CONTACT_PENALTY * inside * inside + PENETRATION_PENALTY * depth * depth
@@ -68,7 +69,7 @@ def charge_trunk(cost, least_upper, least_fore):  # noqa: ANN001, ANN202
         for k in range(cost.shape[1]):
             for least in (least_upper[i, k], least_fore[i, k]):
                 if least < math.inf:
-                    cost[i, k] += _overlap_penalty(least)
+                    cost[i, k] += overlap_cost(least)
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
@@ -98,7 +99,7 @@ def row_meets(s, w, low, high, segments, boxes, meets):  # noqa: ANN001, ANN201
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
-def _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder):  # noqa: ANN001, ANN202
+def segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder):  # noqa: ANN001, ANN202
     """The ends of a segment at fractions ``f0``, ``f1`` of the way shoulder → elbow (the
     upper arm) or elbow → wrist (the forearm), for the elbow at ``ex_, ey_, ez_``."""
     if from_shoulder:
@@ -162,7 +163,7 @@ def clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, s
                     continue
                 box = boxes[v]
                 for k in range(k_count):
-                    ax, ay, az, bx, by, bz = _segment_ends(s, w, local[k, 0], local[k, 1], local[k, 2], f0, f1, from_shoulder)
+                    ax, ay, az, bx, by, bz = segment_ends(s, w, local[k, 0], local[k, 1], local[k, 2], f0, f1, from_shoulder)
                     # a candidate whose own segment's box misses the volume's adds nothing
                     if _misses(box, grow, ax, ay, az, bx, by, bz):
                         continue
@@ -170,7 +171,7 @@ def clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, s
                     if in_trunk[v]:
                         least[i, k] = min(least[i, k], distance)
                     else:
-                        cost[i, k] += _overlap_penalty(distance)
+                        cost[i, k] += overlap_cost(distance)
                     depth[i, k] = max(depth[i, k], -distance)
 
 
@@ -187,20 +188,20 @@ def candidate_penalty(s, w, ex_, ey_, ez_, segments, kinds, parameters, boxes, i
     for g in range(2):
         f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
         grow = radius + CLEARANCE
-        ax, ay, az, bx, by, bz = _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
+        ax, ay, az, bx, by, bz = segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
         for v in range(kinds.size):
             if not meets[g, v] or _misses(boxes[v], grow, ax, ay, az, bx, by, bz):
                 continue
             distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
             if not in_trunk[v]:
-                cost += _overlap_penalty(distance)
+                cost += overlap_cost(distance)
             elif g == 0:
                 least_upper = min(least_upper, distance)
             else:
                 least_fore = min(least_fore, distance)
     for least in (least_upper, least_fore):
         if least < math.inf:
-            cost += _overlap_penalty(least)
+            cost += overlap_cost(least)
     return cost
 
 
@@ -220,7 +221,7 @@ def candidate_depth(s, w, ex_, ey_, ez_, segments, kinds, parameters, boxes, in_
         for v in range(kinds.size):
             if not meets[g, v]:
                 continue
-            ax, ay, az, bx, by, bz = _segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
+            ax, ay, az, bx, by, bz = segment_ends(s, w, ex_, ey_, ez_, f0, f1, from_shoulder)
             if _misses(boxes[v], grow, ax, ay, az, bx, by, bz):
                 continue
             deepest = max(deepest, -volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius))

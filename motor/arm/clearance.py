@@ -16,7 +16,8 @@ obstacle (so the feasible set is entered from its inside, smoothly), and more st
 once it is more than :data:`TOLERATED_DEPTH` inside, and the depth of the deepest
 penetration of the body. Only the frames whose arm, for some candidate, comes
 near an obstacle's bounding box are measured against it: by the compiled loops of
-:mod:`motor.arm.candidate_clearance`, which also holds the penalty's constants.
+:mod:`motor.arm.candidate_clearance` (the body; it also holds the penalty's constants)
+and :mod:`motor.arm.other_arm_clearance` (the other arm).
 """
 
 from __future__ import annotations
@@ -38,7 +39,8 @@ from motor.arm.candidate_clearance import (
     charge_trunk,
     clearance_rows,
 )
-from motor.body.distance import Components, segments_apart, volume_table
+from motor.arm.other_arm_clearance import other_arm_rows
+from motor.body.distance import Components, volume_table
 from motor.body.volumes import TRUNK_NAMES, Capsule, Ellipsoid, EllipticCylinder, Volume
 
 @dataclass(frozen=True, eq=False)
@@ -202,18 +204,21 @@ def clearance(
     shape = elbow[0].shape
     cost, depth = _body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carried_frames) if body else (np.zeros(shape), np.zeros(shape))
     if other is not None:
-        boxes = _boxes(capsules, shoulder, wrist, elbow)
-        for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
-            for part, (a_other, b_other, r_other) in zip(("upper", "fore", "hand"), other.capsules()):
-                near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
-                if not np.any(near):
-                    continue
-                rows = np.flatnonzero(near)
-                ends = tuple(a_other[rows, i : i + 1] for i in range(3)), tuple(b_other[rows, i : i + 1] for i in range(3))
-                distance = segments_apart(tuple(c[rows] for c in a), tuple(c[rows] for c in b), *ends)
-                # hands may touch the other arm (where it is asked): theirs is the plain penalty
-                cost[rows] += (penalty if part == "hand" else overlap_penalty)(distance - radius - r_other)
+        _other_arm_clearance(capsules, shoulder, wrist, elbow, other, cost)
     return cost, np.maximum(depth, 0.0)
+
+
+def _other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components, other: ArmSegments, cost: np.ndarray) -> None:
+    """Add into ``cost`` (contiguous ``(n, K)``) what the candidate elbows pay for coming near
+    the ``other`` arm's capsules: :func:`overlap_penalty` of the distance from its upper arm
+    and forearm, :func:`penalty` from its hand (hands may touch the other arm where it is
+    asked). Compiled (:func:`motor.arm.other_arm_clearance.other_arm_rows`)."""
+    ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, cost.shape), dtype=float) for c in elbow)
+    ends = np.stack([np.concatenate(pair, axis=1) for pair in (other.upper, other.fore, other.hand)]).astype(float, copy=False)
+    other_arm_rows(
+        np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez,
+        segment_table(capsules), ends, np.array(other.radii, dtype=float), cost,
+    )  # fmt: skip
 
 
 def _body_costs(
@@ -340,37 +345,6 @@ def obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.ndar
     kinds, parameters = volume_table(tuple(o.volume for o in obstacles))
     boxes = np.array([o.box for o in obstacles], dtype=float).reshape(-1, 2, 3)
     return kinds, parameters, boxes, np.array([o.trunk for o in obstacles], dtype=np.bool_)
-
-
-def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
-    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
-    capsules' ends are affine in the elbow with non-negative weights, so the box of the
-    candidate elbows bounds them."""
-    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
-    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
-    boxes = []
-    for (u0, u1), start, from_start, radius in (
-        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
-        (capsules.fore_ends, wrist, False, capsules.fore_radius),
-    ):
-        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
-        weight = lambda f: f if from_start else 1.0 - f
-        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
-        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
-        grow = radius + CLEARANCE
-        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
-    return boxes
-
-
-def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
-    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
-    do not move with the elbow ``(n, 1)``) and radii."""
-    s = tuple(shoulder[:, i : i + 1] for i in range(3))
-    w = tuple(wrist[:, i : i + 1] for i in range(3))
-    (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
-    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
-    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius
 
 
 def load_kernels() -> None:

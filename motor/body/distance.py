@@ -87,7 +87,8 @@ def _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noq
 
 
 @_compiled
-def _segments_apart(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noqa: ANN001, ANN202
+def segments_gap(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z):  # noqa: ANN001, ANN202
+    """:func:`segment_distance` of one pair of segments; for compiled callers."""
     s, t = _closest(p0x, p0y, p0z, p1x, p1y, p1z, q0x, q0y, q0z, q1x, q1y, q1z)
     gx = (p0x + s * (p1x - p0x)) - (q0x + t * (q1x - q0x))
     gy = (p0y + s * (p1y - p0y)) - (q0y + t * (q1y - q0y))
@@ -182,7 +183,7 @@ def _closest_loop(ends, s, t):  # noqa: ANN001, ANN202
 @numba.njit([numba.void(READ2, WRITE1)], cache=True, error_model="numpy")
 def _segments_loop(ends, out):  # noqa: ANN001, ANN202
     for i in range(out.size):
-        out[i] = _segments_apart(*_row12(ends, i))
+        out[i] = segments_gap(*_row12(ends, i))
 
 
 @numba.njit([numba.void(READ2, WRITE1)], cache=True, error_model="numpy")
@@ -217,7 +218,7 @@ def volume_distance(kind, p, ax, ay, az, bx, by, bz, radius):  # noqa: ANN001, A
     """Signed distance (m) of the capsule ``a``–``b`` with ``radius`` from the volume of
     ``kind`` with parameters ``p`` (a row of :func:`volume_table`); for compiled callers."""
     if kind == CAPSULE:
-        return _segments_apart(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - p[6] - radius
+        return segments_gap(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - p[6] - radius
     if kind == ELLIPSOID:
         return _ellipsoid(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius
     return _cylinder(ax, ay, az, bx, by, bz, p[0], p[1], p[2], p[3], p[4], p[5]) - radius

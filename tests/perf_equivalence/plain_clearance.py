@@ -1,13 +1,16 @@
 """The numpy arm-against-body clearance as it stood before it was compiled
-(:func:`motor.arm.clearance._body_clearance`, issue 19): the plain path the compiled
-kernel is held to, bit for bit, by ``test_compiled_clearance.py``. Not used by mura itself."""
+(:func:`motor.arm.clearance._body_clearance`, issue 19), and the numpy arm-against-the-other-arm
+loop of :func:`motor.arm.clearance.clearance` (:func:`other_arm_clearance`): the plain
+paths the compiled kernels are held to, bit for bit, by ``test_compiled_clearance.py``
+and ``test_other_arm_clearance.py``. Not used by mura itself."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from motor import quaternion as quat
-from motor.arm.clearance import ArmCapsules, Obstacle, _boxes, _segments, overlap_penalty
+from motor.arm.clearance import CLEARANCE, ArmCapsules, ArmSegments, Obstacle, overlap_penalty, penalty
+from motor.body.distance import segments_apart
 from tests.perf_equivalence.plain_distance import Components, capsule_apart
 
 
@@ -70,3 +73,50 @@ def body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, cost, depth
         part_cost[near] += overlap_penalty(distance[near])
     cost += part_cost
     np.maximum(depth, part_depth, out=depth)
+
+
+def other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components, other: ArmSegments, cost: np.ndarray) -> None:
+    """The numpy loop of :func:`motor.arm.clearance.clearance` that added into ``cost`` the
+    penalty of the candidates coming near the ``other`` arm's capsules."""
+    boxes = _boxes(capsules, shoulder, wrist, elbow)
+    for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
+        for part, (a_other, b_other, r_other) in zip(("upper", "fore", "hand"), other.capsules()):
+            near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
+            if not np.any(near):
+                continue
+            rows = np.flatnonzero(near)
+            ends = tuple(a_other[rows, i : i + 1] for i in range(3)), tuple(b_other[rows, i : i + 1] for i in range(3))
+            distance = segments_apart(tuple(c[rows] for c in a), tuple(c[rows] for c in b), *ends)
+            # hands may touch the other arm (where it is asked): theirs is the plain penalty
+            cost[rows] += (penalty if part == "hand" else overlap_penalty)(distance - radius - r_other)
+
+
+def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
+    the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the
+    capsules' ends are affine in the elbow with non-negative weights, so the box of the
+    candidate elbows bounds them."""
+    low = np.stack([c.min(axis=1) for c in elbow], axis=1)
+    high = np.stack([c.max(axis=1) for c in elbow], axis=1)
+    boxes = []
+    for (u0, u1), start, from_start, radius in (
+        (capsules.upper_ends, shoulder, True, capsules.upper_radius),
+        (capsules.fore_ends, wrist, False, capsules.fore_radius),
+    ):
+        # an end at fraction f from the shoulder toward the elbow, or from the elbow toward the wrist
+        weight = lambda f: f if from_start else 1.0 - f
+        ends_low = [start + weight(f) * (low - start) for f in (u0, u1)]
+        ends_high = [start + weight(f) * (high - start) for f in (u0, u1)]
+        grow = radius + CLEARANCE
+        boxes.append((np.minimum(*ends_low) - grow, np.maximum(*ends_high) + grow))
+    return boxes
+
+
+def _segments(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components):
+    """The upper arm's and forearm's capsules as coordinate arrays (``(n, K)``; ends that
+    do not move with the elbow ``(n, 1)``) and radii."""
+    s = tuple(shoulder[:, i : i + 1] for i in range(3))
+    w = tuple(wrist[:, i : i + 1] for i in range(3))
+    (u0, u1), (f0, f1) = capsules.upper_ends, capsules.fore_ends
+    yield tuple(s[i] + u0 * (elbow[i] - s[i]) for i in range(3)), tuple(s[i] + u1 * (elbow[i] - s[i]) for i in range(3)), capsules.upper_radius
+    yield tuple(elbow[i] + f0 * (w[i] - elbow[i]) for i in range(3)), tuple(elbow[i] + f1 * (w[i] - elbow[i]) for i in range(3)), capsules.fore_radius

@@ -1,0 +1,101 @@
+"""How close an arm's candidate elbows bring it to the other arm, compiled.
+
+:func:`motor.arm.clearance.clearance` keeps an arm clear of the other arm's upper arm,
+forearm and hand (:class:`motor.arm.clearance.ArmSegments`) as well as of the body. Per
+frame, the box of each of the arm's two segments over all candidate elbows (its ends are
+affine in the elbow with non-negative weights), grown by the segment's radius and
+:data:`motor.arm.candidate_clearance.CLEARANCE`, is tested against the box of each of
+the other arm's capsules; where they meet, every candidate's segment is measured against
+that capsule (:func:`other_arm_rows`). The arithmetic of the numpy version it replaced
+(``tests/perf_equivalence/plain_other_arm.py``), the same operations in the same order,
+numpy's NaN rules included: a frame whose boxes hold a NaN is not measured. Metres.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from motor.arm.candidate_clearance import CLEARANCE, CONTACT_PENALTY, overlap_cost, segment_ends
+from motor.body.distance import segments_gap
+from motor.kernel_types import READ1, READ2, READ3, WRITE2
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _minimum(a, b):  # noqa: ANN001, ANN202
+    """``np.minimum`` of two floats: NaN where either is."""
+    return a if a <= b or a != a else (b if b < a else math.nan)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _maximum(a, b):  # noqa: ANN001, ANN202
+    """``np.maximum`` of two floats: NaN where either is."""
+    return a if a >= b or a != a else (b if b > a else math.nan)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _row_extremes(values, i):  # noqa: ANN001, ANN202
+    """``values[i].min()`` and ``values[i].max()`` as numpy gives them (NaN if any is)."""
+    low, high = values[i, 0], values[i, 0]
+    for k in range(1, values.shape[1]):
+        low, high = _minimum(low, values[i, k]), _maximum(high, values[i, k])
+    return low, high
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _penalty(distance):  # noqa: ANN001, ANN202
+    """:func:`motor.arm.clearance.penalty` of one distance, the same operations in the same order."""
+    inside = max(CLEARANCE - distance, 0.0) * (1.0 / CLEARANCE)
+    return CONTACT_PENALTY * inside * inside
+
+
+@numba.njit(
+    [numba.void(READ2, READ2, READ2, READ2, READ2, READ2, READ3, READ1, WRITE2)],
+    cache=True,
+    error_model="numpy",
+)
+def other_arm_rows(shoulder, wrist, ex, ey, ez, segments, other, other_radii, cost):  # noqa: ANN001, ANN202
+    """Add into ``cost (n, K)`` the penalty of each candidate elbow ``ex, ey, ez (n, K)`` of
+    the arm from ``shoulder`` to ``wrist (n, 3)`` (segments: a
+    :func:`motor.arm.clearance.segment_table`) coming near the other arm's capsules
+    ``other (3, n, 6)`` (upper arm, forearm, hand: end points a then b) of radii
+    ``other_radii (3,)``: :func:`motor.arm.clearance.overlap_penalty` of the distance from
+    its upper arm and forearm, the plain :func:`motor.arm.clearance.penalty` from its hand
+    (hands may touch the other arm where it is asked). By segment, then capsule, as the
+    numpy version added them."""
+    n, k_count = ex.shape
+    for i in range(n):
+        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
+        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+        (lx, hx), (ly, hy), (lz, hz) = _row_extremes(ex, i), _row_extremes(ey, i), _row_extremes(ez, i)
+        low, high = (lx, ly, lz), (hx, hy, hz)
+        for g in range(2):
+            f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+            start = s if from_shoulder else w
+            w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
+            grow = radius + CLEARANCE
+            box_low = [_minimum(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow for c in range(3)]
+            box_high = [_maximum(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow for c in range(3)]
+            for p in range(3):
+                r = other_radii[p]
+                near = True
+                for c in range(3):
+                    a, b = other[p, i, c], other[p, i, 3 + c]
+                    near = near and box_low[c] <= _maximum(a, b) + r and box_high[c] >= _minimum(a, b) - r
+                if not near:
+                    continue
+                oa = (other[p, i, 0], other[p, i, 1], other[p, i, 2])
+                ob = (other[p, i, 3], other[p, i, 4], other[p, i, 5])
+                for k in range(k_count):
+                    ax, ay, az, bx, by, bz = segment_ends(s, w, ex[i, k], ey[i, k], ez[i, k], f0, f1, from_shoulder)
+                    distance = segments_gap(ax, ay, az, bx, by, bz, *oa, *ob) - radius - r
+                    cost[i, k] += _penalty(distance) if p == 2 else overlap_cost(distance)
+
+
+def load_kernels() -> None:
+    """Run this module's compiled loop once (it loads when the module is imported):
+    :func:`motor.compiled.warm_up`."""
+    row, cell = np.zeros((1, 3)), np.ones((1, 1))
+    other_arm_rows(row, row, cell, cell, cell, np.zeros((2, 4)), np.zeros((3, 1, 6)), np.zeros(3), np.zeros((1, 1)))
