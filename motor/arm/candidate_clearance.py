@@ -20,7 +20,7 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.distance import volume_distance
-from motor.kernel_types import READ2, READ3, READ_FLAGS1, READ_INTS1, WRITE2
+from motor.kernel_types import READ2, READ3, READ_FLAGS1, READ_INTS1, READ_INTS2, WRITE2
 
 #: Clearance (m) a segment keeps from an obstacle before it is penalized.
 CLEARANCE = 0.01
@@ -122,57 +122,68 @@ def _misses(box, grow, ax, ay, az, bx, by, bz):  # noqa: ANN001, ANN202
 
 
 @numba.njit(
-    [numba.void(READ2, READ2, READ2, READ2, READ2, READ2, READ2, numba.boolean, READ2, READ_INTS1, READ2, READ3, READ_FLAGS1, WRITE2, WRITE2, WRITE2, WRITE2)],
+    [numba.void(READ2, READ2, READ2, READ2, READ2, READ3, READ3, READ_FLAGS1, READ_INTS2, READ_INTS2, READ_FLAGS1, READ2, READ_INTS1, READ2, READ3, READ_FLAGS1, WRITE2, WRITE2, WRITE2, WRITE2)],
     cache=True,
     error_model="numpy",
 )
-def clearance_rows(shoulder, wrist, ex, ey, ez, rotation, translation, framed, segments, kinds, parameters, boxes, in_trunk, cost, depth, least_upper, least_fore):  # noqa: ANN001, ANN202, E501
-    """Per frame ``i``: the candidate elbows (and shoulder and wrist) carried into the
-    obstacles' rest frame, the box of each segment over all candidates (its ends are
-    affine in the elbow with non-negative weights), and for every obstacle whose box it
-    meets, the distance of each candidate segment whose own box meets it too: into
-    ``cost``, ``depth`` and, for the trunk's volumes, the least distance per segment.
-    The arithmetic of the numpy version (``tests/perf_equivalence/plain_clearance.py``),
-    element by element, which measured every candidate of such a frame: the candidates
-    not measured here added nothing there."""
+def clearance_rows(shoulder, wrist, ex, ey, ez, rotations, translations, framed, groups, sets, turned, segments, kinds, parameters, boxes, in_trunk, cost, depth, least_upper, least_fore):  # noqa: ANN001, ANN202, E501
+    """Per frame ``i``, into ``cost`` and ``depth (n, K)``: the penalty and depth of every
+    candidate elbow ``ex, ey, ez (n, K)`` of the arm from ``shoulder`` to ``wrist (n, 3)``
+    against the body's obstacles (a :func:`motor.arm.clearance.obstacle_table` of them
+    all), group by group: the groups ``groups[sets[1, 0]:sets[1, 1]]`` where the trunk
+    is ``turned[i]``, ``groups[sets[0, 0]:sets[0, 1]]`` where it is not, each a row
+    ``(first obstacle, stop, frame)`` whose obstacles the placement ``rotations[frame, i]``,
+    ``translations[frame, i]`` carries from their rest geometry (where ``framed[frame]``;
+    else they stand at rest). Per group: the candidates (and shoulder and wrist) carried
+    into the obstacles' rest frame, the box of each segment over all candidates (its
+    ends are affine in the elbow with non-negative weights), and for every obstacle whose
+    box it meets, the distance of each candidate segment whose own box meets it too;
+    the trunk's volumes give ``least_upper`` and ``least_fore`` the least distance per
+    segment from any of them, for :func:`charge_trunk` to charge once. The arithmetic of the
+    numpy version (``tests/perf_equivalence/plain_clearance.py``), element by element,
+    which measured every candidate of such a frame: the candidates not measured here
+    added nothing there."""
     n, k_count = ex.shape
     local = np.empty((k_count, 3))
     meets = np.empty((2, kinds.size), dtype=np.bool_)
     for i in range(n):
-        s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
-        w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
-        if framed:
-            q = (rotation[i, 0], rotation[i, 1], rotation[i, 2], rotation[i, 3])
-            t = (translation[i, 0], translation[i, 1], translation[i, 2])
-            s = _to_rest(*q, *t, *s)
-            w = _to_rest(*q, *t, *w)
-            for k in range(k_count):
-                local[k, 0], local[k, 1], local[k, 2] = _to_rest(*q, *t, ex[i, k], ey[i, k], ez[i, k])
-        else:
-            for k in range(k_count):
-                local[k, 0], local[k, 1], local[k, 2] = ex[i, k], ey[i, k], ez[i, k]
-        low = (local[:, 0].min(), local[:, 1].min(), local[:, 2].min())
-        high = (local[:, 0].max(), local[:, 1].max(), local[:, 2].max())
-        row_meets(s, w, low, high, segments, boxes, meets)
-        for g in range(2):
-            f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
-            grow = radius + CLEARANCE
-            least = least_upper if g == 0 else least_fore
-            for v in range(kinds.size):
-                if not meets[g, v]:
-                    continue
-                box = boxes[v]
+        chosen = 1 if turned[i] else 0
+        for group in range(sets[chosen, 0], sets[chosen, 1]):
+            first, stop, frame = groups[group, 0], groups[group, 1], groups[group, 2]
+            s = (shoulder[i, 0], shoulder[i, 1], shoulder[i, 2])
+            w = (wrist[i, 0], wrist[i, 1], wrist[i, 2])
+            if framed[frame]:
+                q = (rotations[frame, i, 0], rotations[frame, i, 1], rotations[frame, i, 2], rotations[frame, i, 3])
+                t = (translations[frame, i, 0], translations[frame, i, 1], translations[frame, i, 2])
+                s = _to_rest(*q, *t, *s)
+                w = _to_rest(*q, *t, *w)
                 for k in range(k_count):
-                    ax, ay, az, bx, by, bz = segment_ends(s, w, local[k, 0], local[k, 1], local[k, 2], f0, f1, from_shoulder)
-                    # a candidate whose own segment's box misses the volume's adds nothing
-                    if _misses(box, grow, ax, ay, az, bx, by, bz):
+                    local[k, 0], local[k, 1], local[k, 2] = _to_rest(*q, *t, ex[i, k], ey[i, k], ez[i, k])
+            else:
+                for k in range(k_count):
+                    local[k, 0], local[k, 1], local[k, 2] = ex[i, k], ey[i, k], ez[i, k]
+            low = (local[:, 0].min(), local[:, 1].min(), local[:, 2].min())
+            high = (local[:, 0].max(), local[:, 1].max(), local[:, 2].max())
+            row_meets(s, w, low, high, segments, boxes[first:stop], meets)
+            for g in range(2):
+                f0, f1, radius, from_shoulder = segments[g, 0], segments[g, 1], segments[g, 2], segments[g, 3] > 0.5
+                grow = radius + CLEARANCE
+                least = least_upper if g == 0 else least_fore
+                for v in range(first, stop):
+                    if not meets[g, v - first]:
                         continue
-                    distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
-                    if in_trunk[v]:
-                        least[i, k] = min(least[i, k], distance)
-                    else:
-                        cost[i, k] += overlap_cost(distance)
-                    depth[i, k] = max(depth[i, k], -distance)
+                    box = boxes[v]
+                    for k in range(k_count):
+                        ax, ay, az, bx, by, bz = segment_ends(s, w, local[k, 0], local[k, 1], local[k, 2], f0, f1, from_shoulder)
+                        # a candidate whose own segment's box misses the volume's adds nothing
+                        if _misses(box, grow, ax, ay, az, bx, by, bz):
+                            continue
+                        distance = volume_distance(kinds[v], parameters[v], ax, ay, az, bx, by, bz, radius)
+                        if in_trunk[v]:
+                            least[i, k] = min(least[i, k], distance)
+                        else:
+                            cost[i, k] += overlap_cost(distance)
+                        depth[i, k] = max(depth[i, k], -distance)
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")

@@ -233,35 +233,51 @@ def _body_costs(
     """:func:`clearance`'s penalty and depth from the body ``(n, K)``: the instants where
     the trunk does not turn (all of them without ``carried_frames``) against
     :func:`upright_obstacles`, the others against every volume where the joints above it
-    carry it. Each instant's figures are its own, whatever the others."""
-    shape = elbow[0].shape
+    carry it (:func:`body_groups`). The trunk's volumes (a torso and a chest: one body
+    cut in two) are not penalized one by one but by each segment's least distance from
+    any of them, so that a segment near the cut pays once. Each instant's figures are
+    its own, whatever the others. Compiled (:func:`motor.arm.candidate_clearance.clearance_rows`,
+    then :func:`motor.arm.candidate_clearance.charge_trunk`)."""
+    shape = np.broadcast_shapes(*(c.shape for c in elbow))
+    ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float) for c in elbow)
+    kinds, parameters, boxes, in_trunk, groups, sets = body_groups(upright_obstacles(avatar), _by_carriers(avatar))
+    count = len(TURN_JOINTS) + 1
+    rotations, translations = np.zeros((count, shape[0], 4)), np.zeros((count, shape[0], 3))
+    framed = np.zeros(count, dtype=np.bool_)
+    for slot, frame in enumerate((*(carried_frames or (None,) * (count - 1)), body_frame)):
+        if frame is not None:
+            rotations[slot], translations[slot] = frame
+            framed[slot] = True
+    turned = np.zeros(shape[0], dtype=np.bool_) if carried_frames is None else ~np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
     cost, depth = np.zeros(shape), np.zeros(shape)
-    if carried_frames is None:
-        trunk = [np.full(shape, np.inf), np.full(shape, np.inf)]
-        _body_clearance(capsules, upright_obstacles(avatar), shoulder, wrist, elbow, body_frame, cost, depth, trunk)
-        charge_trunk(cost, *trunk)
-        return cost, depth
-    upright = np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
-    for rows, obstacles in ((upright, None), (~upright, _by_carriers(avatar))):
-        if not np.any(rows):
-            continue
-        every = bool(np.all(rows))
-        pick = (lambda value: value) if every else (lambda value: value[rows])
-        frame = lambda f: None if f is None else (pick(f[0]), pick(f[1]))
-        if obstacles is None:
-            groups = ((upright_obstacles(avatar), frame(body_frame)),)
-        else:
-            groups = tuple(zip(obstacles, (*(frame(f) for f in carried_frames), frame(body_frame))))
-        part_cost, part_depth = np.zeros(pick(cost).shape), np.zeros(pick(cost).shape)
-        trunk = [np.full(part_cost.shape, np.inf), np.full(part_cost.shape, np.inf)]
-        for found, where in groups:
-            if found:
-                _body_clearance(capsules, found, pick(shoulder), pick(wrist), tuple(pick(c) for c in elbow), where, part_cost, part_depth, trunk)
-        charge_trunk(part_cost, *trunk)
-        if every:
-            return part_cost, part_depth
-        cost[rows], depth[rows] = part_cost, part_depth
+    trunk = (np.full(shape, np.inf), np.full(shape, np.inf))
+    clearance_rows(
+        np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez,
+        rotations, translations, framed, groups, sets, turned, segment_table(capsules), kinds, parameters, boxes, in_trunk,
+        cost, depth, *trunk,
+    )  # fmt: skip
+    charge_trunk(cost, *trunk)
     return cost, depth
+
+
+@functools.lru_cache(maxsize=32)
+def body_groups(upright: tuple[Obstacle, ...], by_carriers: tuple[tuple[Obstacle, ...], ...]) -> tuple[np.ndarray, ...]:
+    """The body's obstacles as :func:`motor.arm.candidate_clearance.clearance_rows` reads
+    them: an :func:`obstacle_table` of the ``upright`` ones (:func:`upright_obstacles`)
+    followed by those of ``by_carriers``, by how many turning joints carry them (0 … all:
+    :func:`_by_carriers`); the groups ``(G, 3)`` — first obstacle, stop, and the frame
+    that carries them (``j`` < all: the ``j``-th carried frame, all: the body's frame);
+    and which groups serve an upright and a turned trunk ``(2, 2)`` (first group, stop)."""
+    parts = [(upright, len(by_carriers) - 1)] + [(found, slot) for slot, found in enumerate(by_carriers) if found]
+    obstacles, groups, first = [], [], 0
+    for found, slot in parts:
+        obstacles.extend(found)
+        groups.append((first, first + len(found), slot))
+        first += len(found)
+    spans = np.array(groups, dtype=np.int64), np.array([[0, 1], [1, len(groups)]], dtype=np.int64)
+    for array in spans:
+        array.setflags(write=False)
+    return (*obstacle_table(tuple(obstacles)), *spans)
 
 
 @functools.lru_cache(maxsize=32)
@@ -292,39 +308,6 @@ def _stacked(volumes: list[Volume]) -> bool:
     return same and all(np.isclose(low.top, high.bottom) for low, high in zip(volumes, volumes[1:]))
 
 
-def _body_clearance(
-    capsules: ArmCapsules,
-    obstacles: tuple[Obstacle, ...],
-    shoulder: np.ndarray,
-    wrist: np.ndarray,
-    elbow: Components,
-    frame: tuple[np.ndarray, np.ndarray] | None,
-    cost: np.ndarray,
-    depth: np.ndarray,
-    trunk: list[np.ndarray],
-) -> None:
-    """:func:`clearance`'s penalty and depth of the arm against ``obstacles`` whose rest
-    geometry ``frame`` carries to where they are, added into ``cost`` and ``depth``; the
-    trunk's volumes (a torso and a chest: one body cut in two) are not penalized one by
-    one but give ``trunk``, per segment, the least distance from any of them (left as it
-    was where the segment is farther than the clearance from all), so that a segment near
-    the cut pays once. Compiled (:func:`motor.arm.candidate_clearance.clearance_rows`); the arrays it
-    adds into must be contiguous ``(n, K)``."""
-    kinds, parameters, boxes, in_trunk = obstacle_table(obstacles)
-    shape = np.broadcast_shapes(*(c.shape for c in elbow))
-    ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, shape), dtype=float) for c in elbow)
-    rotation, translation = (np.zeros((0, 4)), np.zeros((0, 3))) if frame is None else (np.ascontiguousarray(f, dtype=float) for f in frame)
-    segments = segment_table(capsules)
-    for target in (cost, depth, *trunk):
-        if not target.flags.c_contiguous:
-            raise ValueError("clearance adds into contiguous arrays only")
-    clearance_rows(
-        np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez,
-        rotation, translation, frame is not None, segments, kinds, parameters, boxes, in_trunk,
-        cost, depth, trunk[0], trunk[1],
-    )  # fmt: skip
-
-
 @functools.lru_cache(maxsize=32)
 def segment_table(capsules: ArmCapsules) -> np.ndarray:
     """The arm's segments as the compiled clearance reads them ``(2, 4)``: the upper arm's
@@ -348,10 +331,12 @@ def obstacle_table(obstacles: tuple[Obstacle, ...]) -> tuple[np.ndarray, np.ndar
 
 
 def load_kernels() -> None:
-    """Run this module's compiled loop once (it loads when the module is imported):
+    """Run this module's compiled loops once (they load when the module is imported):
     :func:`motor.compiled.warm_up`."""
     capsules = ArmCapsules((0.0, 1.0), 0.05, (0.0, 1.0), 0.04, np.zeros((2, 3)), 0.03)
-    point, elbow = np.zeros((1, 3)), tuple(np.ones((1, 1)) for _ in range(3))
-    cell = lambda: np.zeros((1, 1))
-    for frame in (None, (np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)))):
-        _body_clearance(capsules, (), point, point, elbow, frame, cell(), cell(), [cell(), cell()])
+    point, elbow = np.zeros((1, 3)), np.ones((1, 1))
+    cells = [np.zeros((1, 1)) for _ in range(4)]
+    groups, sets = np.array([[0, 0, 0]]), np.array([[0, 1], [0, 1]])
+    flags = np.zeros(1, dtype=np.bool_)
+    clearance_rows(point, point, elbow, elbow, elbow, np.zeros((1, 1, 4)), np.zeros((1, 1, 3)), flags, groups, sets, flags, segment_table(capsules), *obstacle_table(()), *cells)
+    charge_trunk(*cells[:3])

@@ -75,6 +75,43 @@ def body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, cost, depth
     np.maximum(depth, part_depth, out=depth)
 
 
+def turned_body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carried_frames) -> tuple[np.ndarray, np.ndarray]:
+    """The ``_body_costs`` of :mod:`motor.arm.clearance` before its groups went into one
+    compiled loop: per group of obstacles (upright where the trunk does not turn, by
+    carrying joints where it does), the rows of its kind measured against them, the
+    trunk's least distances charged after (with this module's numpy measurement)."""
+    from motor.arm.clearance import _by_carriers, upright_obstacles
+
+    shape = elbow[0].shape
+    cost, depth = np.zeros(shape), np.zeros(shape)
+    if carried_frames is None:
+        body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, cost, depth)
+        return cost, depth
+    upright = np.all(carried_frames[0][0] == quat.IDENTITY, axis=1)
+    for rows, obstacles in ((upright, None), (~upright, _by_carriers(avatar))):
+        if not np.any(rows):
+            continue
+        every = bool(np.all(rows))
+        pick = (lambda value: value) if every else (lambda value: value[rows])
+        frame = lambda f: None if f is None else (pick(f[0]), pick(f[1]))
+        if obstacles is None:
+            groups = ((upright_obstacles(avatar), frame(body_frame)),)
+        else:
+            groups = tuple(zip(obstacles, (*(frame(f) for f in carried_frames), frame(body_frame))))
+        part_cost, part_depth = np.zeros(pick(cost).shape), np.zeros(pick(cost).shape)
+        trunk = [np.full(part_cost.shape, np.inf), np.full(part_cost.shape, np.inf)]
+        for found, where in groups:
+            if found:
+                _body_clearance(capsules, found, pick(shoulder), pick(wrist), tuple(pick(c) for c in elbow), where, part_cost, part_depth, trunk)
+        for distance in trunk:
+            near = np.isfinite(distance)
+            part_cost[near] += overlap_penalty(distance[near])
+        if every:
+            return part_cost, part_depth
+        cost[rows], depth[rows] = part_cost, part_depth
+    return cost, depth
+
+
 def other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components, other: ArmSegments, cost: np.ndarray) -> None:
     """The numpy loop of :func:`motor.arm.clearance.clearance` that added into ``cost`` the
     penalty of the candidates coming near the ``other`` arm's capsules."""

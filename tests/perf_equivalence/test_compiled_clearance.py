@@ -1,11 +1,11 @@
-"""The compiled arm-against-body clearance (:func:`motor.arm.clearance._body_clearance`)
-adds into its cost and depth arrays the numbers the numpy version
-(``plain_clearance.py``) adds, bit for bit, and leaves in its trunk arrays distances of
-the same penalty (it does not measure candidates beyond the clearance, which the numpy
-version measured and which cost nothing): on both avatars, both arms, every group of
-obstacles the swivel search measures (all, upright, carried by 0 … 3 turning joints),
-with the trunk upright and carried by a turned frame, for arms at rest height, across the
-chest and deep in the body."""
+"""The compiled arm-against-body clearance (:func:`motor.arm.clearance._body_costs`: one
+compiled loop over every group of obstacles, then the trunk's charge) gives the costs
+and depths of the numpy composition (``plain_clearance.py``: a numpy measurement per
+group of obstacles, the rows of each kind apart), bit for bit: on both avatars, both
+arms, with the trunk upright at rest, upright and carried by a moved body's frame, and
+turned toward a reach (at every instant, at some, at none but with the turn's frames
+given), for arms at rest height, across the chest and deep in the body, with NaN among
+the candidates."""
 
 from __future__ import annotations
 
@@ -13,16 +13,15 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm.clearance import _body_clearance, _body_costs, _by_carriers, arm_capsules, body_obstacles, overlap_penalty, upright_obstacles
+from motor.arm.chain import carried_frames
+from motor.arm.clearance import _body_costs, arm_capsules
 from motor.body.avatar import load_avatar
 from tests.perf_equivalence import plain_clearance as plain
 
 RNG = np.random.default_rng(29)
 N, K = 40, 18
-
-
-def _groups(avatar):
-    return {"all": body_obstacles(avatar), "upright": upright_obstacles(avatar), **{f"carried by {i}": g for i, g in enumerate(_by_carriers(avatar)) if g}}
+#: Trunk yaw (radians) per instant of a turned trunk's cases, cycled over the N instants.
+YAWS = {"turned everywhere": [0.3, -0.25, 0.1], "turned at some instants": [0.0, 0.3, 0.0, -0.2], "turned nowhere, frames given": [0.0]}
 
 
 def _arm(avatar, side: str, spread: float):
@@ -41,55 +40,54 @@ def _frame(turned: bool):
     return rotation, RNG.normal(0.0, 0.02, (N, 3))
 
 
-def _start():
-    cost = RNG.uniform(0.0, 5.0, (N, K))
-    depth = RNG.uniform(0.0, 0.01, (N, K))
-    trunk = [np.where(RNG.random((N, K)) < 0.5, np.inf, RNG.normal(0.0, 0.05, (N, K))) for _ in range(2)]
-    return cost, depth, trunk
+def _carried(avatar, yaws: list[float]):
+    yaw = np.resize(np.array(yaws), N)
+    if not np.any(yaw):
+        # a turn's frames at upright instants: those of a turn that is zero there
+        return tuple((r[:N], t[:N]) for r, t in carried_frames(avatar, np.append(yaw, 0.3)))
+    return carried_frames(avatar, yaw)
 
 
 @pytest.mark.parametrize("avatar_name", ["max", "kim"])
 @pytest.mark.parametrize("side", ["l", "r"])
-@pytest.mark.parametrize("turned", [False, True], ids=["upright", "turned"])
+@pytest.mark.parametrize("turn", list(YAWS))
+@pytest.mark.parametrize("moved", [False, True], ids=["at rest", "body moved"])
 @pytest.mark.parametrize("spread", [0.04, 0.12, 0.3])
-def test_clearance_adds_what_the_numpy_version_adds(avatar_name, side, turned, spread):
+def test_turned_body_costs_charge_what_the_numpy_ones_charge(avatar_name, side, turn, moved, spread):
     avatar = load_avatar(avatar_name)
     capsules = arm_capsules(avatar, side)
-    for name, obstacles in _groups(avatar).items():
-        shoulders, wrists, elbows = _arm(avatar, side, spread)
-        frame = _frame(turned)
-        cost, depth, trunk = _start()
-        expected = (cost.copy(), depth.copy(), [t.copy() for t in trunk])
-        plain._body_clearance(capsules, obstacles, shoulders, wrists, elbows, frame, *expected)
-        _body_clearance(capsules, obstacles, shoulders, wrists, elbows, frame, cost, depth, trunk)
-        for got, want in zip((cost, depth, *map(_trunk_penalty, trunk)), (expected[0], expected[1], *map(_trunk_penalty, expected[2]))):
-            assert np.array_equal(got, want), (name, np.nanmax(np.abs(got - want)))
+    shoulders, wrists, elbows = _arm(avatar, side, spread)
+    frames, body_frame = _carried(avatar, YAWS[turn]), _frame(moved)
+    expected = plain.turned_body_costs(avatar, capsules, shoulders, wrists, elbows, body_frame, frames)
+    cost, depth = _body_costs(avatar, capsules, shoulders, wrists, elbows, body_frame, frames)
+    assert np.array_equal(cost, expected[0]) and np.array_equal(depth, expected[1])
+    assert np.count_nonzero(cost) > 0
 
 
-def _trunk_penalty(least: np.ndarray) -> np.ndarray:
-    """What :func:`motor.arm.clearance._body_costs` charges for the trunk's least distances."""
-    finite = np.isfinite(least)
-    return np.where(finite, overlap_penalty(np.where(finite, least, 1.0)), 0.0)
+@pytest.mark.parametrize("turn", [None, *YAWS])
+def test_nan_candidates_cost_what_they_cost_in_numpy(turn):
+    """A frame with a NaN candidate elbow has NaN boxes: numpy measured none of its
+    candidates against any volume, and neither does the compiled loop."""
+    avatar = load_avatar("max")
+    capsules = arm_capsules(avatar, "r")
+    shoulders, wrists, elbows = _arm(avatar, "r", 0.12)
+    elbows = tuple(c.copy() for c in elbows)
+    elbows[0][2, 5] = np.nan
+    elbows[1][11, :] = np.nan
+    frames = None if turn is None else _carried(avatar, YAWS[turn])
+    expected = plain.turned_body_costs(avatar, capsules, shoulders, wrists, elbows, None, frames)
+    got = _body_costs(avatar, capsules, shoulders, wrists, elbows, None, frames)
+    for have, want in zip(got, expected):
+        assert np.array_equal(have, want, equal_nan=True)
 
 
 def test_the_tables_reach_the_body():
-    """The arms of the table do come near the body: penalties and depths are added."""
+    """The arms of the table do come near the body: penalties and depths are charged."""
     avatar = load_avatar("max")
     shoulders, wrists, elbows = _arm(avatar, "r", 0.12)
-    cost, depth = np.zeros((N, K)), np.zeros((N, K))
-    trunk = [np.full((N, K), np.inf), np.full((N, K), np.inf)]
-    _body_clearance(arm_capsules(avatar, "r"), body_obstacles(avatar), shoulders, wrists, elbows, None, cost, depth, trunk)
+    cost, depth = _body_costs(avatar, arm_capsules(avatar, "r"), shoulders, wrists, elbows, None, None)
     assert np.count_nonzero(cost) > N
     assert np.count_nonzero(depth) > N
-    assert np.isfinite(trunk[0]).sum() > N and np.isfinite(trunk[1]).sum() > N
-
-
-def test_arrays_that_are_not_contiguous_are_refused():
-    avatar = load_avatar("max")
-    shoulders, wrists, elbows = _arm(avatar, "r", 0.12)
-    cost = np.zeros((K, N)).T
-    with pytest.raises(ValueError, match="contiguous"):
-        _body_clearance(arm_capsules(avatar, "r"), body_obstacles(avatar), shoulders, wrists, elbows, None, cost, np.zeros((N, K)), [np.zeros((N, K))] * 2)
 
 
 @pytest.mark.parametrize("avatar_name", ["max", "kim"])
