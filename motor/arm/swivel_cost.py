@@ -78,14 +78,15 @@ def candidate_costs(
     arm's capsules too; with ``own`` False, only that: the penalty of coming near the
     other arm (0 outside the window). ``nearby (n, K)``: each candidate's clearance
     penalty at instants around each one (:func:`body_penalties`), which it pays where it
-    is more than its own."""
+    is more than its own (the other arm's penalty alone is measured in one pass: only in
+    the frames near it, by a compiled loop)."""
+    if not own:
+        return _other_arm_costs(avatar, placement, natural, other)
     if len(natural) > CHUNK_FRAMES:
         return np.concatenate([
             candidate_costs(avatar, placement.take(rows), natural[rows], None if other is None else other.take(rows), own, None if nearby is None else nearby[rows])
             for rows in (slice(start, start + CHUNK_FRAMES) for start in range(0, len(natural), CHUNK_FRAMES))
         ])  # fmt: skip
-    if not own:
-        return _other_arm_costs(avatar, placement, natural, other)
     cells, psi = measured_window(natural)
     elbow, radial = candidate_elbows(placement, np.cos(psi), np.sin(psi))
     circle = placement.circle
