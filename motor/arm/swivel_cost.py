@@ -28,7 +28,8 @@ import numba
 import numpy as np
 
 from motor.arm.chain import ArmPlacement
-from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance, penetration_penalty
+from motor.arm.clearance import CLEARANCE, ArmSegments, arm_capsules, clearance, penetration_penalty, segment_table
+from motor.arm.other_arm_clearance import near_frames, other_arm_window
 from motor.body.avatar import Avatar
 from motor.body.distance import Components
 from motor.kernel_types import READ1, READ2, WRITE2
@@ -132,27 +133,28 @@ def beyond_penalties(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
 
 def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarray, other: ArmSegments) -> np.ndarray:
     """Only the penalty of coming near the other arm, measured in the frames whose arm —
-    bounded by its shoulder, wrist and whole elbow circle — may reach the other's capsules."""
+    bounded by its shoulder, wrist and whole elbow circle — may reach the other's capsules
+    (:func:`motor.arm.other_arm_clearance.near_frames`), by a compiled loop over those
+    frames (:func:`motor.arm.other_arm_clearance.other_arm_window`)."""
     count = len(CANDIDATES)
     costs = np.zeros((len(natural), count))
     circle = placement.circle
+    rows = lambda value: np.ascontiguousarray(value, dtype=float)
     own = arm_capsules(avatar, placement.chain.side)
-    reach = circle.radius[:, None] + max(other.radii) + max(own.upper_radius, own.fore_radius) + CLEARANCE
-    low = np.minimum(np.minimum(circle.shoulder, circle.wrist), circle.center - reach)
-    high = np.maximum(np.maximum(circle.shoulder, circle.wrist), circle.center + reach)
-    near = np.zeros(len(natural), dtype=bool)
-    for a, b, radius in other.capsules():
-        near |= np.all((low <= np.maximum(a, b) + radius) & (high >= np.minimum(a, b) - radius), axis=1)
+    ends = rows(np.stack([np.concatenate(pair, axis=1) for pair in (other.upper, other.fore, other.hand)]))
+    radii = np.array(other.radii, dtype=float)
+    margins = np.array([max(other.radii), max(own.upper_radius, own.fore_radius), CLEARANCE])
+    shoulder, wrist, center, radius = rows(circle.shoulder), rows(circle.wrist), rows(circle.center), rows(circle.radius)
+    near = np.empty(len(natural), dtype=np.bool_)
+    near_frames(shoulder, wrist, center, radius, margins, ends, radii, near)
     if not np.any(near):
         return costs
-    rows = np.flatnonzero(near)
-    cells, psi = measured_window(natural[rows])
-    subset = placement.take(rows)
-    elbow, _ = candidate_elbows(subset, np.cos(psi), np.sin(psi))
-    penalty, _ = clearance(avatar, placement.chain.side, subset.circle.shoulder, subset.circle.wrist, elbow, subset.body_frame, other.take(rows), body=False)
-    window = np.zeros((len(rows), count))
-    np.put_along_axis(window, cells.astype(np.int64) % count, penalty, axis=1)
-    costs[rows] = window
+    measured = np.flatnonzero(near)
+    cells, psi = measured_window(natural[measured])
+    other_arm_window(
+        measured, shoulder, wrist, center, rows(circle.down), rows(circle.out), radius, np.cos(psi), np.sin(psi),
+        cells.astype(np.int64) % count, segment_table(own), ends, radii, costs,
+    )  # fmt: skip
     return costs
 
 

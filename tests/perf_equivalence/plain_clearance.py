@@ -128,6 +128,37 @@ def other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.n
             cost[rows] += (penalty if part == "hand" else overlap_penalty)(distance - radius - r_other)
 
 
+def other_arm_costs(avatar, placement, natural: np.ndarray, other: ArmSegments) -> np.ndarray:
+    """``motor.arm.swivel_cost._other_arm_costs`` before it was compiled: the frames near
+    the other arm picked out in numpy, their placements taken, their window's elbows
+    placed and measured by :func:`other_arm_clearance`, and put in their cells."""
+    from motor.arm.clearance import arm_capsules
+    from motor.arm.swivel_cost import CANDIDATES, candidate_elbows, measured_window
+
+    count = len(CANDIDATES)
+    costs = np.zeros((len(natural), count))
+    circle = placement.circle
+    own = arm_capsules(avatar, placement.chain.side)
+    reach = circle.radius[:, None] + max(other.radii) + max(own.upper_radius, own.fore_radius) + CLEARANCE
+    low = np.minimum(np.minimum(circle.shoulder, circle.wrist), circle.center - reach)
+    high = np.maximum(np.maximum(circle.shoulder, circle.wrist), circle.center + reach)
+    near = np.zeros(len(natural), dtype=bool)
+    for a, b, radius in other.capsules():
+        near |= np.all((low <= np.maximum(a, b) + radius) & (high >= np.minimum(a, b) - radius), axis=1)
+    if not np.any(near):
+        return costs
+    rows = np.flatnonzero(near)
+    cells, psi = measured_window(natural[rows])
+    subset = placement.take(rows)
+    elbow, _ = candidate_elbows(subset, np.cos(psi), np.sin(psi))
+    penalty = np.zeros(elbow[0].shape)
+    other_arm_clearance(own, subset.circle.shoulder, subset.circle.wrist, elbow, other.take(rows), penalty)
+    window = np.zeros((len(rows), count))
+    np.put_along_axis(window, cells.astype(np.int64) % count, penalty, axis=1)
+    costs[rows] = window
+    return costs
+
+
 def _boxes(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components) -> list[tuple[np.ndarray, np.ndarray]]:
     """Per frame, the boxes ``(n, 3)`` (low and high corners) holding the upper arm's and
     the forearm's capsules, grown by :data:`CLEARANCE`, for every candidate elbow: the

@@ -4,7 +4,10 @@
 (``plain_clearance.other_arm_clearance``) adds, bit for bit: on both avatars, both arms,
 with the other arm crossing this one, beside it and far away, alone and on top of the
 body's costs, with NaN in the other arm's rows and in candidate elbows, one candidate,
-and no frames at all."""
+and no frames at all; and the other arm's costs of a swivel search
+(:func:`motor.arm.swivel_cost._other_arm_costs`: the frames near the other arm picked out,
+their window's elbows placed and measured, compiled) are those of its numpy version
+(``plain_clearance.other_arm_costs``)."""
 
 from __future__ import annotations
 
@@ -13,7 +16,9 @@ import pytest
 
 from motor import quaternion as quat
 from motor.arm.clearance import _body_costs, arm_capsules, arm_segments, clearance
-from motor.arm.other_arm_clearance import other_arm_rows
+from motor.arm.chain import natural_swivel, place_arm
+from motor.arm.other_arm_clearance import near_frames, other_arm_rows, other_arm_window
+from motor.arm.swivel_cost import _other_arm_costs
 from motor.body.avatar import load_avatar
 from motor.compiled import warm_up
 from tests.perf_equivalence import plain_clearance as plain
@@ -83,6 +88,41 @@ def test_shapes_at_the_edges(n, k):
     assert np.array_equal(cost, _expected(avatar, "r", *case, body=False), equal_nan=True)
 
 
-def test_the_loop_loads_with_its_one_signature():
+@pytest.mark.parametrize("avatar_name", ["max", "kim"])
+@pytest.mark.parametrize("side", ["l", "r"])
+@pytest.mark.parametrize("where", list(SPREADS))
+@pytest.mark.parametrize("turned", [False, True], ids=["upright", "trunk turned"])
+@pytest.mark.parametrize("nan", [False, True], ids=["finite", "NaN rows"])
+@pytest.mark.filterwarnings("ignore:invalid value encountered in cast")  # a NaN swivel's cell, in both versions
+def test_a_swivel_search_pays_the_numpy_costs_of_the_other_arm(avatar_name, side, where, turned, nan):
+    avatar = load_avatar(avatar_name)
+    shoulders, wrists, _, other = _case(avatar, side, SPREADS[where], seed=len(where) + 5 * turned + 13 * (side == "l"))
+    hands = quat.from_rotation_vector(np.random.default_rng(4).normal(0.0, 0.5, (N, 3)))
+    placement = place_arm(avatar, side, wrists, hands, trunk_yaw=np.linspace(-0.3, 0.3, N) if turned else None)
+    natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
+    if nan:
+        natural = natural.copy()
+        natural[4] = np.nan
+        _, _, _, other = _with_nan(shoulders, wrists, (np.zeros((N, K)),) * 3, other)
+    expected = plain.other_arm_costs(avatar, placement, natural, other)
+    costs = _other_arm_costs(avatar, placement, natural, other)
+    assert np.array_equal(costs, expected, equal_nan=True)
+    if where == "crossing":
+        assert np.count_nonzero(costs) > N, "the crossing arms come near each other"
+    if where == "away":
+        assert np.count_nonzero(costs.any(axis=1)) < N, "some frames are not near"
+
+
+def test_no_frame_near_the_other_arm_costs_nothing():
+    avatar = load_avatar("max")
+    _, wrists, _, other = _case(avatar, "r", SPREADS["away"], seed=2)
+    far = type(other)(*(tuple(end + 5.0 for end in pair) for pair in (other.upper, other.fore, other.hand)), other.radii)
+    placement = place_arm(avatar, "r", wrists)
+    natural = natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
+    assert not np.any(_other_arm_costs(avatar, placement, natural, far))
+
+
+@pytest.mark.parametrize("loop", [other_arm_rows, near_frames, other_arm_window], ids=lambda loop: loop.__name__)
+def test_the_loops_load_with_their_one_signature(loop):
     assert warm_up() >= 0.0
-    assert len(other_arm_rows.signatures) == 1
+    assert len(loop.signatures) == 1
