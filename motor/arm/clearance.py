@@ -86,8 +86,11 @@ class ArmSegments:
         pick = lambda ends: (ends[0][rows], ends[1][rows])
         return ArmSegments(pick(self.upper), pick(self.fore), pick(self.hand), self.radii)
 
-    def capsules(self) -> tuple[tuple[np.ndarray, np.ndarray, float], ...]:
-        return tuple((a, b, r) for (a, b), r in zip((self.upper, self.fore, self.hand), self.radii))
+    def table(self) -> tuple[np.ndarray, np.ndarray]:
+        """The capsules as the compiled loops of :mod:`motor.arm.other_arm_clearance` read
+        them: end points ``(3, n, 6)`` (upper arm, forearm, hand; a then b) and radii ``(3,)``."""
+        ends = np.stack([np.concatenate(pair, axis=1) for pair in (self.upper, self.fore, self.hand)])
+        return np.ascontiguousarray(ends, dtype=float), np.array(self.radii, dtype=float)
 
 
 @functools.lru_cache(maxsize=32)
@@ -214,11 +217,7 @@ def _other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.
     and forearm, :func:`penalty` from its hand (hands may touch the other arm where it is
     asked). Compiled (:func:`motor.arm.other_arm_clearance.other_arm_rows`)."""
     ex, ey, ez = (np.ascontiguousarray(np.broadcast_to(c, cost.shape), dtype=float) for c in elbow)
-    ends = np.stack([np.concatenate(pair, axis=1) for pair in (other.upper, other.fore, other.hand)]).astype(float, copy=False)
-    other_arm_rows(
-        np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez,
-        segment_table(capsules), ends, np.array(other.radii, dtype=float), cost,
-    )  # fmt: skip
+    other_arm_rows(np.ascontiguousarray(shoulder, dtype=float), np.ascontiguousarray(wrist, dtype=float), ex, ey, ez, segment_table(capsules), *other.table(), cost)
 
 
 def _body_costs(

@@ -141,8 +141,7 @@ def _other_arm_costs(avatar: Avatar, placement: ArmPlacement, natural: np.ndarra
     circle = placement.circle
     rows = lambda value: np.ascontiguousarray(value, dtype=float)
     own = arm_capsules(avatar, placement.chain.side)
-    ends = rows(np.stack([np.concatenate(pair, axis=1) for pair in (other.upper, other.fore, other.hand)]))
-    radii = np.array(other.radii, dtype=float)
+    ends, radii = other.table()
     margins = np.array([max(other.radii), max(own.upper_radius, own.fore_radius), CLEARANCE])
     shoulder, wrist, center, radius = rows(circle.shoulder), rows(circle.wrist), rows(circle.center), rows(circle.radius)
     near = np.empty(len(natural), dtype=np.bool_)

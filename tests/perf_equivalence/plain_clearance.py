@@ -112,12 +112,17 @@ def turned_body_costs(avatar, capsules, shoulder, wrist, elbow, body_frame, carr
     return cost, depth
 
 
+def _capsules(other: ArmSegments) -> tuple[tuple[np.ndarray, np.ndarray, float], ...]:
+    """The other arm's capsules: end points ``(n, 3)`` and radius, upper arm, forearm, hand."""
+    return tuple((a, b, r) for (a, b), r in zip((other.upper, other.fore, other.hand), other.radii))
+
+
 def other_arm_clearance(capsules: ArmCapsules, shoulder: np.ndarray, wrist: np.ndarray, elbow: Components, other: ArmSegments, cost: np.ndarray) -> None:
     """The numpy loop of :func:`motor.arm.clearance.clearance` that added into ``cost`` the
     penalty of the candidates coming near the ``other`` arm's capsules."""
     boxes = _boxes(capsules, shoulder, wrist, elbow)
     for (a, b, radius), (low, high) in zip(_segments(capsules, shoulder, wrist, elbow), boxes):
-        for part, (a_other, b_other, r_other) in zip(("upper", "fore", "hand"), other.capsules()):
+        for part, (a_other, b_other, r_other) in zip(("upper", "fore", "hand"), _capsules(other)):
             near = np.all((low <= np.maximum(a_other, b_other) + r_other) & (high >= np.minimum(a_other, b_other) - r_other), axis=1)
             if not np.any(near):
                 continue
@@ -143,7 +148,7 @@ def other_arm_costs(avatar, placement, natural: np.ndarray, other: ArmSegments) 
     low = np.minimum(np.minimum(circle.shoulder, circle.wrist), circle.center - reach)
     high = np.maximum(np.maximum(circle.shoulder, circle.wrist), circle.center + reach)
     near = np.zeros(len(natural), dtype=bool)
-    for a, b, radius in other.capsules():
+    for a, b, radius in _capsules(other):
         near |= np.all((low <= np.maximum(a, b) + radius) & (high >= np.minimum(a, b) - radius), axis=1)
     if not np.any(near):
         return costs
