@@ -13,26 +13,12 @@ numpy's NaN rules included: a frame whose boxes hold a NaN is not measured. Metr
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
 from motor.arm.candidate_clearance import CLEARANCE, CONTACT_PENALTY, overlap_cost, segment_ends
 from motor.body.distance import segments_gap
-from motor.kernel_types import READ1, READ2, READ3, READ_INTS1, READ_INTS2, WRITE2
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _minimum(a, b):  # noqa: ANN001, ANN202
-    """``np.minimum`` of two floats: NaN where either is."""
-    return a if a <= b or a != a else (b if b < a else math.nan)
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _maximum(a, b):  # noqa: ANN001, ANN202
-    """``np.maximum`` of two floats: NaN where either is."""
-    return a if a >= b or a != a else (b if b > a else math.nan)
+from motor.kernel_types import READ1, READ2, READ3, READ_INTS1, READ_INTS2, WRITE2, maximum, minimum
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
@@ -40,7 +26,7 @@ def _column_extremes(elbows, c):  # noqa: ANN001, ANN202
     """``elbows[:, c].min()`` and ``.max()`` as numpy gives them (NaN if any is)."""
     low, high = elbows[0, c], elbows[0, c]
     for k in range(1, elbows.shape[0]):
-        low, high = _minimum(low, elbows[k, c]), _maximum(high, elbows[k, c])
+        low, high = minimum(low, elbows[k, c]), maximum(high, elbows[k, c])
     return low, high
 
 
@@ -62,14 +48,14 @@ def _add_frame(s, w, elbows, segments, other, other_radii, i, cost):  # noqa: AN
         start = s if from_shoulder else w
         w0, w1 = (f0, f1) if from_shoulder else (1.0 - f0, 1.0 - f1)
         grow = radius + CLEARANCE
-        box_low = [_minimum(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow for c in range(3)]
-        box_high = [_maximum(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow for c in range(3)]
+        box_low = [minimum(start[c] + w0 * (low[c] - start[c]), start[c] + w1 * (low[c] - start[c])) - grow for c in range(3)]
+        box_high = [maximum(start[c] + w0 * (high[c] - start[c]), start[c] + w1 * (high[c] - start[c])) + grow for c in range(3)]
         for p in range(3):
             r = other_radii[p]
             near = True
             for c in range(3):
                 a, b = other[p, i, c], other[p, i, 3 + c]
-                near = near and box_low[c] <= _maximum(a, b) + r and box_high[c] >= _minimum(a, b) - r
+                near = near and box_low[c] <= maximum(a, b) + r and box_high[c] >= minimum(a, b) - r
             if not near:
                 continue
             oa = (other[p, i, 0], other[p, i, 1], other[p, i, 2])
@@ -117,14 +103,14 @@ def near_frames(shoulder, wrist, center, radius, margins, other, other_radii, ne
     radius, this arm's largest, the clearance; added in that order) meets one of theirs."""
     for i in range(near.size):
         reach = radius[i] + margins[0] + margins[1] + margins[2]
-        low = [_minimum(_minimum(shoulder[i, c], wrist[i, c]), center[i, c] - reach) for c in range(3)]
-        high = [_maximum(_maximum(shoulder[i, c], wrist[i, c]), center[i, c] + reach) for c in range(3)]
+        low = [minimum(minimum(shoulder[i, c], wrist[i, c]), center[i, c] - reach) for c in range(3)]
+        high = [maximum(maximum(shoulder[i, c], wrist[i, c]), center[i, c] + reach) for c in range(3)]
         found = False
         for p in range(3):
             meets = True
             for c in range(3):
                 a, b = other[p, i, c], other[p, i, 3 + c]
-                meets = meets and low[c] <= _maximum(a, b) + other_radii[p] and high[c] >= _minimum(a, b) - other_radii[p]
+                meets = meets and low[c] <= maximum(a, b) + other_radii[p] and high[c] >= minimum(a, b) - other_radii[p]
             found = found or meets
         near[i] = found
 

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from motor import quaternion as quat
-from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, swivel, swivel_cost, upright_placement
-from motor.body import distance
+from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, other_arm_clearance, swivel, swivel_cost, swivel_track, upright_placement
+from motor.body import collision, distance, hands_parting
 from motor.body.avatar import load_avatar
 from motor.hand import shape
-from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading
+from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
 from motor.compiled import warm_up
 from motor.trajectory import biocontrol
 
@@ -27,6 +27,9 @@ LOOPS = [
     (spreading, "_near_pairs"), (spreading, "_add_weighted"), (reach, "_shift_rows"), (repeats, "_group_rows"),
     (reach_steps, "_probe_rows"), (reach_steps, "_step_rows"),
     (upright_placement, "_clavicle_rows"), (upright_placement, "_circle_rows"), (upright_placement, "_swivel_sides"),
+    (swivel, "_walk"), (swivel_track, "_twists"), (swivel_track, "_wrist_steps"), (collision, "_torso_rays"), (collision, "_pushed_out"),
+    (hands_parting, "gaps"), (hands_parting, "pushes"), (track_kernels, "_segment_rows"),
+    (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
 ]  # fmt: skip
 
 
