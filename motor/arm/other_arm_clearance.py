@@ -7,7 +7,7 @@ affine in the elbow with non-negative weights), grown by the segment's radius an
 :data:`motor.arm.candidate_clearance.CLEARANCE`, is tested against the box of each of
 the other arm's capsules; where they meet, every candidate's segment is measured against
 that capsule (:func:`other_arm_rows`). The arithmetic of the numpy version it replaced
-(``tests/perf_equivalence/plain_other_arm.py``), the same operations in the same order,
+(``tests/perf_equivalence/plain_clearance.py``), the same operations in the same order,
 numpy's NaN rules included: a frame whose boxes hold a NaN is not measured. Metres.
 """
 
