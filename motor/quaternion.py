@@ -110,6 +110,14 @@ def crossed(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN201
     return uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def length3(x, y, z):  # noqa: ANN001, ANN201
+    """The length of the vector ``(x, y, z)``, its squares summed first to last (the
+    arithmetic of :func:`norm` and of ``np.linalg.norm`` over three numbers), for
+    compiled callers."""
+    return math.sqrt((x * x + y * y) + z * z)
+
+
 @_products
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
     u_step, v_step = u.shape[0] > 1, v.shape[0] > 1

@@ -81,12 +81,6 @@ def upright_placement(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand
     return placement, np.arctan2(along[0], along[1])
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _length(x, y, z):  # noqa: ANN001, ANN202
-    """``quat.norm`` of one vector: its squares summed first to last."""
-    return math.sqrt((x * x + y * y) + z * z)
-
-
 @numba.njit([numba.void(READ2, READ1, READ1, READ1, numba.float64, numba.float64, numba.float64, WRITE2, WRITE2)], cache=True, error_model="numpy")
 def _clavicle_rows(targets, sc_position, base, clavicle, clavicle_length, arm, clavicle_max, clavicle_local, shoulder):  # noqa: ANN001, ANN202
     """:func:`motor.arm.chain.clavicle_rotation` (upright) per row into ``clavicle_local
@@ -96,11 +90,11 @@ def _clavicle_rows(targets, sc_position, base, clavicle, clavicle_length, arm, c
     cx, cy, cz = clavicle[0], clavicle[1], clavicle[2]
     for i in range(targets.shape[0]):
         rx, ry, rz = targets[i, 0] - base[0], targets[i, 1] - base[1], targets[i, 2] - base[2]
-        distance = _length(rx, ry, rz)
+        distance = quat.length3(rx, ry, rz)
         t = min(max((distance / arm - low) / (high - low), 0.0), 1.0)
         amount = t * t * (3.0 - 2.0 * t)
         ax, ay, az = quat.crossed(cx, cy, cz, rx, ry, rz)
-        axis_length = _length(ax, ay, az)
+        axis_length = quat.length3(ax, ay, az)
         across = min(max(axis_length / max(clavicle_length * distance, 1e-12) / 0.3, 0.0), 1.0)
         scale = max(axis_length, 1e-12)
         half = 0.5 * (clavicle_max * amount * across)
@@ -141,7 +135,7 @@ def _circle_rows(reach, distance, reached, shoulder, lengths, side_sign, columns
         )
         along = (e[0] * a[0] + e[1] * a[1]) + e[2] * a[2]
         dx, dy, dz = e[0] - along * a[0], e[1] - along * a[1], e[2] - along * a[2]
-        down_length = _length(dx, dy, dz)
+        down_length = quat.length3(dx, dy, dz)
         if down_length > 1e-6:
             scale = max(down_length, 1e-12)
             dx, dy, dz = dx / scale, dy / scale, dz / scale

@@ -51,12 +51,6 @@ EASE_ARGUMENT = 6
 CONSTANTS = ("palm", "thickness", "length", "left_normal_x", "left_normal_y", "left_normal_z", "right_normal_x", "right_normal_y", "right_normal_z")
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _norm(x, y, z):  # noqa: ANN001, ANN202
-    """:func:`motor.quaternion.norm` of one vector: its squares summed first to last."""
-    return math.sqrt((x * x + y * y) + z * z)
-
-
 @numba.njit([numba.boolean(READ2, READ2, READ2, READ2, READ1, READ1, numba.float64, WRITE2)], cache=True, error_model="numpy")
 def gaps(l0, l1, r0, r1, s, t, thickness, table):  # noqa: ANN001, ANN201
     """Into ``table`` (columns :data:`GAP_COLUMNS`): per row, the line between the hands'
@@ -67,7 +61,7 @@ def gaps(l0, l1, r0, r1, s, t, thickness, table):  # noqa: ANN001, ANN201
     for i in range(table.shape[0]):
         for j in range(3):
             table[i, j] = (l0[i, j] + s[i] * (l1[i, j] - l0[i, j])) - (r0[i, j] + t[i] * (r1[i, j] - r0[i, j]))
-        apart = _norm(table[i, 0], table[i, 1], table[i, 2])
+        apart = quat.length3(table[i, 0], table[i, 1], table[i, 2])
         gap = apart - thickness
         shifted = gap + HAND_BAND
         table[i, 3], table[i, 4], table[i, 5] = apart, gap, shifted
@@ -95,20 +89,20 @@ def _parting(left, right, apart, s, t, length):  # noqa: ANN001, ANN202
     the avatar's top and left — and toward the avatar's left where they lie side by side
     (palm against palm); blended between."""
     ax, ay, az = quat.crossed(left[0], left[1], left[2], right[0], right[1], right[2])
-    sine = _norm(ax, ay, az) / maximum(_norm(left[0], left[1], left[2]) * _norm(right[0], right[1], right[2]), _TINY)
+    sine = quat.length3(ax, ay, az) / maximum(quat.length3(left[0], left[1], left[2]) * quat.length3(right[0], right[1], right[2]), _TINY)
     side = 1.0 if (ax * _PREFERRED[0] + ay * _PREFERRED[1]) + az * _PREFERRED[2] >= 0.0 else -1.0
     ax, ay, az = ax * side, ay * side, az * side
-    size = maximum(_norm(ax, ay, az), _TINY)
+    size = maximum(quat.length3(ax, ay, az), _TINY)
     ax, ay, az = ax / size, ay / size, az / size
     weight = minimum(maximum(sine / CROSSING_SINE, 0.0), 1.0)
     px, py, pz = weight * ax + (1.0 - weight) * 1.0, weight * ay + (1.0 - weight) * 0.0, weight * az + (1.0 - weight) * 0.0
-    spread = _norm(apart[0], apart[1], apart[2])
+    spread = quat.length3(apart[0], apart[1], apart[2])
     drawn = _ramp(minimum(s, t), END_SHARE[0], END_SHARE[1]) * _ramp(spread / length, END_SHARE[0], END_SHARE[1])
     wide = maximum(spread, _TINY)
     px = drawn * apart[0] / wide + (1.0 - drawn) * px
     py = drawn * apart[1] / wide + (1.0 - drawn) * py
     pz = drawn * apart[2] / wide + (1.0 - drawn) * pz
-    size = maximum(_norm(px, py, pz), _TINY)
+    size = maximum(quat.length3(px, py, pz), _TINY)
     return px / size, py / size, pz / size
 
 
@@ -155,7 +149,7 @@ def pushes(l0, l1, r0, r1, s, t, left, right, left_hands, right_hands, table, ri
         level = maximum(1.0 - abs(dy) / (0.25 * palm), 0.0)
         way = 0.25 * palm * crossed * level
         dx, dy, dz = dx + way * _CROSSED_WAY[0], dy + way * _CROSSED_WAY[1], dz + way * _CROSSED_WAY[2]
-        size = maximum(_norm(dx, dy, dz), _TINY)
+        size = maximum(quat.length3(dx, dy, dz), _TINY)
         dx, dy, dz = dx / size, dy / size, dz / size
         along = (bx * dx + bz * dz) + by * dy  # np.einsum's pairing of three products
         wanted = eased + thickness

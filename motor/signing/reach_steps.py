@@ -14,11 +14,10 @@ frame.
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
+from motor import quaternion as quat
 from motor.arm.ik import ArmReach
 from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE2, WRITE_INTS1, maximum
 
@@ -52,12 +51,6 @@ def reach_step(
     return moved.astype(bool)
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _length(x, y, z):  # noqa: ANN001, ANN202
-    """``np.linalg.norm`` of one row of three: its squares summed first to last."""
-    return math.sqrt((x * x + y * y) + z * z)
-
-
 @numba.njit([numba.void(READ2, READ_INTS1, READ1, numba.float64, WRITE2, WRITE2)], cache=True, error_model="numpy")
 def _probe_rows(fixed, open_, shoulder, margin, away, targets):  # noqa: ANN001, ANN202
     """Into ``away`` and ``targets``: :func:`reach_probes` row by row."""
@@ -65,7 +58,7 @@ def _probe_rows(fixed, open_, shoulder, margin, away, targets):  # noqa: ANN001,
     for j in range(n):
         i = open_[j]
         ax, ay, az = fixed[i, 0] - shoulder[0], fixed[i, 1] - shoulder[1], fixed[i, 2] - shoulder[2]
-        scale = maximum(_length(ax, ay, az), 1e-9)
+        scale = maximum(quat.length3(ax, ay, az), 1e-9)
         away[j, 0], away[j, 1], away[j, 2] = ax / scale, ay / scale, az / scale
         for c in range(3):
             targets[j, c] = fixed[i, c] + margin * away[j, c]
@@ -83,7 +76,7 @@ def _step_rows(fixed, open_, away, wrist, shortfall, penetration, shoulder, limi
     margin, tolerance, deep, step, inner = limits[MARGIN], limits[TOLERANCE], limits[PENETRATION], limits[STEP], limits[INNER]
     for j in range(n):
         i = open_[j]
-        outer = _length(fixed[i, 0] - shoulder[0], fixed[i, 1] - shoulder[1], fixed[i, 2] - shoulder[2]) > inner
+        outer = quat.length3(fixed[i, 0] - shoulder[0], fixed[i, 1] - shoulder[1], fixed[i, 2] - shoulder[2]) > inner
         far, near = shortfall[j], shortfall[n + j]
         # the IK reports a shortfall both beyond the arm's reach and too near the shoulder
         short = far > tolerance or near > tolerance
@@ -91,7 +84,7 @@ def _step_rows(fixed, open_, away, wrist, shortfall, penetration, shoulder, limi
         crossing = maximum(penetration[j], penetration[n + j]) > deep and across
         lacking = (1.0 if too_near else 0.0) * maximum(maximum(far, near), step)
         rx, ry, rz = away[j, 0] + ahead[0], away[j, 1] + ahead[1], away[j, 2] + ahead[2]
-        scale = maximum(_length(rx, ry, rz), 1e-9)
+        scale = maximum(quat.length3(rx, ry, rz), 1e-9)
         around = (rx / scale, ry / scale, rz / scale)
         back = 1.0 if crossing else 0.0
         for c in range(3):
