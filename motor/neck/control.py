@@ -34,7 +34,7 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
-from motor.neck.gaze import FORWARD, GazeLMP, eye_centre, rest_state
+from motor.neck.gaze import FORWARD, GazeLMP, eye_centre, rest_state, sample_shifts
 from motor.neck.lexemes import HeadMovementLMP
 from motor.neck.trunk import TrunkLMP
 from motor.program.lmp import ChannelState, ChannelTimeline
@@ -205,14 +205,16 @@ class NeckControl:
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
-    """The timeline's values at sorted ``times``, asking only the realizations in control there."""
+    """The gaze timeline's values at sorted ``times``: the initial value before its first
+    shift, then the shifts in control, all in one pass (:func:`motor.neck.gaze.sample_shifts`)."""
     out = np.empty((times.size, np.size(timeline.initial.value)))
     out[:] = timeline.initial.value
     owner = np.searchsorted(timeline.starts, times, side="right") - 1
-    for index in range(max(int(owner[0]), 0), int(owner[-1]) + 1):
-        lo, hi = np.searchsorted(owner, index, side="left"), np.searchsorted(owner, index, side="right")
-        if hi > lo:
-            out[lo:hi] = timeline.realizations[index].sample(times[lo:hi])
+    first = int(np.searchsorted(owner, 0, side="left"))
+    if first == times.size:
+        return out
+    low = int(owner[first])
+    out[first:] = sample_shifts(timeline.realizations[low : int(owner[-1]) + 1], owner[first:] - low, times[first:])
     return out
 
 

@@ -34,7 +34,7 @@ from where the previous one left the eyes and the head).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -234,29 +234,61 @@ class GazeShift:
         eyes, head = self.amplitudes
         return max(saccade_duration(eyes), HEAD_LAG + head_duration(head))
 
+    @property
+    def fixed(self) -> bool:
+        """Whether the eyes' and the head's goals stand still (then fixed from the start)."""
+        return self.lmp.target.fixed and (self.lmp.head is None or self.lmp.head.fixed)
+
     def sample(self, times: np.ndarray) -> np.ndarray:
         t = np.asarray(times, dtype=float)
-        eyes, head = self.amplitudes
-        ease = minimum_jerk()
-        s_eye = ease.fraction((t - self.time) / saccade_duration(eyes))
-        s_head = ease.fraction((t - self.time - HEAD_LAG) / head_duration(head))
-        fixed = self.lmp.target.fixed and (self.lmp.head is None or self.lmp.head.fixed)
-        if fixed and t.size and t[0] >= self.time + self.duration:
-            return np.broadcast_to(np.concatenate(self._goal_at_start), (t.size, 6)).copy()
-        goal, goal_head = (np.broadcast_to(v, (t.size, 3)) for v in self._goal_at_start) if fixed else self._goal(t)
-        origin = self.lmp.origin
-        start = self.from_point - origin
-        distance = (1.0 - s_eye) * float(np.linalg.norm(start)) + s_eye * np.linalg.norm(goal - origin, axis=1)
-        turn = quat.between_vectors(quat.normalize(start), quat.normalize(goal - origin))
-        looked = origin + distance[:, None] * quat.rotate(quat.slerp(quat.IDENTITY, turn, s_eye), quat.normalize(start))
-        swing = quat.between_vectors(self.from_head, goal_head)
-        facing = quat.rotate(quat.slerp(quat.IDENTITY, swing, s_head), self.from_head)
-        return np.concatenate([looked, facing], axis=1)
+        return sample_shifts((self,), np.zeros(t.size, dtype=np.int64), t)
 
     def state(self, time: float) -> ChannelState:
         step = 1e-4
         values = self.sample(np.array([time - step, time]))
         return ChannelState(values[1], (values[1] - values[0]) / step, float(time))
+
+
+def sample_shifts(shifts: Sequence[GazeShift], owner: np.ndarray, times: np.ndarray) -> np.ndarray:
+    """The gaze channel's values ``(n, 6)`` at sorted ``times`` (s), each from the shift
+    ``owner`` names (indices into ``shifts``, sorted): the eyes along a minimum-jerk
+    saccade and the head, :data:`HEAD_LAG` later, along its own, each the shortest arc
+    from where the shift found it toward its goal. A shift whose goal stands still, with
+    all its rows here after it is over, gives that goal exactly (rows of a pass that
+    starts before it is over come within rounding of it). All rows are worked out in one
+    pass (a timeline's shifts together: the per-call cost of numpy is paid once, not per
+    shift); each row's arithmetic is the same whichever shifts share the pass."""
+    t = np.asarray(times, dtype=float)
+    counts = np.bincount(owner, minlength=len(shifts)) if t.size else np.zeros(len(shifts), dtype=np.int64)
+    ends = np.cumsum(counts)
+    per_row = lambda values: np.repeat(np.asarray(values, dtype=float), counts, axis=0)
+    goal, goal_head = np.empty((t.size, 3)), np.empty((t.size, 3))
+    for shift, end, count in zip(shifts, ends, counts):
+        rows = slice(end - count, end)
+        if count and shift.fixed:
+            goal[rows], goal_head[rows] = shift._goal_at_start
+        elif count:
+            goal[rows], goal_head[rows] = shift._goal(t[rows])
+    ease = minimum_jerk()
+    amplitudes = np.array([shift.amplitudes for shift in shifts]).reshape(-1, 2)
+    began = per_row([shift.time for shift in shifts])
+    s_eye = ease.fraction((t - began) / per_row([saccade_duration(eyes) for eyes in amplitudes[:, 0]]))
+    s_head = ease.fraction((t - began - HEAD_LAG) / per_row([head_duration(head) for head in amplitudes[:, 1]]))
+    origin = per_row([shift.lmp.origin for shift in shifts]).reshape(-1, 3)
+    start = per_row([shift.from_point - shift.lmp.origin for shift in shifts]).reshape(-1, 3)
+    from_head = per_row([shift.from_head for shift in shifts]).reshape(-1, 3)
+    reach = per_row([float(np.linalg.norm(shift.from_point - shift.lmp.origin)) for shift in shifts])
+    distance = (1.0 - s_eye) * reach + s_eye * np.linalg.norm(goal - origin, axis=1)
+    way = quat.normalize(start)
+    turn = quat.between_vectors(way, quat.normalize(goal - origin))
+    looked = origin + distance[:, None] * quat.rotate(quat.slerp(quat.IDENTITY, turn, s_eye), way)
+    swing = quat.between_vectors(from_head, goal_head)
+    facing = quat.rotate(quat.slerp(quat.IDENTITY, swing, s_head), from_head)
+    values = np.concatenate([looked, facing], axis=1)
+    for shift, end, count in zip(shifts, ends, counts):
+        if count and shift.fixed and t[end - count] >= shift.time + shift.duration:
+            values[end - count : end] = np.concatenate(shift._goal_at_start)
+    return values
 
 
 def gaze(avatar: Avatar, target: GazeTarget, start: float, hold_until: float | None = None, *, head: GazeTarget | None = None,
