@@ -412,7 +412,7 @@ class MotorControl:
             self._committed = max(self._committed, self._grid_span(times)[1])
             self._next_frame = first + count
             self._forget_before(float(times[0]) - HISTORY)
-        if count and not np.all(np.isfinite(rotations)):
+        if count and not np.isfinite(rotations).all():
             bad = float(times[np.argmax(~np.all(np.isfinite(rotations), axis=(1, 2)))])
             raise FloatingPointError(f"non-finite joint rotation at t = {bad:.4f} s")
         return Motion(
@@ -421,7 +421,7 @@ class MotorControl:
             parents=self._parents,
             offsets=np.asarray(self.avatar.offsets),
             rotations=rotations,
-            root_translation=np.broadcast_to(self._root, (count, 3)).copy(),
+            root_translation=np.repeat(self._root[None], count, axis=0),
             start_time=float(times[0]) if count else float(start),
             face_names=FACE_NAMES,
             face_weights=face,
