@@ -54,7 +54,8 @@ from motor.signing.orientations import written_orientations
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.reach import within_reach_all
 from motor.signing.retiming import retimed_all
-from motor.signing.sign_compiler import INITIAL_HOLD, NEUTRAL_FINGERS, SignCompiler
+from motor.signing.hand_placement import NEUTRAL_FINGERS
+from motor.signing.sign_compiler import INITIAL_HOLD, SignCompiler
 from mura.errors import SpecError
 from mura.signs import Sign
 

@@ -6,15 +6,8 @@ each hand's first posture and moves on the sign's own clock (palm-centre paths, 
 rotation and shape keys), then lays them out as wrist paths and makes the
 :class:`motor.signing.plan.SignPlan` of them (:meth:`SignCompiler.plan`).
 
-**Where the hand is.** A location names where the *palm centre* goes (the avatar's
-``palm`` site of that hand), or the part of the hand its contact bracket names
-(``hamchin [hamtouch hamthumb hamfingertip]``: the thumb's tip); the wrist is placed so
-that it gets there with the hand in its orientation and shape. Locations come from :func:`motor.body.locations.resolve_location`:
-body sites with their proximity and side, the signing-space grid, and sites on the other
-arm or hand, read from that arm's posture at the time (forward kinematics). A sign without
-a location is made in neutral space, :data:`NEUTRAL_LOCATION` (mirrored for the left hand).
-Site names the resolver does not know are read as documented in :data:`motor.signing.sites.SITE_ALIASES` and
-:data:`~motor.signing.sites.PROXIMITY_ALIASES`; the bare ``contact`` site keeps the hand where it is.
+**Where the hand is**: :mod:`motor.signing.hand_placement` (a location names where the
+palm centre, or the part of the hand its contact bracket names, goes).
 
 **Two hands.** Under ``lr`` symmetry the non-dominant hand's path is the dominant hand's
 mirrored across the symmetry's planes (the sagittal plane ``x = 0`` at least), its
@@ -57,27 +50,26 @@ parallel as it says, for that part; ``neutralspace`` is neutral space.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from motor import quaternion as quat
 from motor.body.conventions import AVATAR_SIDE
-from motor.body.kinematics import Pose
 from motor.body.locations import resolve_location
 from motor.hand.shape import played
-from motor.signing.hand_geometry import HandGeometry, key_bytes
+from motor.signing.hand_geometry import HandGeometry
+from motor.signing.hand_placement import NEUTRAL_FINGERS, PALM, HandPlacement, PlannedHand
 from motor.signing.layout import Layout, placed
 from motor.signing.lmp import Move
 from motor.signing.path_shapes import SIZE_FRACTIONS, circle, curve, line, unit
-from motor.signing.plan import HandPose, SignPlan, SignPlanningError
+from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.reach import arc_fractions
 from motor.signing.sites import (
     hand_site,
     is_hand_site,
     leaf_location,
-    normalized,
     on_other_hand,
     touches,
 )
@@ -99,12 +91,10 @@ from mura.constraints import (
 from mura.constraints import Sequence as SequenceNode
 from mura.signs import HandPosture, Sign
 from mura.values import (
-    BetweenLocation,
     BodySite,
     Direction,
     GridLocation,
     HandShape,
-    Location,
     PalmOrientation,
 )
 
@@ -118,10 +108,6 @@ STATIC_HOLD = 0.5
 INITIAL_HOLD = 0.08
 #: Half the gap between symmetric hands sent to one central site, metres.
 SIDE_BY_SIDE = 0.05
-#: Neutral signing space of the right hand (mirrored for the left).
-NEUTRAL_LOCATION = GridLocation("LocLowerChest", "LocCCenterRight", "LocNorm")
-#: Extended-finger direction and palm of a hand whose sign leaves them open.
-NEUTRAL_FINGERS = (0.0, 0.0, 1.0)
 #: The passive non-dominant hand that a one-handed sign touches: flat, palm up, in front.
 PASSIVE_POSTURE = HandPosture(
     HandShape("flathand"),
@@ -134,43 +120,14 @@ MANNERS: dict[str, str] = {"targetted": "targetted", "fast": "fast", "slow": "sl
 _SAME = 1e-6
 #: The movement kind (:data:`motor.trajectory.biocontrol.MOVEMENT_KIND_DURATION`) of each segment kind.
 _KINDS = {SegmentKind.LINEAR: "straight", SegmentKind.CURVE: "curved", SegmentKind.CIRCLE: "circle"}
-_NEUTRAL_LEFT = replace(NEUTRAL_LOCATION, lateral="LocCCenterLeft")
 _SAGITTAL = Symmetry(frozenset({"S"}), "SymMS")
 _CHANNELS = ("wrist_position", "hand_rotation", "handshape")
-_PALM = BodySite("palm", proximity="touch")
 
-
-@dataclass(eq=False, slots=True)
-class _Hand:
-    """A hand's state while planning: palm-centre location, EFD and palm vectors, shape;
-    ``rotations`` holds its global rotation by side once a memoizing compiler has asked for
-    it (:meth:`SignCompiler.rotation`), shared with the copies that keep its fingers and palm.
-    Unchanged once made, though not frozen: frozen, one took 4× as long (~27,000 a collection)."""
-
-    location: np.ndarray
-    fingers: np.ndarray
-    palm: np.ndarray
-    shape: HandShape
-    params: np.ndarray
-    rotations: dict[str, np.ndarray]
-
-    def at(self, location: np.ndarray) -> _Hand:
-        """The same hand with its palm centre at ``location`` (``dataclasses.replace``
-        without its overhead: planning moves hands tens of thousands of times)."""
-        return _Hand(location, self.fingers, self.palm, self.shape, self.params, self.rotations)
-
-    def turned(self, fingers: np.ndarray, palm: np.ndarray) -> _Hand:
-        """The same hand with its extended fingers and palm along ``fingers``, ``palm`` (as :meth:`at`)."""
-        return _Hand(self.location, fingers, palm, self.shape, self.params, {})
-
-    def shaped(self, shape: HandShape, params: np.ndarray) -> _Hand:
-        """The same hand in another shape, ``params`` its joint parameters (as :meth:`at`)."""
-        return _Hand(self.location, self.fingers, self.palm, shape, params, self.rotations)
 
 
 @dataclass(eq=False, slots=True)
 class _HandMove:
-    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys (unchanged once made, as :class:`_Hand`)."""
+    """One move of one hand on the sign's clock: palm-centre path, rotation and shape keys (unchanged once made, as :class:`PlannedHand`)."""
 
     start: float
     end: float
@@ -184,7 +141,7 @@ class _HandMove:
 class _Change:
     """What one leaf does to one hand: new state fields and explicit keys along the way."""
 
-    hand: _Hand
+    hand: PlannedHand
     path: np.ndarray | None = None
     rotations: np.ndarray | None = None
     shapes: np.ndarray | None = None
@@ -200,6 +157,9 @@ class _Step:
     changes: dict[str, _Change]
 
 class SignCompiler:
+    """One sign walked into its hands' first postures and timed moves (module docstring),
+    the hands placed and measured by its :class:`HandPlacement`."""
+
     def __init__(self, geometry: HandGeometry, sign: Sign) -> None:
         self.geometry = geometry
         self.avatar = geometry.avatar
@@ -208,7 +168,7 @@ class SignCompiler:
         self.other = sign.dominant.other.side
         self.arm_length = geometry.arm_length()
         self.warnings: list[str] = []
-        self.hands: dict[str, _Hand] = {}
+        self.placement = HandPlacement(geometry, {}, self.note)
         self.moves: dict[str, list[_HandMove]] = {}
         self.clock = 0.0
         symmetry = sign.symmetry
@@ -217,11 +177,19 @@ class SignCompiler:
         planes = frozenset() if symmetry is None or symmetry.kind == "par" else symmetry.planes | {"S"}
         self.path_mirror = Symmetry(planes, "path")
         self.sagittal = _SAGITTAL
-        self._offsets: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
-        self._asked: dict[tuple, tuple[str, BodySite, np.ndarray, np.ndarray]] = {}
-        self.start: dict[str, _Hand] = {}
+        self.start: dict[str, PlannedHand] = {}
         self.static = False
         self._palm_requests: list[tuple[str, BodySite, np.ndarray, np.ndarray]] | None = None
+
+    @property
+    def hands(self) -> dict[str, PlannedHand]:
+        """The sign's hands as compiled so far, kept by the placement (a site on the other
+        hand is read from them)."""
+        return self.placement.hands
+
+    @hands.setter
+    def hands(self, hands: dict[str, PlannedHand]) -> None:
+        self.placement.hands = hands
 
     def note(self, message: str) -> None:
         self.warnings.append(f"{self.sign.gloss}: {message}")
@@ -247,11 +215,11 @@ class SignCompiler:
         params)``: each first posture's, then per hand and move those of its first and last
         postures; made once, so that they can be computed for the whole collection at once."""
         if self._palm_requests is None:
-            self._palm_requests = [self.offset_request(arm, self.rotation(arm, hand), hand.params, _PALM) for arm, hand in self.start.items()]
+            self._palm_requests = [self.placement.offset_request(arm, self.placement.rotation(arm, hand), hand.params, PALM) for arm, hand in self.start.items()]
             for arm in self.start:
                 for move in self.moves.get(arm, []):
-                    self._palm_requests.append(self.offset_request(arm, move.rotations[0], move.shapes[0], _PALM))
-                    self._palm_requests.append(self.offset_request(arm, move.rotations[-1], move.shapes[-1], _PALM))
+                    self._palm_requests.append(self.placement.offset_request(arm, move.rotations[0], move.shapes[0], PALM))
+                    self._palm_requests.append(self.placement.offset_request(arm, move.rotations[-1], move.shapes[-1], PALM))
         return self._palm_requests
 
     def plan(self) -> SignPlan:
@@ -262,7 +230,7 @@ class SignCompiler:
         """Each hand's first posture and, per move, its palm path with the offsets from the
         wrist to the palm in the move's first and last postures (:meth:`palm_offset_requests`)."""
         offsets = iter(self.geometry.site_offsets(self.palm_offset_requests()))
-        first = {arm: self.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
+        first = {arm: self.placement.pose(arm, hand, next(offsets)) for arm, hand in self.start.items()}
         return Layout(first, {arm: [(move.locations, next(offsets), next(offsets)) for move in self.moves.get(arm, [])] for arm in first})
 
     def plan_from(self, layout: Layout) -> SignPlan:
@@ -284,24 +252,24 @@ class SignCompiler:
         # two-handed sign's leaves are not searched for that)
         if sign.two_handed or on_other_hand(dominant.location) or any(on_other_hand(leaf_location(leaf)) for leaf in leaves):
             self.hands[self.other] = self.other_hand()
-        self.hands[self.dominant] = self.hand_from(self.dominant, dominant, self.hands.get(self.other))
+        self.hands[self.dominant] = self.placement.hand_from(self.dominant, dominant, self.hands.get(self.other))
         if sign.constellation is not None and self.other in self.hands:
             self.place_constellation()
         elif self.symmetric and self.other in self.hands:
             self.side_by_side()
 
-    def other_hand(self) -> _Hand:
+    def other_hand(self) -> PlannedHand:
         posture = self.other_posture()
-        hand = self.hand_from(self.other, posture, None)
+        hand = self.placement.hand_from(self.other, posture, None)
         own = self.sign.nondominant
         if not self.symmetric or (own is not None and own.ext_finger is not None):
             return hand
         # the non-dominant hand mirrors the dominant hand's orientation
         dominant = self.sign.posture
         fingers = np.asarray(dominant.ext_finger.vector if dominant.ext_finger else NEUTRAL_FINGERS, dtype=float)
-        palm = self.palm_vector(self.dominant, fingers, dominant.palm)
+        palm = self.placement.palm_vector(self.dominant, fingers, dominant.palm)
         mirrored = hand.turned(mirror_directions(fingers, self.sagittal), mirror_directions(palm, self.sagittal))
-        return mirrored.at(self.locate(self.other, posture.location, mirrored, None) + self.part_to_palm(self.other, mirrored, posture.location))
+        return mirrored.at(self.placement.locate(self.other, posture.location, mirrored, None) + self.placement.part_to_palm(self.other, mirrored, posture.location))
 
     def other_posture(self) -> HandPosture:
         """The non-dominant hand's posture: its own fields, else the mirrored dominant's
@@ -322,51 +290,6 @@ class SignCompiler:
             own.location if own.location is not None else base.location,
         )
 
-    def hand_from(self, arm: str, posture: HandPosture, other: _Hand | None) -> _Hand:
-        shape = posture.shape or HandShape("flathand")
-        fingers = np.asarray(posture.ext_finger.vector if posture.ext_finger else NEUTRAL_FINGERS, dtype=float)
-        palm = self.palm_vector(arm, fingers, posture.palm)
-        params = self.geometry.params(shape)
-        hand = _Hand(np.zeros(3), fingers, palm, shape, params, {})
-        return hand.at(self.locate(arm, posture.location, hand, other) + self.part_to_palm(arm, hand, posture.location))
-
-    def palm_vector(self, arm: str, fingers: np.ndarray, palm: PalmOrientation | None) -> np.ndarray:
-        if palm is None:
-            inward = np.array([1.0 if arm == "right" else -1.0, 0.0, 0.0])
-            return inward
-        direction = np.asarray(palm.direction, dtype=float)
-        if palm.relative:
-            direction = quat.rotate(quat.between_vectors(np.array([0.0, 0.0, 1.0]), fingers / np.linalg.norm(fingers)), direction)
-        return direction
-
-    def neutral(self, arm: str) -> np.ndarray:
-        return self.geometry.location(NEUTRAL_LOCATION if arm == "right" else _NEUTRAL_LEFT, AVATAR_SIDE[arm])
-
-    def locate(self, arm: str, location: Location | None, hand: _Hand, other: _Hand | None, here: np.ndarray | None = None) -> np.ndarray:
-        """Palm-centre point ``(3,)`` for ``location`` (see the module docstring)."""
-        if location is None:
-            return self.neutral(arm) if here is None else here
-        if isinstance(location, BetweenLocation):
-            first = self.locate(arm, location.first, hand, other, here)
-            second = self.locate(arm, location.second, hand, other, here)
-            return (1.0 - location.fraction) * first + location.fraction * second
-        if not isinstance(location, BodySite):
-            return self.geometry.location(location, AVATAR_SIDE[arm])
-        site = normalized(location)
-        if site.site == "contact":
-            return self.neutral(arm) if here is None else here
-        if site.site == "neutralspace":
-            return self.neutral(arm)
-        if on_other_hand(site):
-            other_arm = "left" if arm == "right" else "right"
-            other_hand = other or self.hands.get(other_arm)
-            if other_hand is None:
-                self.note(f"location {location.site!r} on the other hand, which takes no part; neutral space")
-                return self.neutral(arm) if here is None else here
-            pose = self.arm_pose(other_arm, other_hand)
-            return resolve_location(self.avatar, site, AVATAR_SIDE[arm], pose)
-        return self.geometry.location(site, AVATAR_SIDE[arm])
-
     def side_by_side(self) -> None:
         """Symmetric hands sent to the same central site go to either side of it."""
         mine, theirs = self.hands[self.dominant], self.hands[self.other]
@@ -383,69 +306,25 @@ class SignCompiler:
         assert constellation is not None
         other = self.hands[self.other]
         if constellation.location is not None:
-            other = other.at(self.locate(self.other, constellation.location, other, None))
+            other = other.at(self.placement.locate(self.other, constellation.location, other, None))
         other_site = hand_site(constellation.nondominant, constellation.contact)
         own_site = hand_site(constellation.dominant, "touch")
         dominant = self.hands[self.dominant]
-        self.expect_offsets(
-            ([(self.other, other, _PALM)] if is_hand_site(other_site) else [])
-            + [(self.dominant, dominant, _PALM)]
+        self.placement.expect_offsets(
+            ([(self.other, other, PALM)] if is_hand_site(other_site) else [])
+            + [(self.dominant, dominant, PALM)]
             + ([(self.dominant, dominant, own_site)] if is_hand_site(own_site) else [])
         )  # fmt: skip
         if is_hand_site(other_site):
-            pose = self.arm_pose(self.other, other)
+            pose = self.placement.arm_pose(self.other, other)
             meeting = resolve_location(self.avatar, other_site, AVATAR_SIDE[self.dominant], pose)
         else:
             meeting = other.location
-        palm = self.offset(self.dominant, dominant, _PALM)
-        own = self.offset(self.dominant, dominant, own_site) if is_hand_site(own_site) else palm
+        palm = self.placement.offset(self.dominant, dominant, PALM)
+        own = self.placement.offset(self.dominant, dominant, own_site) if is_hand_site(own_site) else palm
         self.hands[self.other] = other
         self.hands[self.dominant] = dominant.at(meeting - own + palm)
 
-    # -- the hand's geometry -------------------------------------------------------------
-
-    def rotation(self, arm: str, hand: _Hand) -> np.ndarray:
-        """The hand's global rotation ``(4,)`` (:meth:`HandGeometry.rotation`); when
-        memoizing, kept on the hand, which a sign asks about again and again."""
-        side = AVATAR_SIDE[arm]
-        known = hand.rotations.get(side)
-        if known is None:
-            known = self.geometry.rotation(side, hand.fingers, hand.palm)
-            if self.geometry.memoize:
-                hand.rotations[side] = known
-        return known
-
-    def offset(self, arm: str, hand: _Hand, site: BodySite) -> np.ndarray:
-        """From the wrist to a site of this hand ``(3,)``, for its rotation and shape."""
-        return self.offset_of(arm, self.rotation(arm, hand), hand.params, site)
-
-    def expect_offsets(self, wanted: Sequence[tuple[str, _Hand, BodySite]]) -> None:
-        """Note the :meth:`offset` of each ``(arm, hand, site)`` the sign is about to ask
-        for, in the order it will (:meth:`offset_request`), so that a sign compiled in
-        rounds waits one round for all of them (:meth:`HandGeometry.expect_site_offsets`)."""
-        self.geometry.expect_site_offsets([self.offset_request(arm, self.rotation(arm, hand), hand.params, site) for arm, hand, site in wanted])
-
-    def part_to_palm(self, arm: str, hand: _Hand, location: Location | None) -> np.ndarray:
-        """From the part of the hand a location puts at its site (``hand_part``: HamNoSys'
-        contact by the fingertip, the pinky side …) to the palm centre ``(3,)`` that
-        locations place, for the hand's rotation and shape; zeros without a named part."""
-        part = location.hand_part if isinstance(location, BodySite) else None
-        if part is None or not is_hand_site(part) or part.site == _PALM.site:
-            return np.zeros(3)
-        site = replace(normalized(part), proximity=_PALM.proximity)
-        self.expect_offsets([(arm, hand, _PALM), (arm, hand, site)])
-        return self.offset(arm, hand, _PALM) - self.offset(arm, hand, site)
-
-    def arm_pose(self, arm: str, hand: _Hand) -> Pose:
-        """The whole body with this arm in the hand's posture (rest elsewhere), one frame:
-        :meth:`HandGeometry.palm_pose` of the wrist under the palm."""
-        rotation = self.rotation(arm, hand)
-        offset = self.offset_request(arm, rotation, hand.params, _PALM)
-        return self.geometry.palm_pose(AVATAR_SIDE[arm], hand.location, offset, rotation, hand.params)
-
-    def pose(self, arm: str, hand: _Hand, palm_offset: np.ndarray) -> HandPose:
-        """The hand's posture with the wrist at its palm centre less ``palm_offset`` ``(3,)``."""
-        return HandPose(hand.location - palm_offset, self.rotation(arm, hand).copy(), hand.params.copy())
 
     # -- the movement tree ---------------------------------------------------------------
 
@@ -537,7 +416,7 @@ class SignCompiler:
             shifts[self.other] = mirror_directions(vector, self.path_mirror)
         return shifts
 
-    def shifted(self, hands: Mapping[str, _Hand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
+    def shifted(self, hands: Mapping[str, PlannedHand], offset: Mapping[str, np.ndarray]) -> dict[str, _Change]:
         """Changes that put ``hands`` where they are, moved by ``offset`` (hands without one stay)."""
         return {arm: _Change(hand.at(hand.location + offset.get(arm, 0.0))) for arm, hand in hands.items()}
 
@@ -559,7 +438,7 @@ class SignCompiler:
             before = self.hands[arm]
             after = change.hand
             path = change.path if change.path is not None else line(before.location, after.location)
-            rotations = change.rotations if change.rotations is not None else np.array([self.rotation(arm, before), self.rotation(arm, after)])
+            rotations = change.rotations if change.rotations is not None else np.array([self.placement.rotation(arm, before), self.placement.rotation(arm, after)])
             shapes = change.shapes if change.shapes is not None else np.array([before.params, after.params])
             self.moves.setdefault(arm, []).append(_HandMove(self.clock, end, step.manner, path, rotations, shapes))
             self.hands[arm] = after
@@ -572,7 +451,7 @@ class SignCompiler:
         if scope in (Arm.RIGHT, Arm.LEFT, "right_arm", "left_arm"):
             arm = Arm(scope).side if isinstance(scope, str) else scope.side
             if arm not in self.hands:
-                self.hands[arm] = self.other_hand() if arm == self.other else self.hand_from(arm, self.sign.posture, None)
+                self.hands[arm] = self.other_hand() if arm == self.other else self.placement.hand_from(arm, self.sign.posture, None)
             return (arm,)
         if self.symmetric and self.other in self.hands:
             return (self.dominant, self.other)
@@ -651,13 +530,13 @@ class SignCompiler:
         ]  # fmt: skip
         return max((shortest_duration(self.geometry.stopping_length(path), manner) for path in paths), default=0.0)
 
-    def path(self, arm: str, hand: _Hand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
+    def path(self, arm: str, hand: PlannedHand, segment: Segment, manner: str) -> tuple[_Change, str, str]:
         """The palm-centre path of one HandLocation segment, its kind and time profile."""
         start = hand.location
         size = segment.size if segment.size in SIZE_FRACTIONS else "normal"
         contact = any(m.startswith("contact=") and m != "contact=close" for m in segment.modifiers)
         if segment.end is not None:
-            end = self.locate(arm, segment.end, hand, None, here=start) + self.part_to_palm(arm, hand, segment.end)
+            end = self.placement.locate(arm, segment.end, hand, None, here=start) + self.placement.part_to_palm(arm, hand, segment.end)
             contact = contact or touches(segment.end)
         elif segment.direction is not None:
             end = start + unit(segment.direction.vector) * SIZE_FRACTIONS[size] * self.arm_length
@@ -686,7 +565,7 @@ class SignCompiler:
             profile = manner
         return _Change(hand.at(points[-1]), path=points, straight=straight), kind, profile
 
-    def follower_path(self, arm: str, hand: _Hand, lead: _Change, lead_hand: _Hand) -> _Change:
+    def follower_path(self, arm: str, hand: PlannedHand, lead: _Change, lead_hand: PlannedHand) -> _Change:
         """The non-dominant hand's path under symmetry: the dominant's displacements
         mirrored (lr) or translated (par), reversed when alternating."""
         assert lead.path is not None
@@ -696,7 +575,7 @@ class SignCompiler:
         path = hand.location + displacement
         return _Change(hand.at(path[-1]), path=path, straight=lead.straight)
 
-    def posture_change(self, arm: str, hand: _Hand, slot: str, segment: Segment, mirrored: bool) -> _Change:
+    def posture_change(self, arm: str, hand: PlannedHand, slot: str, segment: Segment, mirrored: bool) -> _Change:
         """A change of shape or orientation (``replace``) or a local movement in place."""
         local = segment.shape
         if local in ("nodding", "swinging", "twisting"):
@@ -720,15 +599,15 @@ class SignCompiler:
             return _Change(hand.turned(fingers, hand.palm))
         if not isinstance(value, PalmOrientation):
             raise SignPlanningError(f"sign {self.sign.gloss!r}: palm change to {value!r}")
-        palm = self.palm_vector(arm, hand.fingers if not mirrored else mirror_directions(hand.fingers, self.sagittal), value)
+        palm = self.placement.palm_vector(arm, hand.fingers if not mirrored else mirror_directions(hand.fingers, self.sagittal), value)
         if mirrored:
             palm = mirror_directions(palm, self.sagittal)
         return _Change(hand.turned(hand.fingers, palm))
 
-    def local_turn(self, arm: str, hand: _Hand, kind: str) -> _Change:
+    def local_turn(self, arm: str, hand: PlannedHand, kind: str) -> _Change:
         """Nodding (wrist flexion), swinging (side to side) or twisting (forearm), there
         and back, about the hand's own axes."""
-        rotation = self.rotation(arm, hand)
+        rotation = self.placement.rotation(arm, hand)
         frame = self.avatar.hand_frames[AVATAR_SIDE[arm]]
         local_axis = {"nodding": frame.bend_axis, "swinging": frame.splay_axis, "twisting": frame.finger_axis}[kind]
         axis = quat.rotate(rotation, local_axis)
@@ -736,7 +615,7 @@ class SignCompiler:
         turns = quat.from_axis_angle(np.broadcast_to(axis, (angles.size, 3)), angles)
         return _Change(hand, rotations=quat.continuous(quat.multiply(turns, rotation)))
 
-    def fingerplay(self, hand: _Hand) -> _Change:
+    def fingerplay(self, hand: PlannedHand) -> _Change:
         """Fingers moving in turn: index and ring, then middle and pinky, then back, each
         bending or opening by a half bend from its own shape (:func:`motor.hand.shape.played`;
         the folded fingers of a fist or pinch stay folded)."""
@@ -757,19 +636,6 @@ class SignCompiler:
         made = iter(Move.many([move for moves in channels.values() for move in moves]))
         return {channel: tuple(next(made) for _ in moves) for channel, moves in channels.items()}
 
-    def offset_of(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> np.ndarray:
-        return self.geometry.site_offset(*self.offset_request(arm, rotation, params, site))
-
-    def offset_request(self, arm: str, rotation: np.ndarray, params: np.ndarray, site: BodySite) -> tuple[str, BodySite, np.ndarray, np.ndarray]:
-        """The offset this sign takes for a hand posture: that of the first posture it asked for within
-        1e-9 of it (rounded to 9 decimals); the exact key of :data:`_PALM` itself, most asked, omits the site."""
-        exact = (arm, key_bytes(rotation), key_bytes(params)) if site is _PALM else (arm, site, key_bytes(rotation), key_bytes(params))
-        known = self._asked.get(exact)
-        if known is None:  # else asked for these very values before: the same answer
-            key = (arm, site, "q", np.asarray(rotation).round(9).tobytes(), np.asarray(params).round(9).tobytes())
-            known = self._asked[exact] = self._offsets.setdefault(key, (AVATAR_SIDE[arm], site, rotation, params))
-        return known
-
 def _flattened(node: Parallel) -> list[Constraint]:
     """The children of nested parallel groups, as one group."""
     children: list[Constraint] = []
@@ -778,7 +644,7 @@ def _flattened(node: Parallel) -> list[Constraint]:
     return children
 
 
-def _merge_steps(steps: list[_Step], base: Mapping[str, _Hand]) -> _Step:
+def _merge_steps(steps: list[_Step], base: Mapping[str, PlannedHand]) -> _Step:
     """Parallel leaves: one step as long as the longest, each hand's fields from the leaf
     that changes them."""
     steps = [s for s in steps if s.changes]
