@@ -37,6 +37,7 @@ import numpy as np
 
 import io
 
+from bench.timing import median_seconds
 from motor.body.avatar import load_avatar
 from motor.compiled import warm_up
 from motor.control import MotorControl
@@ -48,6 +49,8 @@ from mura.murml import load_utterance
 UTTERANCES = Path(__file__).resolve().parents[1] / "specs" / "utterances"
 #: Seconds from one gesture's start to the next's; the next starts during the retraction.
 SPACING = 2.2
+#: The clock of every figure: this process's CPU time (module docstring).
+CLOCK = time.process_time
 
 
 def _gestures() -> list[BehaviorSpec]:
@@ -72,16 +75,6 @@ def _fresh(avatar, fps: float, programs: list[MotorProgram]) -> MotorControl:
         control.timeline(channel)
     control.neck.timeline()
     return control
-
-
-def median_seconds(call: Callable[[], object], repeats: int) -> float:
-    """Median process time of ``repeats`` calls of ``call``, seconds."""
-    durations = []
-    for _ in range(repeats):
-        started = time.process_time()
-        call()
-        durations.append(time.process_time() - started)
-    return statistics.median(durations)
 
 
 def numpy_product(p: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -160,7 +153,7 @@ def run(quick: bool) -> dict:
     if quick:
         gestures = gestures[:4]
     planning_control = MotorControl(avatar)
-    planning = median_seconds(lambda: _programs(planning_control, gestures), repeats)
+    planning = median_seconds(lambda: _programs(planning_control, gestures), repeats, CLOCK)
     programs = _programs(planning_control, gestures)
     end = max(program.pegs.end for program in programs) + 0.3
     result: dict[str, object] = {
@@ -176,11 +169,11 @@ def run(quick: bool) -> dict:
         count = frames.frame_count
         whole = _timed_frames(avatar, fps, programs, lambda control: control.frames(0.0, end), repeats)
         streamed = _timed_frames(avatar, fps, programs, lambda control: _streamed(control, end), repeats)
-        activation = median_seconds(lambda: _fresh(avatar, fps, programs), repeats)
+        activation = median_seconds(lambda: _fresh(avatar, fps, programs), repeats, CLOCK)
         rotations = frames.rotations
-        fk = median_seconds(lambda: numpy_forward_kinematics(avatar, rotations), repeats)
-        product = median_seconds(lambda: numpy_product(rotations, rotations), repeats)
-        bare = median_seconds(lambda: compose_and_write(avatar, rotations), repeats)
+        fk = median_seconds(lambda: numpy_forward_kinematics(avatar, rotations), repeats, CLOCK)
+        product = median_seconds(lambda: numpy_product(rotations, rotations), repeats, CLOCK)
+        bare = median_seconds(lambda: compose_and_write(avatar, rotations), repeats, CLOCK)
         result.update({
             f"frames_{label}": count,
             f"frames_per_s_{label}": count / whole,

@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.motion_speed import compose_and_write, median_seconds
+from bench.motion_speed import CLOCK, compose_and_write
+from bench.timing import median_seconds
 from motor.body.avatar import load_avatar
 from motor.signing.plan import SignPlanningError
 from motor.compiled import warm_up
@@ -82,7 +83,7 @@ def run(quick: bool) -> dict:
     started, started_cpu = time.perf_counter(), time.process_time()
     signed = realize_signs(avatar, [plan for plan, _ in plans], FPS)
     synthesis, synthesis_cpu = time.perf_counter() - started, time.process_time() - started_cpu
-    bare = median_seconds(lambda: compose_and_write(avatar, signed.motion.rotations), 3)
+    bare = median_seconds(lambda: compose_and_write(avatar, signed.motion.rotations), 3, CLOCK)
     faults = frame_faults(avatar, signed)
     bad = faults["non_finite"] | (faults["shortfall"] > SHORTFALL_LIMIT) | (faults["upper_arm_depth"] > DEPTH_LIMIT)
     times = signed.motion.times
