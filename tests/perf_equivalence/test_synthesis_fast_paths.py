@@ -3,6 +3,9 @@
 * A stream of short windows over activated programs computes frames further and further
   ahead (:data:`motor.control.MAX_FRAME_LOOKAHEAD`): its frames are those of one call over
   the whole span, whatever the window length and frame rate.
+* It looks no further than :data:`motor.control.FRAME_LOOKAHEAD` past the arms' last
+  activated LMP (unless a window asks): a stream that ends soon after pays little more
+  than it shows.
 * An activation after the look-ahead has grown brings it back and forgets what it changes:
   the frames after it are those of a control given everything at once.
 * LMPs that lost control are dropped a few at a time, the latest kept: the frames above
@@ -61,12 +64,33 @@ def _streamed(control: MotorControl, start: float, end: float, window: float) ->
 def test_streamed_windows_give_the_frames_of_one_call(avatar, gestures, fps, window):
     programs = _programs(MotorControl(avatar), gestures)
     end = max(program.pegs.end for program in programs) + 0.3
-    assert end > 2 * MAX_FRAME_LOOKAHEAD  # the look-ahead grows to its largest and is used up twice
+    assert end > 2 * MAX_FRAME_LOOKAHEAD  # the look-ahead grows to its largest, is used up, and is cut at the arms' rest
     streaming = _control(avatar, fps, programs)
+    reached = []
+    rotations = streaming._rotations
+    streaming._rotations = lambda times: reached.append(streaming._lookahead) or rotations(times)
     streamed = _streamed(streaming, 0.0, end, window)
-    assert streaming._lookahead == MAX_FRAME_LOOKAHEAD
+    assert MAX_FRAME_LOOKAHEAD in reached and reached[-1] == FRAME_LOOKAHEAD
     whole = _control(avatar, fps, programs).frames(0.0, end).rotations
     assert streamed.shape == whole.shape
+    np.testing.assert_allclose(streamed, whole, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(("fps", "tail"), [(60.0, 0.3), (25.0, 3.5)])
+def test_a_stream_computes_no_frame_past_the_arms_activity_unless_asked(avatar, gestures, fps, tail):
+    """Frames are computed ahead at most :data:`FRAME_LOOKAHEAD` past the arms' last LMP
+    (or as far as a window asks): a stream that ends ``tail`` s after the last gesture
+    pays for little more than it shows, and its frames are still those of one call."""
+    programs = _programs(MotorControl(avatar), gestures[:9])
+    streaming = _control(avatar, fps, programs)
+    end = max(streaming.busy_until(arm) for arm in ("left", "right")) + tail
+    computed = []
+    rotations = streaming._rotations
+    streaming._rotations = lambda times: computed.append(times) or rotations(times)
+    streamed = _streamed(streaming, 0.0, end, 0.1)
+    assert max(float(times[-1]) for times in computed) < end + FRAME_LOOKAHEAD
+    assert sum(times.size for times in computed) < 1.25 * streamed.shape[0]
+    whole = _control(avatar, fps, programs).frames(0.0, end).rotations
     np.testing.assert_allclose(streamed, whole, rtol=0, atol=1e-12)
 
 
@@ -80,7 +104,8 @@ def test_an_activation_after_the_lookahead_grew_gives_the_frames_of_a_fresh_cont
     end = max(program.pegs.end for program in programs) + 0.3
     streaming = _control(avatar, 30.0, early)
     before = _streamed(streaming, 0.0, switch, 0.1)
-    assert streaming._lookahead > FRAME_LOOKAHEAD
+    held, ahead, _ = streaming._ahead
+    assert (held + ahead.shape[0]) / 30.0 > rest[0].pegs.start  # computed ahead past what is activated next
     for program in rest:
         streaming.activate(program)
     assert streaming._lookahead == FRAME_LOOKAHEAD
