@@ -45,7 +45,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 
 import numpy as np
@@ -127,16 +127,22 @@ class TimeProfile:
         name: the manner (or other source) it was made from.
         fractions: ``(TABLE_SIZE,)`` path fraction at equally spaced time fractions.
         rates: ``(TABLE_SIZE,)`` derivative ``df/du`` there (path per unit time fraction).
+        grid: the time fractions of ``fractions``, equally spaced from 0 to 1, made once
+            (sampling asks for them on every call).
     """
 
     name: str
     fractions: np.ndarray
     rates: np.ndarray
+    grid: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "fractions", np.ascontiguousarray(self.fractions, dtype=float))
+        object.__setattr__(self, "grid", np.linspace(0.0, 1.0, self.fractions.size))
 
     def fraction(self, u: np.ndarray | float) -> np.ndarray:
         """Path fraction at time fractions ``u`` (clipped to [0, 1]), any shape."""
-        grid = np.linspace(0.0, 1.0, self.fractions.size)
-        return np.interp(np.clip(u, 0.0, 1.0), grid, self.fractions)
+        return np.interp(np.clip(u, 0.0, 1.0), self.grid, self.fractions)
 
     def rate(self, u: np.ndarray | float) -> np.ndarray:
         """Speed profile ``df/du`` at ``u``; zero outside [0, 1]."""
