@@ -42,6 +42,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from motor import quaternion as quat
+from motor.program import keyframe_sampling
 from motor.trajectory.biocontrol import TimeProfile, minimum_jerk, profile
 
 Channel = tuple[str, str]
@@ -148,6 +149,7 @@ class VectorKeyframes:
     """A vector channel moving through keys along a time profile, from an activation state.
 
     ``knots`` are ``[activation, key times…]`` and ``values`` ``[activation value, keys…]``.
+    Sampling is one compiled pass (:func:`motor.program.keyframe_sampling.vector_keyframes`).
     """
 
     knots: np.ndarray
@@ -156,11 +158,14 @@ class VectorKeyframes:
     time_profile: TimeProfile
     warnings: tuple[str, ...] = ()
 
+    def __post_init__(self) -> None:
+        for name in ("knots", "values", "incoming"):
+            object.__setattr__(self, name, np.ascontiguousarray(getattr(self, name), dtype=float))
+        if self.values.ndim != 2 or self.incoming.shape != self.values.shape[1:] or self.knots.shape != self.values.shape[:1]:
+            raise ValueError(f"keyframes: knots {self.knots.shape}, values {self.values.shape} and incoming velocity {self.incoming.shape} do not fit")
+
     def sample(self, times: np.ndarray) -> np.ndarray:
-        segment, u, _ = _locate(self.knots, times)
-        s = self.time_profile.fraction(u)[:, None]
-        weight, _ = incoming_blend(times, self.knots[0], self.knots[1] - self.knots[0])
-        return self.values[segment] + s * (self.values[segment + 1] - self.values[segment]) + weight[:, None] * self.incoming
+        return keyframe_sampling.vector_keyframes(self.knots, self.values, self.incoming, self.time_profile, times)
 
     def state(self, time: float) -> ChannelState:
         t = np.array([time])
@@ -176,8 +181,9 @@ class VectorKeyframes:
 class RotationKeyframes:
     """A rotation channel slerping through key orientations along a time profile.
 
-    Sampling runs on raw quaternion arrays (:mod:`motor.quaternion`); the keys as unit
-    quaternions and the rotation vector of each segment are prepared once, at activation.
+    The keys as unit quaternions and the rotation vector of each segment are prepared once,
+    at activation; sampling is one compiled pass over them
+    (:func:`motor.program.keyframe_sampling.rotation_keyframes`).
     """
 
     knots: np.ndarray
@@ -189,16 +195,16 @@ class RotationKeyframes:
     _steps: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        keys = self.rotations.as_quat().reshape(-1, 4)
+        keys = np.ascontiguousarray(self.rotations.as_quat().reshape(-1, 4))
+        object.__setattr__(self, "knots", np.ascontiguousarray(self.knots, dtype=float))
+        object.__setattr__(self, "incoming", np.ascontiguousarray(self.incoming, dtype=float))
+        if self.incoming.shape != (3,) or self.knots.shape != keys.shape[:1]:
+            raise ValueError(f"rotation keyframes: knots {self.knots.shape}, keys {keys.shape} and angular velocity {self.incoming.shape} do not fit")
         object.__setattr__(self, "_keys", keys)
         object.__setattr__(self, "_steps", quat.to_rotation_vector(quat.canonical(quat.multiply(quat.conjugate(keys[:-1]), keys[1:]))))
 
     def sample(self, times: np.ndarray) -> np.ndarray:
-        segment, u, _ = _locate(self.knots, times)
-        s = self.time_profile.fraction(u)[:, None]
-        planned = quat.multiply(self._keys[segment], quat.from_rotation_vector(s * self._steps[segment]))
-        weight, _ = incoming_blend(times, self.knots[0], self.knots[1] - self.knots[0])
-        return quat.multiply(quat.from_rotation_vector(weight[:, None] * self.incoming), planned)
+        return keyframe_sampling.rotation_keyframes(self.knots, self._keys, self._steps, self.incoming, self.time_profile, times)
 
     def state(self, time: float) -> ChannelState:
         """Rotation and angular velocity: second-order one-sided differences, looking back
@@ -229,7 +235,7 @@ def rotation_turn(channel: Channel, state: ChannelState, target: np.ndarray, tim
     rotation vector ``step`` ``(3,)`` (the state's rotation times ``exp(step)`` is the
     target up to sign): a slerp's turn, or the long way round."""
     turned = rotation_keyframes(channel, state, np.asarray(target, dtype=float)[None], np.array([time]), time_profile)
-    object.__setattr__(turned, "_steps", np.asarray(step, dtype=float)[None])
+    object.__setattr__(turned, "_steps", np.ascontiguousarray(np.asarray(step, dtype=float)[None]))
     return turned
 
 

@@ -41,6 +41,7 @@ import numpy as np
 
 from motor.trajectory.power_law import EXPONENT, RADIUS_RANGE, phase_knots
 from motor.trajectory.speed_budget import ABSOLUTE_PEAK_SPEED
+from motor.trajectory.spline_positions import spline_positions
 
 #: Fastest wrist speed the planner produces, m/s; faster requests are slowed (warning).
 MAX_WRIST_SPEED = ABSOLUTE_PEAK_SPEED
@@ -176,7 +177,7 @@ class WristTrajectory:
             ],
             axis=1,
         )
-        object.__setattr__(self, "times", t)
+        object.__setattr__(self, "times", np.ascontiguousarray(t))
         object.__setattr__(self, "positions", p)
         object.__setattr__(self, "velocities", v)
         object.__setattr__(self, "accelerations", a)
@@ -199,11 +200,9 @@ class WristTrajectory:
         return index, (clipped - self.times[index]) / h, h, inside
 
     def position(self, times: np.ndarray) -> np.ndarray:
-        """Positions ``(len(times), d)`` at ``times`` (seconds)."""
-        index, u, _, _ = self._locate(times)
-        c = self._coefficients[index]
-        u = u[:, None]
-        return c[:, 0] + u * (c[:, 1] + u * (c[:, 2] + u * (c[:, 3] + u * (c[:, 4] + u * c[:, 5]))))
+        """Positions ``(len(times), d)`` at ``times`` (seconds), in one compiled pass
+        (:func:`motor.trajectory.spline_positions.spline_positions`)."""
+        return spline_positions(self.times, self._coefficients, times)
 
     def velocity(self, times: np.ndarray) -> np.ndarray:
         """Velocities ``(len(times), d)``, per second; zero outside the knot span."""

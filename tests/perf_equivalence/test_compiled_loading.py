@@ -12,9 +12,10 @@ from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, other_
 from motor.body import collision, distance, hands_parting
 from motor.body.avatar import load_avatar
 from motor.hand import shape
+from motor.program import keyframe_sampling
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
 from motor.compiled import warm_up
-from motor.trajectory import biocontrol
+from motor.trajectory import biocontrol, spline_positions
 
 LOOPS = [
     (quat, "_multiply_rows"), (quat, "_rotate_rows"), (quat, "_cross_rows"), (quat, "_normalize_rows"),
@@ -30,6 +31,7 @@ LOOPS = [
     (swivel, "_walk"), (swivel_track, "_twists"), (swivel_track, "_wrist_steps"), (collision, "_torso_rays"), (collision, "_pushed_out"),
     (hands_parting, "gaps"), (hands_parting, "pushes"), (track_kernels, "_segment_rows"),
     (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
+    (keyframe_sampling, "_vector_rows"), (keyframe_sampling, "_rotation_rows"), (spline_positions, "_position_rows"),
 ]  # fmt: skip
 
 
