@@ -234,8 +234,11 @@ def rotation_turn(channel: Channel, state: ChannelState, target: np.ndarray, tim
     """Activation of one turn from the state to ``target`` by ``time``, along the local
     rotation vector ``step`` ``(3,)`` (the state's rotation times ``exp(step)`` is the
     target up to sign): a slerp's turn, or the long way round."""
+    step = np.asarray(step, dtype=float)
+    if step.shape != (3,):
+        raise ValueError(f"{channel}: a turn's rotation vector must have shape (3,), got {step.shape}")
     turned = rotation_keyframes(channel, state, np.asarray(target, dtype=float)[None], np.array([time]), time_profile)
-    object.__setattr__(turned, "_steps", np.ascontiguousarray(np.asarray(step, dtype=float)[None]))
+    object.__setattr__(turned, "_steps", np.ascontiguousarray(step[None]))
     return turned
 
 
