@@ -118,6 +118,46 @@ def length3(x, y, z):  # noqa: ANN001, ANN201
     return math.sqrt((x * x + y * y) + z * z)
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def of_rotation_vector(x, y, z):  # noqa: ANN001, ANN201
+    """The quaternion of the rotation vector ``(x, y, z)`` (axis times angle), for compiled
+    callers: :func:`from_rotation_vector`'s arithmetic (the C library's ``sin`` and
+    ``cos``, which round as numpy's do here)."""
+    angle = length3(x, y, z)
+    half = 0.5 * angle
+    scale = math.sin(half) / angle if angle > 1e-12 else 0.5
+    return x * scale, y * scale, z * scale, math.cos(half)
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def normalized3(x, y, z):  # noqa: ANN001, ANN201
+    """The vector ``(x, y, z)`` scaled to unit length, :func:`normalize`'s arithmetic."""
+    length = math.sqrt(((0.0 + x * x) + y * y) + z * z)
+    return x / length, y / length, z / length
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def normalized4(x, y, z, w):  # noqa: ANN001, ANN201
+    """The quaternion ``(x, y, z, w)`` scaled to unit length, :func:`normalize`'s arithmetic."""
+    length = math.sqrt((((0.0 + x * x) + y * y) + z * z) + w * w)
+    return x / length, y / length, z / length, w / length
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def turn_between(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN201
+    """The shortest rotation taking the unit vector ``u`` to ``v``, for compiled callers:
+    :func:`between_vectors`' arithmetic, its axis perpendicular to ``u`` where they are
+    opposite."""
+    cx, cy, cz = crossed(ux, uy, uz, vx, vy, vz)
+    w = 1.0 + ((ux * vx + uy * vy) + uz * vz)
+    if w < 1e-9:
+        hx, hy = (1.0, 0.0) if abs(ux) < 0.9 else (0.0, 1.0)
+        ax, ay, az = crossed(ux, uy, uz, hx, hy, 0.0)
+        cx, cy, cz = normalized3(ax, ay, az)
+        w = 0.0
+    return normalized4(cx, cy, cz, w)
+
+
 @_products
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
     u_step, v_step = u.shape[0] > 1, v.shape[0] > 1

@@ -11,19 +11,19 @@ act on the solution configuration after the arm's IK):
    (composed onto the clavicle rotation the IK chose);
 2. the head: its world orientation faces the gaze channel's head direction (shortest
    arc from straight ahead, so it never rolls) turned by the head lexemes in its own
-   frame; relative to the torso it is shared by the neck joints — :data:`NECK_SHARES` of
+   frame; relative to the torso it is shared by the neck joints — :data:`motor.neck.posing.NECK_SHARES` of
    the rotation at ``vc7`` and ``vc4``, the rest at ``skullbase``, which takes exactly
    what is left so that the head's orientation is exact; a protrusion flexes ``vc7``
    and the skull base makes up for it;
 3. each eye, from its actual centre in that pose, aims at the gaze channel's point:
    the shortest rotation from straight ahead in the head's frame (Listing's law: no
-   torsion about the line of sight), at most :data:`EYE_RANGE` from it. This is the
+   torsion about the line of sight), at most :data:`motor.neck.posing.EYE_RANGE` from it. This is the
    vestibulo-ocular reflex of the model: while the head moves or nods, the eyes stay on
    the target.
 
 The eyes turn at the H-Anim eyeball joints ``l_eyeball_joint``/``r_eyeball_joint`` when
-the avatar has them. Everything here is vectorized over the frames; the loop runs over
-the ~10 joints from the root to the head.
+the avatar has them. The trunk and the channels are sampled over all frames at once; steps
+2 and 3 are compiled loops over the frames (:mod:`motor.neck.posing`).
 """
 
 from __future__ import annotations
@@ -34,15 +34,12 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
-from motor.neck.gaze import FORWARD, GazeLMP, eye_centre, rest_state, sample_shifts
+from motor.neck.gaze import GazeLMP, eye_centre, rest_state, sample_shifts
 from motor.neck.lexemes import HeadMovementLMP
+from motor.neck.posing import pose_head_and_eyes
 from motor.neck.trunk import TrunkLMP
 from motor.program.lmp import ChannelState, ChannelTimeline
 
-#: Share of the neck's rotation at ``vc7`` and ``vc4``; the skull base takes the rest.
-NECK_SHARES: tuple[float, float] = (0.25, 0.3)
-#: Largest eye rotation from straight ahead in the head, radians (the oculomotor range).
-EYE_RANGE = np.radians(45.0)
 EYES: tuple[str, ...] = ("l_eyeball_joint", "r_eyeball_joint")
 GAZE_CHANNEL = ("neck", "gaze")
 #: Gaze shifts that lost control are dropped this many at a time (:meth:`NeckControl.forget_before`).
@@ -70,9 +67,11 @@ class NeckControl:
         index = avatar.joint_index
         self._torso = index("vl5")
         self._clavicles = (index("l_sternoclavicular"), index("r_sternoclavicular"))
-        self._neck = (index("vc7"), index("vc4"), index("skullbase"))
-        self._path = _path(avatar, self._neck[0])
-        self._eyes = tuple(index(name) for name in EYES if name in avatar.joint_names)
+        self._neck = np.array([index("vc7"), index("vc4"), index("skullbase")])
+        self._path = np.array(_path(avatar, int(self._neck[0])), dtype=np.int64)
+        self._eyes = np.array([index(name) for name in EYES if name in avatar.joint_names], dtype=np.int64)
+        self._joint_offsets = np.ascontiguousarray(avatar.offsets, dtype=float)
+        self._eye_offsets = np.array([avatar.rest_positions[eye] - avatar.rest_positions[self._neck[2]] for eye in self._eyes]).reshape(-1, 3)
 
     # -- activation ---------------------------------------------------------------
 
@@ -154,16 +153,14 @@ class NeckControl:
             return rotations
         self._trunk(t, rotations)
         gaze = _sample(self.timeline(), t)
-        looked, facing = gaze[:, :3], quat.normalize(gaze[:, 3:6])
         offsets = np.zeros((t.size, 4))
         for lmp in self._heads:
             if lmp.last >= t[0] and lmp.first <= t[-1]:
                 offsets += lmp.sample(t)
-        head = quat.multiply(quat.between_vectors(FORWARD, facing), quat.from_rotation_vector(offsets[:, :3]))
-        torso, torso_at = _chain(self.avatar, rotations, self._path)
-        self._neck_joints(rotations, torso, head, offsets[:, 3])
-        if self._eyes:
-            self._aim_eyes(rotations, torso, torso_at, head, looked)
+        rows = np.ascontiguousarray(rotations)
+        pose_head_and_eyes(rows, self._path, self._neck, self._eyes, self._joint_offsets, self._eye_offsets, gaze, offsets)
+        if rows is not rotations:
+            rotations[...] = rows
         return rotations
 
     def _trunk(self, t: np.ndarray, rotations: np.ndarray) -> None:
@@ -174,34 +171,6 @@ class NeckControl:
         rotations[:, self._torso] = quat.multiply(quat.from_rotation_vector(total[:, :3]), rotations[:, self._torso])
         for joint, part in zip(self._clavicles, (total[:, 3:6], total[:, 6:9])):
             rotations[:, joint] = quat.multiply(quat.from_rotation_vector(part), rotations[:, joint])
-
-    def _neck_joints(self, rotations: np.ndarray, torso: np.ndarray, head: np.ndarray, protrusion: np.ndarray) -> None:
-        """vc7, vc4 and skull base so that the head's world orientation is ``head``."""
-        relative = quat.to_rotation_vector(quat.multiply(quat.conjugate(torso), head))
-        flex = protrusion[:, None] * np.array([1.0, 0.0, 0.0])
-        lower = quat.from_rotation_vector(NECK_SHARES[0] * relative + flex)
-        middle = quat.from_rotation_vector(NECK_SHARES[1] * relative)
-        vc7, vc4, skull = self._neck
-        rotations[:, vc7] = lower
-        rotations[:, vc4] = middle
-        above = quat.multiply(quat.multiply(torso, lower), middle)
-        rotations[:, skull] = quat.normalize(quat.multiply(quat.conjugate(above), head))
-
-    def _aim_eyes(self, rotations: np.ndarray, torso: np.ndarray, torso_at: np.ndarray, head: np.ndarray, looked: np.ndarray) -> None:
-        """Each eye's rotation in the head so that it looks at ``looked`` from where it is."""
-        avatar = self.avatar
-        orientation, position = torso, torso_at
-        for joint in self._neck:
-            position = position + quat.rotate(orientation, avatar.offsets[joint])
-            orientation = quat.multiply(orientation, rotations[:, joint])
-        skull = self._neck[2]
-        for eye in self._eyes:
-            centre = position + quat.rotate(orientation, avatar.rest_positions[eye] - avatar.rest_positions[skull])
-            seen = quat.normalize(quat.rotate(quat.conjugate(head), looked - centre))
-            turn = quat.between_vectors(FORWARD, seen)
-            angle = quat.angle_between(quat.IDENTITY, turn)
-            fraction = np.minimum(1.0, EYE_RANGE / np.maximum(angle, 1e-12))
-            rotations[:, eye] = quat.slerp(quat.IDENTITY, turn, fraction)
 
 
 def _sample(timeline: ChannelTimeline, times: np.ndarray) -> np.ndarray:
@@ -226,15 +195,3 @@ def _path(avatar: Avatar, joint: int) -> tuple[int, ...]:
         chain.append(parent)
         parent = int(avatar.parents[parent])
     return tuple(reversed(chain))
-
-
-def _chain(avatar: Avatar, rotations: np.ndarray, path: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
-    """World orientation ``(n, 4)`` and position ``(n, 3)`` of the last joint of ``path``
-    (root at the origin)."""
-    n = rotations.shape[0]
-    orientation = np.broadcast_to(quat.IDENTITY, (n, 4))
-    position = np.zeros((n, 3))
-    for joint in path:
-        position = position + quat.rotate(orientation, avatar.offsets[joint])
-        orientation = quat.multiply(orientation, rotations[:, joint])
-    return orientation, position

@@ -15,8 +15,6 @@ as numpy's do here (as :func:`motor.quaternion.about_axis` relies on).
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
@@ -63,15 +61,6 @@ def _located(knots, grid, fractions, t):  # noqa: ANN001, ANN202
     return k, s, tau * (rest * rest)
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _turn(vx, vy, vz):  # noqa: ANN001, ANN202
-    """:func:`motor.quaternion.from_rotation_vector` of one rotation vector."""
-    angle = quat.length3(vx, vy, vz)
-    half = 0.5 * angle
-    scale = math.sin(half) / angle if angle > 1e-12 else 0.5
-    return vx * scale, vy * scale, vz * scale, math.cos(half)
-
-
 @numba.njit([numba.void(READ1, READ2, READ1, READ1, READ1, READ1, WRITE2)], cache=True, error_model="numpy")
 def _vector_rows(knots, values, incoming, grid, fractions, times, out):  # noqa: ANN001, ANN202
     for i in range(times.shape[0]):
@@ -84,9 +73,9 @@ def _vector_rows(knots, values, incoming, grid, fractions, times, out):  # noqa:
 def _rotation_rows(knots, keys, steps, incoming, grid, fractions, times, out):  # noqa: ANN001, ANN202
     for i in range(times.shape[0]):
         k, s, weight = _located(knots, grid, fractions, times[i])
-        sx, sy, sz, sw = _turn(s * steps[k, 0], s * steps[k, 1], s * steps[k, 2])
+        sx, sy, sz, sw = quat.of_rotation_vector(s * steps[k, 0], s * steps[k, 1], s * steps[k, 2])
         px, py, pz, pw = quat.multiplied(keys[k, 0], keys[k, 1], keys[k, 2], keys[k, 3], sx, sy, sz, sw)
-        bx, by, bz, bw = _turn(weight * incoming[0], weight * incoming[1], weight * incoming[2])
+        bx, by, bz, bw = quat.of_rotation_vector(weight * incoming[0], weight * incoming[1], weight * incoming[2])
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = quat.multiplied(bx, by, bz, bw, px, py, pz, pw)
 
 
