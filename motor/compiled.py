@@ -14,8 +14,8 @@ law factors, :mod:`motor.signing.repeats`' repeated postures,
 :mod:`motor.signing.reach_steps`' steps of the reach check and
 :mod:`motor.signing.track_kernels`' samples of joined sign tracks,
 :mod:`motor.program.keyframe_sampling`'s keyframe realizations,
-:mod:`motor.trajectory.spline_positions`' wrist splines and :mod:`motor.neck.posing`'s
-head, neck and eyes) once per checkout and
+:mod:`motor.trajectory.spline_positions`' wrist splines, :mod:`motor.neck.posing`'s
+head, neck and eyes and :mod:`motor.neck.shift_sampling`'s gaze shifts) once per checkout and
 caches it on disk
 (``__pycache__``): several seconds the very first time.
 Each kernel states its signature, so a process loads it from the cache when it imports
@@ -37,7 +37,7 @@ from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, other_arm_clearance, swivel, swivel_cost, swivel_track, upright_placement
 from motor.body import collision, distance, hands_parting
 from motor.hand import shape
-from motor.neck import posing
+from motor.neck import posing, shift_sampling
 from motor.program import keyframe_sampling
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
 from motor.trajectory import biocontrol, spline_positions
@@ -47,7 +47,7 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel and compute the
     manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, collision, hands_parting, clearance, other_arm_clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels, keyframe_sampling, spline_positions, posing):
+    for module in (quaternion, distance, collision, hands_parting, clearance, other_arm_clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels, keyframe_sampling, spline_positions, posing, shift_sampling):
         module.load_kernels()
     biocontrol.load_profiles()
     return time.perf_counter() - started

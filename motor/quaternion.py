@@ -158,6 +158,28 @@ def turn_between(ux, uy, uz, vx, vy, vz):  # noqa: ANN001, ANN201
     return normalized4(cx, cy, cz, w)
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def identity_dot(x, y, z, w):  # noqa: ANN001, ANN201
+    """The dot product of the quaternion ``(x, y, z, w)`` with the identity, summed first to
+    last as :func:`slerp` and :func:`angle_between` sum it."""
+    return ((0.0 * x + 0.0 * y) + 0.0 * z) + 1.0 * w
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def slerped_from_identity(x, y, z, w, dot, theta, t):  # noqa: ANN001, ANN201
+    """:func:`slerp` from the identity (``t = 0``) toward the quaternion ``(x, y, z, w)``,
+    for compiled callers given its :func:`identity_dot` ``dot`` and ``theta``, numpy's
+    ``arccos`` of that dot's absolute value clipped to [-1, 1] (numba's rounds otherwise)."""
+    if dot < 0.0:
+        x, y, z, w = -x, -y, -z, -w
+    sine = math.sin(theta)
+    if sine < 1e-9:
+        a, b = 1.0 - t, t
+    else:
+        a, b = math.sin((1.0 - t) * theta) / sine, math.sin(t * theta) / sine
+    return normalized4(a * 0.0 + b * x, a * 0.0 + b * y, a * 0.0 + b * z, a * 1.0 + b * w)
+
+
 @_products
 def _cross_rows(u, v, out):  # noqa: ANN001, ANN202
     u_step, v_step = u.shape[0] > 1, v.shape[0] > 1

@@ -42,6 +42,7 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
+from motor.neck.shift_sampling import shift_values
 from motor.program.lmp import ChannelState, TimePegs
 from motor.trajectory.biocontrol import minimum_jerk
 
@@ -256,8 +257,8 @@ def sample_shifts(shifts: Sequence[GazeShift], owner: np.ndarray, times: np.ndar
     from where the shift found it toward its goal. A shift whose goal stands still, with
     all its rows here after it is over, gives that goal exactly (rows of a pass that
     starts before it is over come within rounding of it). All rows are worked out in one
-    pass (a timeline's shifts together: the per-call cost of numpy is paid once, not per
-    shift); each row's arithmetic is the same whichever shifts share the pass."""
+    pass (a timeline's shifts together, :func:`motor.neck.shift_sampling.shift_values`);
+    each row's arithmetic is the same whichever shifts share the pass."""
     t = np.asarray(times, dtype=float)
     counts = np.bincount(owner, minlength=len(shifts)) if t.size else np.zeros(len(shifts), dtype=np.int64)
     ends = np.cumsum(counts)
@@ -278,13 +279,7 @@ def sample_shifts(shifts: Sequence[GazeShift], owner: np.ndarray, times: np.ndar
     start = per_row([shift.from_point - shift.lmp.origin for shift in shifts]).reshape(-1, 3)
     from_head = per_row([shift.from_head for shift in shifts]).reshape(-1, 3)
     reach = per_row([float(np.linalg.norm(shift.from_point - shift.lmp.origin)) for shift in shifts])
-    distance = (1.0 - s_eye) * reach + s_eye * np.linalg.norm(goal - origin, axis=1)
-    way = quat.normalize(start)
-    turn = quat.between_vectors(way, quat.normalize(goal - origin))
-    looked = origin + distance[:, None] * quat.rotate(quat.slerp(quat.IDENTITY, turn, s_eye), way)
-    swing = quat.between_vectors(from_head, goal_head)
-    facing = quat.rotate(quat.slerp(quat.IDENTITY, swing, s_head), from_head)
-    values = np.concatenate([looked, facing], axis=1)
+    values = shift_values(origin, start, from_head, reach, goal, goal_head, s_eye, s_head)
     for shift, end, count in zip(shifts, ends, counts):
         if count and shift.fixed and t[end - count] >= shift.time + shift.duration:
             values[end - count : end] = np.concatenate(shift._goal_at_start)

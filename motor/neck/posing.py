@@ -14,7 +14,6 @@ the loops, as numba's round differently.
 
 from __future__ import annotations
 
-import math
 
 import numba
 import numpy as np
@@ -124,7 +123,7 @@ def _neck_rows(rotations, neck, joint_offsets, eye_offsets, gaze, head_turns, he
             ux, uy, uz = quat.normalized3(sx, sy, sz)
             tx, ty, tz, tw = quat.turn_between(0.0, 0.0, 1.0, ux, uy, uz)
             turns[i, e, 0], turns[i, e, 1], turns[i, e, 2], turns[i, e, 3] = tx, ty, tz, tw
-            dots[i, e] = ((0.0 * tx + 0.0 * ty) + 0.0 * tz) + 1.0 * tw
+            dots[i, e] = quat.identity_dot(tx, ty, tz, tw)
 
 
 @numba.njit([numba.void(WRITE3, READ_INTS1, READ3, READ2, READ2)], cache=True, error_model="numpy")
@@ -136,16 +135,8 @@ def _eye_rows(rotations, eyes, turns, dots, theta):  # noqa: ANN001, ANN202
         for e in range(eyes.size):
             half = theta[i, e]
             t = minimum(1.0, EYE_RANGE / maximum(2.0 * half, 1e-12))
-            qx, qy, qz, qw = turns[i, e, 0], turns[i, e, 1], turns[i, e, 2], turns[i, e, 3]
-            if dots[i, e] < 0.0:
-                qx, qy, qz, qw = -qx, -qy, -qz, -qw
-            sine = math.sin(half)
-            if sine < 1e-9:
-                a, b = 1.0 - t, t
-            else:
-                a, b = math.sin((1.0 - t) * half) / sine, math.sin(t * half) / sine
             eye = eyes[e]
-            out = quat.normalized4(a * 0.0 + b * qx, a * 0.0 + b * qy, a * 0.0 + b * qz, a * 1.0 + b * qw)
+            out = quat.slerped_from_identity(turns[i, e, 0], turns[i, e, 1], turns[i, e, 2], turns[i, e, 3], dots[i, e], half, t)
             rotations[i, eye, 0], rotations[i, eye, 1], rotations[i, eye, 2], rotations[i, eye, 3] = out
 
 

@@ -12,7 +12,7 @@ from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, other_
 from motor.body import collision, distance, hands_parting
 from motor.body.avatar import load_avatar
 from motor.hand import shape
-from motor.neck import posing
+from motor.neck import posing, shift_sampling
 from motor.program import keyframe_sampling
 from motor.signing import law_time, path_batch, reach, reach_steps, repeats, retiming, spreading, track_kernels
 from motor.compiled import warm_up
@@ -33,7 +33,7 @@ LOOPS = [
     (hands_parting, "gaps"), (hands_parting, "pushes"), (track_kernels, "_segment_rows"),
     (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
     (keyframe_sampling, "_vector_rows"), (keyframe_sampling, "_rotation_rows"), (spline_positions, "_position_rows"),
-    (posing, "_head_rows"), (posing, "_neck_rows"), (posing, "_eye_rows"),
+    (posing, "_head_rows"), (posing, "_neck_rows"), (posing, "_eye_rows"), (shift_sampling, "_turn_rows"), (shift_sampling, "_value_rows"),
 ]  # fmt: skip
 
 

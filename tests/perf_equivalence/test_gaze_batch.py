@@ -62,6 +62,7 @@ def _windows() -> dict[str, np.ndarray]:
         "each shift's last tenth": frames[np.isin(np.searchsorted(starts, frames, side="right") - 1, np.arange(starts.size)) & (((frames - starts[0]) % 0.7) > 0.63)],
         "at the shifts' starts": starts.copy(),
         "just before the next shift": starts[1:] - 1e-9,
+        "a NaN time last": np.append(frames[:50], np.nan),
     }
 
 
