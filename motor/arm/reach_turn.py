@@ -96,9 +96,22 @@ def trunk_turn(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> TrunkTurn
     # that arm's hand out of reach
     toward_left = MAX_TURN * _demand(right, -1.0, front)
     toward_right = MAX_TURN * _demand(left, 1.0, front)
-    toward_left = toward_left * (1.0 - _out_of_reach(avatar, "l", left, toward_left))
-    toward_right = toward_right * (1.0 - _out_of_reach(avatar, "r", right, -toward_right))
+    toward_left = _held_in_reach(avatar, "l", left, toward_left, toward_left)
+    toward_right = _held_in_reach(avatar, "r", right, toward_right, -toward_right)
     return turned(avatar, toward_left - toward_right)
+
+
+def _held_in_reach(avatar: Avatar, side: str, wrists: np.ndarray, toward: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+    """``toward (n,)`` less as far as the turn ``yaw (n,)`` would take one arm's wrists
+    out of reach (:func:`_out_of_reach`), worked out only at the instants where that can
+    change it: where the other arm asks for a turn, or a wrist is not finite (elsewhere it
+    is 0 either way)."""
+    rows = np.flatnonzero((toward != 0.0) | ~np.isfinite(wrists).all(axis=1))
+    if rows.size == 0:
+        return toward
+    held = toward.copy()
+    held[rows] = toward[rows] * (1.0 - _out_of_reach(avatar, side, wrists[rows], yaw[rows]))
+    return held
 
 
 def turned(avatar: Avatar, yaw: np.ndarray) -> TrunkTurn | None:
