@@ -34,6 +34,7 @@ import numpy as np
 
 from motor.arm.ik import CANDIDATES, track_costs
 from motor.arm.swivel import HORIZON, SwivelState, smooth_swivels
+from motor.arm.swivel_cost import turn_remainder
 from motor.body.avatar import Avatar
 from motor.body.conventions import ARMS, AVATAR_SIDE
 from motor.kernel_types import READ1, READ2, WRITE1, WRITE2
@@ -195,16 +196,10 @@ class SwivelGrid:
         arm's zero turns); and the forearm twist's reference ``(n, 2)``: the grid's twist
         and the twist the hand wanted there, and the wrist's flexion and deviation, all
         linear between grid points (the wanted twist the shorter way round)."""
-        rows = self._arms[arm].rows[first - self.first : last - self.first + 1]
-        positions = times / SWIVEL_PERIOD
-        at = np.floor(positions + 1e-9).astype(int) - first
-        swivel, turn = rows[:, 1], rows[:, 2]
-        points = (swivel[at - 1] + turn[at], swivel[at], swivel[at + 1] - turn[at + 1], swivel[at + 2] - turn[at + 1] - turn[at + 2])
-        swivel = np.concatenate([_catmull_rom(*points, positions - (at + first))[:, None], rows[at, 3:6]], axis=1)
-        u = positions - (at + first)
-        twist, wanted, wrist = rows[at, 6], rows[at, 7], rows[at, 8:10]
-        change = (rows[at + 1, 7] - wanted + np.pi) % (2.0 * np.pi) - np.pi
-        reference = np.column_stack([twist + u * (rows[at + 1, 6] - twist), wanted + u * change, wrist + u[:, None] * (rows[at + 1, 8:10] - wrist)])
+        rows = np.ascontiguousarray(self._arms[arm].rows[first - self.first : last - self.first + 1])
+        positions = np.ascontiguousarray(times / SWIVEL_PERIOD, dtype=float)
+        swivel, reference = np.empty((positions.size, 4)), np.empty((positions.size, 4))
+        _sampled_rows(rows, positions, first, swivel, reference)
         return swivel, reference
 
 
@@ -274,13 +269,38 @@ def _wrist_steps(targets, certainty, start):  # noqa: ANN001, ANN202
     return track
 
 
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def _catmull_rom(p0, p1, p2, p3, u):  # noqa: ANN001, ANN202
+    """The Catmull-Rom spline through ``p0 … p3`` (at grid points −1 … 2) at ``u`` in [0, 1)."""
+    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
+
+
+@numba.njit([numba.void(READ2, READ1, numba.int64, WRITE2, WRITE2)], cache=True, error_model="numpy")
+def _sampled_rows(rows, positions, first, swivel, reference):  # noqa: ANN001, ANN202
+    """:meth:`SwivelGrid.sample` per time: ``positions`` are the times in grid periods,
+    ``rows`` the grid states from index ``first`` on; the arithmetic of numpy's whole-array
+    steps it replaced, in their order (``tests/perf_equivalence/plain_swivel.py``)."""
+    for i in range(positions.size):
+        at = int(math.floor(positions[i] + 1e-9)) - first
+        if at < 1 or at + 2 >= rows.shape[0]:
+            raise IndexError("a time outside the grid states given")
+        u = positions[i] - float(at + first)
+        turn, after = rows[at, 2], rows[at + 1, 2]
+        p0, p1, p2 = rows[at - 1, 1] + turn, rows[at, 1], rows[at + 1, 1] - after
+        p3 = rows[at + 2, 1] - after - rows[at + 2, 2]
+        swivel[i, 0] = _catmull_rom(p0, p1, p2, p3, u)
+        swivel[i, 1], swivel[i, 2], swivel[i, 3] = rows[at, 3], rows[at, 4], rows[at, 5]
+        twist, wanted = rows[at, 6], rows[at, 7]
+        change = turn_remainder(rows[at + 1, 7] - wanted + np.pi) - np.pi
+        reference[i, 0] = twist + u * (rows[at + 1, 6] - twist)
+        reference[i, 1] = wanted + u * change
+        reference[i, 2] = rows[at, 8] + u * (rows[at + 1, 8] - rows[at, 8])
+        reference[i, 3] = rows[at, 9] + u * (rows[at + 1, 9] - rows[at, 9])
+
+
 def load_kernels() -> None:
     """Run this module's compiled loops once (they load when the module is imported):
     :func:`motor.compiled.warm_up`."""
     _twists(np.zeros(2), np.ones(2), 0.0, True, -1.0, 1.0)
     _wrist_steps(np.zeros((2, 2)), np.ones(2), np.zeros(2))
-
-
-def _catmull_rom(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, p3: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """The Catmull-Rom spline through ``p0 … p3`` (at grid points −1 … 2) at ``u`` in [0, 1)."""
-    return p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
+    _sampled_rows(np.zeros((4, len(_COLUMNS))), np.array([1.5]), 0, np.empty((1, 4)), np.empty((1, 4)))

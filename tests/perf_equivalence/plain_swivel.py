@@ -101,3 +101,20 @@ def wrist_track(targets: np.ndarray, certainty: np.ndarray, previous: tuple[floa
             here[i] += sure * (-WRIST_STEP if step < -WRIST_STEP else WRIST_STEP if step > WRIST_STEP else step)
         track.append(tuple(here))
     return np.array(track)
+
+
+def grid_sample(rows: np.ndarray, times: np.ndarray, first: int, period: float) -> tuple[np.ndarray, np.ndarray]:
+    """:meth:`motor.arm.swivel_track.SwivelGrid.sample` over grid states ``rows`` from index
+    ``first`` on, as numpy's whole-array steps computed it."""
+    positions = times / period
+    at = np.floor(positions + 1e-9).astype(int) - first
+    swivel, turn = rows[:, 1], rows[:, 2]
+    points = (swivel[at - 1] + turn[at], swivel[at], swivel[at + 1] - turn[at + 1], swivel[at + 2] - turn[at + 1] - turn[at + 2])
+    p0, p1, p2, p3 = points
+    u = positions - (at + first)
+    curve = p1 + 0.5 * u * ((p2 - p0) + u * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + u * (3.0 * (p1 - p2) + p3 - p0)))
+    swivel = np.concatenate([curve[:, None], rows[at, 3:6]], axis=1)
+    twist, wanted, wrist = rows[at, 6], rows[at, 7], rows[at, 8:10]
+    change = (rows[at + 1, 7] - wanted + np.pi) % (2.0 * np.pi) - np.pi
+    reference = np.column_stack([twist + u * (rows[at + 1, 6] - twist), wanted + u * change, wrist + u[:, None] * (rows[at + 1, 8:10] - wrist)])
+    return swivel, reference

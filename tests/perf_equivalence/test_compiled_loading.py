@@ -29,7 +29,7 @@ LOOPS = [
     (spreading, "_near_pairs"), (spreading, "_add_weighted"), (reach, "_shift_rows"), (repeats, "_group_rows"),
     (reach_steps, "_probe_rows"), (reach_steps, "_step_rows"),
     (upright_placement, "_clavicle_rows"), (upright_placement, "_circle_rows"), (upright_placement, "_swivel_sides"),
-    (swivel, "_walk"), (swivel_track, "_twists"), (swivel_track, "_wrist_steps"), (collision, "_torso_rays"), (collision, "_pushed_out"),
+    (swivel, "_walk"), (swivel_track, "_twists"), (swivel_track, "_wrist_steps"), (swivel_track, "_sampled_rows"), (collision, "_torso_rays"), (collision, "_pushed_out"),
     (hands_parting, "gaps"), (hands_parting, "pushes"), (track_kernels, "_segment_rows"),
     (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
     (keyframe_sampling, "_vector_rows"), (keyframe_sampling, "_rotation_rows"), (spline_positions, "_position_rows"),

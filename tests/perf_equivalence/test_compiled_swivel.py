@@ -113,3 +113,33 @@ def test_the_wrist_track_is_the_python_one_bit_for_bit(previous, certainty):
     sure = {"sure": np.ones(count), "partly": RNG.uniform(0.0, 1.0, count), "unsure": np.zeros(count)}[certainty]
     got = wrist_track(targets, sure, previous)
     assert np.array_equal(got, plain.wrist_track(targets, sure, previous))
+
+
+@pytest.mark.parametrize("fps", [25.0, 60.0, 240.0])
+@pytest.mark.parametrize("kind", ["random", "wanted twist across ±π", "frame times on grid points", "one frame"])
+def test_the_grid_samples_are_the_numpy_ones_bit_for_bit(fps, kind):
+    """:meth:`SwivelGrid.sample` (a compiled loop) against numpy's whole-array steps, over
+    grid states with swivels unwrapped over several turns and turning zeros."""
+    from motor.arm.swivel_track import _COLUMNS, SWIVEL_PERIOD, SwivelGrid
+    from motor.body.avatar import load_avatar
+
+    rng = np.random.default_rng(int(fps) + len(kind))
+    first, count = 7, 40
+    rows = rng.normal(size=(count, len(_COLUMNS)))
+    rows[:, 1] *= 8.0
+    if kind == "wanted twist across ±π":
+        rows[:, 7] = np.where(np.arange(count) % 2, np.pi - 1e-3, -np.pi + 1e-3)
+    grid = SwivelGrid(load_avatar("max"))
+    grid.first = first
+    grid._arms["right"].rows = rows
+    start, stop = (first + 1) * SWIVEL_PERIOD, (first + count - 3) * SWIVEL_PERIOD
+    times = np.arange(np.ceil(start * fps), np.floor(stop * fps)) / fps
+    if kind == "frame times on grid points":
+        times = np.arange(first + 1, first + count - 2) * SWIVEL_PERIOD
+    elif kind == "one frame":
+        times = times[5:6]
+    span = (int(np.floor(times[0] / SWIVEL_PERIOD + 1e-9)) - 1, int(np.floor(times[-1] / SWIVEL_PERIOD + 1e-9)) + 2)
+    got = grid.sample("right", times, *span)
+    expected = plain.grid_sample(rows[span[0] - first : span[1] - first + 1], times, span[0], SWIVEL_PERIOD)
+    for a, b in zip(got, expected):
+        np.testing.assert_array_equal(a, b)
