@@ -35,7 +35,7 @@ import time
 
 from motor import quaternion
 from motor.arm import cheapest_swivel, clearance, given_swivel, other_arm_clearance, swivel, swivel_cost, swivel_track, upright_placement
-from motor.body import collision, distance, hands_parting
+from motor.body import collision, distance, hands_parting, torso_push
 from motor.hand import shape
 from motor.neck import posing, shift_sampling
 from motor.program import keyframe_sampling
@@ -47,7 +47,7 @@ def warm_up() -> float:
     """Load (compiling where no cache holds them) every compiled kernel and compute the
     manners' time profiles; returns the seconds it took."""
     started = time.perf_counter()
-    for module in (quaternion, distance, collision, hands_parting, clearance, other_arm_clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels, keyframe_sampling, spline_positions, posing, shift_sampling):
+    for module in (quaternion, distance, collision, torso_push, hands_parting, clearance, other_arm_clearance, swivel, swivel_track, swivel_cost, cheapest_swivel, given_swivel, upright_placement, shape, path_batch, law_time, retiming, spreading, repeats, reach_steps, reach, track_kernels, keyframe_sampling, spline_positions, posing, shift_sampling):
         module.load_kernels()
     biocontrol.load_profiles()
     return time.perf_counter() - started

@@ -24,7 +24,7 @@ contact keeps its planned minimum-jerk profile).
 
 from __future__ import annotations
 
-import math
+import functools
 
 import numba
 import numpy as np
@@ -33,28 +33,18 @@ from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.distance import closest_parameters
 from motor.body.hands_parting import EASE_ARGUMENT, GAP_COLUMNS, gaps, pushes
+from motor.body.torso_push import EDGE_BAND, HAND_COLUMNS, SOFT_BAND, eased_gap, hand_depths, hand_moved, hand_rays, landed, near_rows, ray, reachable
 from motor.body.volumes import Capsule
-from motor.kernel_types import READ1, READ2, WRITE2, maximum, minimum
+from motor.kernel_types import READ1, READ2, WRITE2
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
-#: Width (m) of the band in front of the torso's margin in which a wrist target is eased
-#: out (:func:`kept_out_of_torso`), and of the bands beyond its top and bottom over
-#: which that push fades.
-SOFT_BAND = 0.02
-EDGE_BAND = 0.08
 #: Fractions of the hand capsule's axis (wrist 0, knuckles 1) kept out of the torso by
 #: :func:`hand_push_out_of_torso`, the rounds it takes, and how much farther than a hand's
 #: length (m) from the torso's box it looks.
 HAND_AXIS_SAMPLES = np.linspace(0.0, 1.0, 5)
 _HAND_ROUNDS = 2
 _HAND_REACH_SLACK = 0.02
-#: How far behind the torso's axis, in its half depths, lies the point from which
-#: :func:`kept_out_of_torso` pushes wrists out along rays.
-RAY_DEPTH = 3.0
-_TINY = 1e-12
-#: How far past a surface a pushed point lands at least (m): beyond rounding.
-_LANDED = 1e-9
 
 
 def joint_placement(avatar: Avatar, positions: np.ndarray, orientations: np.ndarray, joint: str) -> tuple[np.ndarray, np.ndarray]:
@@ -108,9 +98,9 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     The torso's elliptic cylinder grown by ``margin`` (m; :data:`TORSO_MARGIN` for a
     wrist): a point inside it, or in
     its shadow behind it, is moved out along the horizontal ray from a point
-    :data:`RAY_DEPTH` half depths behind the torso's axis (forward in front of the chest,
-    forward and outward at its sides, where moving straight forward would jump as the
-    front turns back); a point outside by less than :data:`SOFT_BAND` along that ray is
+    :data:`motor.body.torso_push.RAY_DEPTH` half depths behind the torso's axis (forward
+    in front of the chest, forward and outward at its sides, where moving straight
+    forward would jump as the front turns back); a point outside by less than :data:`SOFT_BAND` along that ray is
     eased out with a C² curve (module docstring: a path meeting the surface bends instead
     of stopping dead); beyond the torso's top and bottom the push fades out over
     :data:`EDGE_BAND`. Points farther away are unchanged; no moved point is left inside."""
@@ -133,34 +123,18 @@ _RAY_COLUMNS = 7
 _EASE_ARGUMENT = 6
 
 
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _faded(beyond):  # noqa: ANN001, ANN202
-    """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly (smoothstep) to 0 at
-    :data:`EDGE_BAND`."""
-    u = minimum(maximum(beyond / EDGE_BAND, 0.0), 1.0)
-    return 1.0 - u * u * (3.0 - 2.0 * u)
-
-
 @numba.njit([numba.void(READ2, READ1, WRITE2)], cache=True, error_model="numpy")
 def _torso_rays(points, shape, rays):  # noqa: ANN001, ANN202
     """Into ``rays``: :func:`kept_out_of_torso`'s first steps per point (columns
-    :data:`_RAY_COLUMNS`), numpy's operations element by element; ``shape``: the torso's
-    centre x and z, grown half width and half depth, bottom and top."""
+    :data:`_RAY_COLUMNS`: :func:`motor.body.torso_push.ray`); ``shape``: the torso's centre
+    x and z, grown half width and half depth, bottom and top."""
     cx, cz, a, b, bottom, top = shape[0], shape[1], shape[2], shape[3], shape[4], shape[5]
     for i in range(points.shape[0]):
-        u = (points[i, 0] - cx) / a
-        w = (points[i, 2] - cz) / b + RAY_DEPTH
-        square = u * u + w * w
-        ahead = RAY_DEPTH * w
-        disc = ahead * ahead - square * (RAY_DEPTH**2 - 1.0)
-        exit_ = (ahead + math.sqrt(maximum(disc, 0.0))) / maximum(square, _TINY)
-        across, deep = u * a, w * b
-        length = math.sqrt(across * across + deep * deep)
-        gap = (1.0 - exit_) * length if disc > 0.0 and w > 0.0 else math.inf
-        near = minimum(gap, SOFT_BAND)
-        rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4] = u, w, exit_, length, near
-        rays[i, 5] = _faded(bottom - points[i, 1]) * _faded(points[i, 1] - top)
-        rays[i, _EASE_ARGUMENT] = 2.0 * (minimum(near, SOFT_BAND) / SOFT_BAND - 1.0)
+        x, y, z = points[i, 0], points[i, 1], points[i, 2]
+        if reachable(x, y, z, cx, cz, a, b, bottom, top):
+            rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5], rays[i, _EASE_ARGUMENT] = ray(x, y, z, cx, cz, a, b, bottom, top)
+        else:  # as far out as the soft band, unfaded: it stays
+            rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5], rays[i, _EASE_ARGUMENT] = 0.0, 0.0, 0.0, 0.0, SOFT_BAND, 0.0, 0.0
 
 
 @numba.njit([numba.boolean(READ1, READ2, READ1, WRITE2)], cache=True, error_model="numpy")
@@ -171,14 +145,11 @@ def _pushed_out(shape, rays, rise, out):  # noqa: ANN001, ANN202
     moved = False
     for i in range(rays.shape[0]):
         u, w, exit_, length, near, fade = rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5]
-        eased = maximum(near if near >= SOFT_BAND else 2.0 * SOFT_BAND * rise[i] / (1.0 + rise[i]), _LANDED)
+        eased = eased_gap(near, rise[i])
         if not (eased > near and fade > 0.0):
             continue
         moved = True
-        # measured from the exit point, so that a point pushed whole lands past the surface
-        beyond = fade * eased + (1.0 - fade) * near
-        out[i, 0] = cx + (u * exit_ * a) + beyond * u * a / maximum(length, _TINY)
-        out[i, 2] = cz + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / maximum(length, _TINY)
+        out[i, 0], out[i, 2] = landed(u, w, exit_, length, near, fade, eased, cx, cz, a, b)
     return moved
 
 
@@ -196,51 +167,61 @@ def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands:
     push's eighth power (the deepest point's push, blended continuously where two points
     are as deep, so that the wrist does not jump as the deepest point changes), twice.
     Only the wrists within a hand's length of the torso's box are kept out and looked at."""
+    ends, shape, bounds = _hand_torso(avatar, side)
     push = np.zeros((len(wrists), 3))
-    near = _near_torso(avatar, side, wrists, TORSO_MARGIN + SOFT_BAND)
+    near = np.empty(len(wrists), dtype=np.int64)
+    near = near[: near_rows(np.ascontiguousarray(wrists, dtype=float), bounds, near)]
     if near.size == 0:
         return push
     kept = kept_out_of_torso(avatar, wrists[near])
-    cleared = _hand_out_of_torso(avatar, side, kept, hands[near])
+    cleared = _hand_out_of_torso(ends, shape, kept, hands[near])
     if cleared is not None:
         push[near] = cleared - kept
     return push
 
 
-def _near_torso(avatar: Avatar, side: str, wrists: np.ndarray, slack: float = 0.0) -> np.ndarray:
-    """Indices of the wrists ``(n, 3)`` whose hand on ``side`` can come near the torso:
-    within a hand's length (and ``slack`` m) of its box, or behind it."""
+@functools.lru_cache(maxsize=32)
+def _hand_torso(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """What :mod:`motor.body.torso_push` takes of the hand on ``side`` and the torso: the
+    hand capsule's end points less the wrist at rest ``(2, 3)``; the torso grown by the
+    capsule's radius (centre x and z, half width and half depth, bottom and top); and
+    the bounds of the wrists whose hand can come near the torso (within a hand's length
+    and a slack of its box, or behind it: :func:`motor.body.torso_push.near_rows`)."""
     capsule = avatar.collision.arm(side, "hand")
     torso = avatar.torso
+    wrist_rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    ends = np.stack((capsule.a - wrist_rest, capsule.b - wrist_rest))
+    shape = np.array([torso.center[0], torso.center[2], torso.half_width + capsule.radius, torso.half_depth + capsule.radius, torso.bottom, torso.top])
+    slack = TORSO_MARGIN + SOFT_BAND
     reach = float(np.linalg.norm(capsule.b - capsule.a)) + 2.0 * capsule.radius + SOFT_BAND + _HAND_REACH_SLACK + slack
-    return np.flatnonzero(
-        (np.abs(wrists[:, 0] - torso.center[0]) < torso.half_width + reach)
-        & (wrists[:, 1] > torso.bottom - reach - EDGE_BAND)
-        & (wrists[:, 1] < torso.top + reach + EDGE_BAND)
-        & (wrists[:, 2] < torso.center[2] + torso.half_depth + reach)
-    )
+    bounds = np.array([torso.center[0], torso.half_width + reach, torso.bottom - reach - EDGE_BAND, torso.top + reach + EDGE_BAND, torso.center[2] + torso.half_depth + reach])
+    for frozen in (ends, shape, bounds):
+        frozen.flags.writeable = False
+    return ends, shape, bounds
 
 
-def _hand_out_of_torso(avatar: Avatar, side: str, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
+def _hand_out_of_torso(ends: np.ndarray, shape: np.ndarray, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
     """The rounds of :func:`hand_push_out_of_torso` on wrists ``kept`` ``(m, 3)`` already
-    kept out of the torso: where they move; None when none moves."""
-    radius = avatar.collision.arm(side, "hand").radius
-    rows = np.arange(len(kept))
+    kept out of the torso, for a hand and the torso as :func:`_hand_torso` gives them
+    (compiled: :mod:`motor.body.torso_push`): where they move; None when none moves."""
     kept = np.array(kept, dtype=float)
+    turns = np.ascontiguousarray(turns, dtype=float)
+    samples = HAND_AXIS_SAMPLES.size
+    rows = np.arange(len(kept))
+    reached, pushed = np.empty(rows.size, dtype=np.int64), np.empty(rows.size, dtype=np.int64)
+    table, arguments = np.empty((rows.size * samples, HAND_COLUMNS)), np.empty(rows.size * samples)
+    pushes, ratios = np.empty((rows.size * samples, 3)), np.empty(rows.size * samples)
     moved = False
     for _ in range(_HAND_ROUNDS):
-        start, end = hand_segments(avatar, side, kept[rows], turns[rows])
-        points = start[:, None, :] + HAND_AXIS_SAMPLES[None, :, None] * (end - start)[:, None, :]
-        flat = points.reshape(-1, 3)
-        push = (kept_out_of_torso(avatar, flat, radius) - flat).reshape(points.shape)
-        depth = np.linalg.norm(push, axis=2)
-        deepest = depth.max(axis=1)
-        pushed = deepest > 0.0
-        if not np.any(pushed):
+        near, eased = hand_rays(kept, turns, rows, ends, HAND_AXIS_SAMPLES, shape, reached, table, arguments)
+        if eased == 0:  # no point within the soft band: none moves
             break
-        weight = (depth[pushed] / deepest[pushed, None]) ** 8
-        rows = rows[pushed]
-        kept[rows] += np.einsum("nk,nkd->nd", weight, push[pushed]) / np.maximum(weight.sum(axis=1), 1.0)[:, None]
+        # numpy's exp and power between the loops: the compiled ones round some last bits otherwise
+        moving = hand_depths(table[: near * samples], np.exp(arguments[:eased]), reached[:near], shape, pushes, ratios, pushed)
+        if moving == 0:
+            break
+        rows = pushed[:moving].copy()
+        hand_moved(rows, pushes, ratios[: moving * samples] ** 8, kept)
         moved = True
     return kept if moved else None
 
@@ -259,9 +240,8 @@ def inside_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGI
 def hand_segments(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """End points ``(n, 3)`` of a hand's capsule for wrist positions and global hand
     rotations ``(n, 4)``."""
-    capsule = avatar.collision.arm(side, "hand")
-    wrist_rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
-    return wrists + quat.rotate(hands, capsule.a - wrist_rest), wrists + quat.rotate(hands, capsule.b - wrist_rest)
+    ends = _hand_torso(avatar, side)[0]
+    return wrists + quat.rotate(hands, ends[0]), wrists + quat.rotate(hands, ends[1])
 
 
 def separate_hands(

@@ -1,7 +1,9 @@
-"""The numpy steps of :func:`motor.body.collision.kept_out_of_torso` and
-:func:`motor.body.collision.hand_separation` as they stood before they were compiled
-(issue 19): the plain paths the compiled loops are held to, bit for bit, by
-``test_compiled_torso.py`` and ``test_compiled_hands_parting.py``. Not used by mura itself."""
+"""The numpy steps of :func:`motor.body.collision.kept_out_of_torso`,
+:func:`motor.body.collision.hand_separation` and
+:func:`motor.body.collision.hand_push_out_of_torso` as they stood before they were
+compiled (issue 19): the plain paths the compiled loops are held to, bit for bit, by
+``test_compiled_torso.py``, ``test_compiled_hands_parting.py`` and
+``test_compiled_hand_torso.py``. Not used by mura itself."""
 
 from __future__ import annotations
 
@@ -9,9 +11,10 @@ import numpy as np
 
 from motor import quaternion as quat
 from motor.body.avatar import Avatar
-from motor.body.collision import _LANDED, _TINY, EDGE_BAND, RAY_DEPTH, SOFT_BAND, TORSO_MARGIN, hand_segments, hands_may_meet
+from motor.body.collision import _HAND_REACH_SLACK, _HAND_ROUNDS, HAND_AXIS_SAMPLES, TORSO_MARGIN, hands_may_meet
 from motor.body.distance import closest_parameters
 from motor.body.hands_parting import _CROSSED_WAY, _PREFERRED, CROSSING_SINE, END_SHARE, HAND_BAND
+from motor.body.torso_push import EDGE_BAND, LANDED as _LANDED, RAY_DEPTH, SOFT_BAND, TINY as _TINY
 
 
 def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_MARGIN) -> np.ndarray:
@@ -35,6 +38,62 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     out[:, 0] = np.where(moved, torso.center[0] + (u * exit_ * a) + beyond * u * a / np.maximum(length, _TINY), out[:, 0])
     out[:, 2] = np.where(moved, torso.center[2] + (w * exit_ - RAY_DEPTH) * b + beyond * w * b / np.maximum(length, _TINY), out[:, 2])
     return out
+
+
+def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> np.ndarray:
+    """The numpy steps."""
+    push = np.zeros((len(wrists), 3))
+    near = _near_torso(avatar, side, wrists, TORSO_MARGIN + SOFT_BAND)
+    if near.size == 0:
+        return push
+    kept = kept_out_of_torso(avatar, wrists[near])
+    cleared = hand_out_of_torso(avatar, side, kept, hands[near])
+    if cleared is not None:
+        push[near] = cleared - kept
+    return push
+
+
+def _near_torso(avatar: Avatar, side: str, wrists: np.ndarray, slack: float = 0.0) -> np.ndarray:
+    """The numpy steps."""
+    capsule = avatar.collision.arm(side, "hand")
+    torso = avatar.torso
+    reach = float(np.linalg.norm(capsule.b - capsule.a)) + 2.0 * capsule.radius + SOFT_BAND + _HAND_REACH_SLACK + slack
+    return np.flatnonzero(
+        (np.abs(wrists[:, 0] - torso.center[0]) < torso.half_width + reach)
+        & (wrists[:, 1] > torso.bottom - reach - EDGE_BAND)
+        & (wrists[:, 1] < torso.top + reach + EDGE_BAND)
+        & (wrists[:, 2] < torso.center[2] + torso.half_depth + reach)
+    )
+
+
+def hand_out_of_torso(avatar: Avatar, side: str, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
+    """The numpy steps."""
+    radius = avatar.collision.arm(side, "hand").radius
+    rows = np.arange(len(kept))
+    kept = np.array(kept, dtype=float)
+    moved = False
+    for _ in range(_HAND_ROUNDS):
+        start, end = hand_segments(avatar, side, kept[rows], turns[rows])
+        points = start[:, None, :] + HAND_AXIS_SAMPLES[None, :, None] * (end - start)[:, None, :]
+        flat = points.reshape(-1, 3)
+        push = (kept_out_of_torso(avatar, flat, radius) - flat).reshape(points.shape)
+        depth = np.linalg.norm(push, axis=2)
+        deepest = depth.max(axis=1)
+        pushed = deepest > 0.0
+        if not np.any(pushed):
+            break
+        weight = (depth[pushed] / deepest[pushed, None]) ** 8
+        rows = rows[pushed]
+        kept[rows] += np.einsum("nk,nkd->nd", weight, push[pushed]) / np.maximum(weight.sum(axis=1), 1.0)[:, None]
+        moved = True
+    return kept if moved else None
+
+
+def hand_segments(avatar: Avatar, side: str, wrists: np.ndarray, hands: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The numpy steps."""
+    capsule = avatar.collision.arm(side, "hand")
+    wrist_rest = avatar.rest_positions[avatar.joint_index(f"{side}_wrist")]
+    return wrists + quat.rotate(hands, capsule.a - wrist_rest), wrists + quat.rotate(hands, capsule.b - wrist_rest)
 
 
 def hand_separation(

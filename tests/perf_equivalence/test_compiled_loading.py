@@ -9,7 +9,7 @@ import pytest
 
 from motor import quaternion as quat
 from motor.arm import candidate_clearance, cheapest_swivel, given_swivel, other_arm_clearance, swivel, swivel_cost, swivel_track, upright_placement
-from motor.body import collision, distance, hands_parting
+from motor.body import collision, distance, hands_parting, torso_push
 from motor.body.avatar import load_avatar
 from motor.hand import shape
 from motor.neck import posing, shift_sampling
@@ -34,6 +34,7 @@ LOOPS = [
     (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
     (keyframe_sampling, "_vector_rows"), (keyframe_sampling, "_rotation_rows"), (spline_positions, "_position_rows"),
     (posing, "_head_rows"), (posing, "_neck_rows"), (posing, "_eye_rows"), (shift_sampling, "_turn_rows"), (shift_sampling, "_value_rows"),
+    (torso_push, "near_rows"), (torso_push, "hand_rays"), (torso_push, "hand_depths"), (torso_push, "hand_moved"),
 ]  # fmt: skip
 
 
