@@ -33,9 +33,9 @@ from motor import quaternion as quat
 from motor.body.avatar import Avatar
 from motor.body.distance import closest_parameters
 from motor.body.hands_parting import EASE_ARGUMENT, GAP_COLUMNS, gaps, pushes
-from motor.body.torso_push import EDGE_BAND, HAND_COLUMNS, SOFT_BAND, eased_gap, hand_depths, hand_moved, hand_rays, landed, near_rows, ray, reachable
+from motor.body.torso_push import EDGE_BAND, HAND_COLUMNS, SOFT_BAND, eased_gap, hand_depths, hand_moved, hand_pushes, hand_rays, landed, near_rows, ray, reach_box, reachable
 from motor.body.volumes import Capsule
-from motor.kernel_types import READ1, READ2, WRITE2
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2
 
 #: Clearance of the wrist from the torso surface, metres.
 TORSO_MARGIN = 0.04
@@ -104,48 +104,74 @@ def kept_out_of_torso(avatar: Avatar, points: np.ndarray, margin: float = TORSO_
     eased out with a C² curve (module docstring: a path meeting the surface bends instead
     of stopping dead); beyond the torso's top and bottom the push fades out over
     :data:`EDGE_BAND`. Points farther away are unchanged; no moved point is left inside."""
-    torso = avatar.torso
     rows = np.ascontiguousarray(points, dtype=float)
-    shape = np.array([torso.center[0], torso.center[2], torso.half_width + margin, torso.half_depth + margin, torso.bottom, torso.top])
-    rays = np.empty((rows.shape[0], _RAY_COLUMNS))
-    _torso_rays(rows, shape, rays)
+    out = np.empty(rows.shape)
+    return out if _kept_out(rows, np.arange(len(rows)), _torso_shape(avatar, margin), out) else points
+
+
+def _kept_out(points: np.ndarray, rows: np.ndarray, shape: np.ndarray, out: np.ndarray) -> bool:
+    """Into ``out`` ``(m, 3)``: the ``rows`` of ``points`` ``(n, 3)`` kept out of the torso
+    ``shape`` (:func:`_torso_shape`) as :func:`kept_out_of_torso` keeps them; whether any
+    moved."""
+    rays, arguments = np.empty((rows.size, _RAY_COLUMNS)), np.empty(rows.size)
+    eased = _torso_rays(points, rows, shape, out, rays, arguments)
     # numpy's exp between the two loops: the compiled one rounds some last bits otherwise
-    rise = np.exp(rays[:, _EASE_ARGUMENT])
-    out = rows.copy()
-    return out if _pushed_out(shape, rays, rise, out) else points
+    return eased > 0 and _pushed_out(shape, rays, np.exp(arguments[:eased]), out)
 
 
-#: The columns :func:`_torso_rays` keeps per point: its coordinates in units of the grown
-#: ellipse (from the ray's origin), where the ray leaves it, the ray's length (m), how far
-#: out the point lies (at most :data:`SOFT_BAND`), the edges' fade and the argument of
-#: easing's exponential (module docstring).
-_RAY_COLUMNS = 7
-_EASE_ARGUMENT = 6
+@functools.lru_cache(maxsize=32)
+def _torso_shape(avatar: Avatar, margin: float) -> np.ndarray:
+    """The torso grown by ``margin`` (m) as :mod:`motor.body.torso_push` takes it: centre x
+    and z, half width and half depth, bottom and top."""
+    torso = avatar.torso
+    shape = np.array([torso.center[0], torso.center[2], torso.half_width + margin, torso.half_depth + margin, torso.bottom, torso.top])
+    shape.flags.writeable = False
+    return shape
 
 
-@numba.njit([numba.void(READ2, READ1, WRITE2)], cache=True, error_model="numpy")
-def _torso_rays(points, shape, rays):  # noqa: ANN001, ANN202
-    """Into ``rays``: :func:`kept_out_of_torso`'s first steps per point (columns
-    :data:`_RAY_COLUMNS`: :func:`motor.body.torso_push.ray`); ``shape``: the torso's centre
-    x and z, grown half width and half depth, bottom and top."""
+#: The columns :func:`_torso_rays` keeps per point: :func:`motor.body.torso_push.ray`'s
+#: but the argument of easing's exponential.
+_RAY_COLUMNS = 6
+
+
+@numba.njit([numba.int64(READ2, READ_INTS1, READ1, WRITE2, WRITE2, WRITE1)], cache=True, error_model="numpy")
+def _torso_rays(points, rows, shape, out, rays, arguments):  # noqa: ANN001, ANN202
+    """Into ``out`` the ``rows`` of ``points``, into ``rays`` their rays out of the torso
+    ``shape`` (:func:`motor.body.torso_push.ray`; a point
+    :func:`motor.body.torso_push.reachable` rejects as no nearer than the soft band,
+    unfaded) and into ``arguments``, one after another, the exponentials' arguments of
+    the points :func:`motor.body.torso_push.eased_gap` eases; returns how many those are."""
     cx, cz, a, b, bottom, top = shape[0], shape[1], shape[2], shape[3], shape[4], shape[5]
-    for i in range(points.shape[0]):
-        x, y, z = points[i, 0], points[i, 1], points[i, 2]
-        if reachable(x, y, z, cx, cz, a, b, bottom, top):
-            rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5], rays[i, _EASE_ARGUMENT] = ray(x, y, z, cx, cz, a, b, bottom, top)
-        else:  # as far out as the soft band, unfaded: it stays
-            rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5], rays[i, _EASE_ARGUMENT] = 0.0, 0.0, 0.0, 0.0, SOFT_BAND, 0.0, 0.0
+    box = reach_box(cz, a, b, bottom, top)
+    eased = 0
+    for i in range(rows.shape[0]):
+        x, y, z = points[rows[i], 0], points[rows[i], 1], points[rows[i], 2]
+        out[i, 0], out[i, 1], out[i, 2] = x, y, z
+        if not reachable(x, y, z, cx, cz, box):
+            rays[i, 4], rays[i, 5] = SOFT_BAND, 0.0
+            continue
+        u, w, exit_, length, near, fade, argument = ray(x, y, z, cx, cz, a, b, bottom, top)
+        rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5] = u, w, exit_, length, near, fade
+        if not near >= SOFT_BAND:
+            arguments[eased] = argument
+            eased += 1
+    return eased
 
 
 @numba.njit([numba.boolean(READ1, READ2, READ1, WRITE2)], cache=True, error_model="numpy")
 def _pushed_out(shape, rays, rise, out):  # noqa: ANN001, ANN202
     """Into ``out`` (the points): :func:`kept_out_of_torso`'s last steps from
-    :func:`_torso_rays` and numpy's exponential ``rise``; whether any point moved."""
+    :func:`_torso_rays` and numpy's exponentials ``rise`` of its arguments; whether any
+    point moved."""
     cx, cz, a, b = shape[0], shape[1], shape[2], shape[3]
     moved = False
+    used = 0
     for i in range(rays.shape[0]):
         u, w, exit_, length, near, fade = rays[i, 0], rays[i, 1], rays[i, 2], rays[i, 3], rays[i, 4], rays[i, 5]
-        eased = eased_gap(near, rise[i])
+        if near >= SOFT_BAND:
+            continue
+        eased = eased_gap(near, rise[used])
+        used += 1
         if not (eased > near and fade > 0.0):
             continue
         moved = True
@@ -168,15 +194,17 @@ def hand_push_out_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, hands:
     are as deep, so that the wrist does not jump as the deepest point changes), twice.
     Only the wrists within a hand's length of the torso's box are kept out and looked at."""
     ends, shape, bounds = _hand_torso(avatar, side)
-    push = np.zeros((len(wrists), 3))
-    near = np.empty(len(wrists), dtype=np.int64)
-    near = near[: near_rows(np.ascontiguousarray(wrists, dtype=float), bounds, near)]
+    rows = np.ascontiguousarray(wrists, dtype=float)
+    push = np.zeros((len(rows), 3))
+    near = np.empty(len(rows), dtype=np.int64)
+    near = near[: near_rows(rows, bounds, near)]
     if near.size == 0:
         return push
-    kept = kept_out_of_torso(avatar, wrists[near])
-    cleared = _hand_out_of_torso(ends, shape, kept, hands[near])
+    kept = np.empty((near.size, 3))
+    _kept_out(rows, near, _torso_shape(avatar, TORSO_MARGIN), kept)
+    cleared = _hand_out_of_torso(ends, shape, kept, np.ascontiguousarray(hands, dtype=float), near)
     if cleared is not None:
-        push[near] = cleared - kept
+        hand_pushes(near, cleared, kept, push)
     return push
 
 
@@ -200,12 +228,12 @@ def _hand_torso(avatar: Avatar, side: str) -> tuple[np.ndarray, np.ndarray, np.n
     return ends, shape, bounds
 
 
-def _hand_out_of_torso(ends: np.ndarray, shape: np.ndarray, kept: np.ndarray, turns: np.ndarray) -> np.ndarray | None:
+def _hand_out_of_torso(ends: np.ndarray, shape: np.ndarray, kept: np.ndarray, hands: np.ndarray, hand_rows: np.ndarray) -> np.ndarray | None:
     """The rounds of :func:`hand_push_out_of_torso` on wrists ``kept`` ``(m, 3)`` already
-    kept out of the torso, for a hand and the torso as :func:`_hand_torso` gives them
-    (compiled: :mod:`motor.body.torso_push`): where they move; None when none moves."""
-    kept = np.array(kept, dtype=float)
-    turns = np.ascontiguousarray(turns, dtype=float)
+    kept out of the torso, turned by the rows ``hand_rows`` of global hand rotations
+    ``hands``, for a hand and the torso as :func:`_hand_torso` gives them (compiled:
+    :mod:`motor.body.torso_push`): where they move; None when none moves."""
+    kept = kept.copy()
     samples = HAND_AXIS_SAMPLES.size
     rows = np.arange(len(kept))
     reached, pushed = np.empty(rows.size, dtype=np.int64), np.empty(rows.size, dtype=np.int64)
@@ -213,7 +241,7 @@ def _hand_out_of_torso(ends: np.ndarray, shape: np.ndarray, kept: np.ndarray, tu
     pushes, ratios = np.empty((rows.size * samples, 3)), np.empty(rows.size * samples)
     moved = False
     for _ in range(_HAND_ROUNDS):
-        near, eased = hand_rays(kept, turns, rows, ends, HAND_AXIS_SAMPLES, shape, reached, table, arguments)
+        near, eased = hand_rays(kept, hands, rows, hand_rows, ends, HAND_AXIS_SAMPLES, shape, reached, table, arguments)
         if eased == 0:  # no point within the soft band: none moves
             break
         # numpy's exp and power between the loops: the compiled ones round some last bits otherwise
@@ -306,6 +334,6 @@ def hands_may_meet(avatar: Avatar, left: np.ndarray, right: np.ndarray) -> np.nd
 def load_kernels() -> None:
     """Run this module's compiled loops once (they load when it is imported):
     :func:`motor.compiled.warm_up`."""
-    shape, rays = np.array([0.0, 0.0, 0.2, 0.1, 0.0, 1.0]), np.zeros((1, _RAY_COLUMNS))
-    _torso_rays(np.zeros((1, 3)), shape, rays)
-    _pushed_out(shape, rays, np.ones(1), np.zeros((1, 3)))
+    shape, rays, out = np.array([0.0, 0.0, 0.2, 0.1, 0.0, 1.0]), np.zeros((1, _RAY_COLUMNS)), np.zeros((1, 3))
+    eased = _torso_rays(np.zeros((1, 3)), np.zeros(1, dtype=np.int64), shape, out, rays, np.empty(1))
+    _pushed_out(shape, rays, np.ones(eased), out)

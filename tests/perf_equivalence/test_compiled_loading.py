@@ -34,7 +34,7 @@ LOOPS = [
     (other_arm_clearance, "other_arm_rows"), (other_arm_clearance, "near_frames"), (other_arm_clearance, "other_arm_window"),
     (keyframe_sampling, "_vector_rows"), (keyframe_sampling, "_rotation_rows"), (spline_positions, "_position_rows"),
     (posing, "_head_rows"), (posing, "_neck_rows"), (posing, "_eye_rows"), (shift_sampling, "_turn_rows"), (shift_sampling, "_value_rows"),
-    (torso_push, "near_rows"), (torso_push, "hand_rays"), (torso_push, "hand_depths"), (torso_push, "hand_moved"),
+    (torso_push, "near_rows"), (torso_push, "hand_rays"), (torso_push, "hand_depths"), (torso_push, "hand_moved"), (torso_push, "hand_pushes"),
 ]  # fmt: skip
 
 
