@@ -1,12 +1,12 @@
 """The motor core's compiled kernels, loaded before the first frame is due.
 
 numba compiles each kernel (:mod:`motor.quaternion`'s products,
-:mod:`motor.body.distance`'s signed distances, :mod:`motor.body.collision`'s torso
-push, :mod:`motor.body.hands_parting`'s hands kept apart, :mod:`motor.arm.clearance`'s
+:mod:`motor.body.distance`'s signed distances, :mod:`motor.body.collision`'s and
+:mod:`motor.body.torso_push`'s torso push, :mod:`motor.body.hands_parting`'s hands kept apart, :mod:`motor.arm.clearance`'s
 arm-against-body loop, :mod:`motor.arm.other_arm_clearance`'s arm-against-the-other-arm
 loop, :mod:`motor.arm.swivel_cost`'s wrist state and candidate costs,
 :mod:`motor.arm.swivel`'s value tables and walk, :mod:`motor.arm.swivel_track`'s twist and
-wrist tracks, :mod:`motor.arm.cheapest_swivel`'s pruned search,
+wrist tracks and samples, :mod:`motor.arm.cheapest_swivel`'s pruned search,
 :mod:`motor.arm.given_swivel`'s arm posed at a swivel, :mod:`motor.hand.shape`'s hand joint
 rotations, :mod:`motor.signing.path_batch`'s trace of a move within its hull,
 :mod:`motor.signing.law_time`'s law time of many paths, :mod:`motor.signing.retiming`'s
