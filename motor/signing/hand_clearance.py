@@ -25,15 +25,13 @@ import numpy as np
 
 from motor.body.avatar import Avatar
 from motor.body.collision import hand_segments
+from motor.body.torso_push import LANDED
 from motor.body.volumes import EllipticCylinder
 
 #: Space (m) left between the hand's capsule and the torso's surface.
 HAND_CLEARANCE = 0.008
 #: Fractions of the hand capsule's axis (wrist 0, knuckles 1) checked against the torso.
 CAPSULE_SAMPLES = np.linspace(0.0, 1.0, 5)
-#: How far past the clearance a pushed wrist lands (m): beyond rounding, so that a pushed
-#: position needs no push again.
-_LANDED = 1e-9
 
 
 def trunk_cylinders(avatar: Avatar) -> tuple[EllipticCylinder, ...]:
@@ -99,5 +97,5 @@ def hands_clear_of_torso(avatar: Avatar, side: str, wrists: np.ndarray, rotation
     if not np.any(push > 0.0):
         return wrists
     out = np.array(wrists, dtype=float).reshape(-1, 3)
-    out[:, 2] += np.where(push > 0.0, push + _LANDED, 0.0)
+    out[:, 2] += np.where(push > 0.0, push + LANDED, 0.0)
     return out
