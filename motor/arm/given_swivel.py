@@ -112,27 +112,6 @@ _inline = numba.njit(cache=True, error_model="numpy", inline="always")
 
 
 @_inline
-def _normalized3(x, y, z):  # noqa: ANN001, ANN202
-    square = 0.0
-    square += x * x
-    square += y * y
-    square += z * z
-    length = np.sqrt(square)
-    return x / length, y / length, z / length
-
-
-@_inline
-def _normalized4(x, y, z, w):  # noqa: ANN001, ANN202
-    square = 0.0
-    square += x * x
-    square += y * y
-    square += z * z
-    square += w * w
-    length = np.sqrt(square)
-    return x / length, y / length, z / length, w / length
-
-
-@_inline
 def _wrapped(angle):  # noqa: ANN001, ANN202
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
@@ -172,7 +151,7 @@ def _from_matrix(m00, m01, m02, m10, m11, m12, m20, m21, m22):  # noqa: ANN001, 
         x, y, z, w = m02 + m20, m12 + m21, 1.0 - m00 - m11 + m22, m10 - m01
     else:
         x, y, z, w = m21 - m12, m02 - m20, m10 - m01, 1.0 + m00 + m11 + m22
-    return _normalized4(x, y, z, w)
+    return quat.normalized4(x, y, z, w)
 
 
 @numba.njit([numba.void(READ2, READ2, READ1, READ2, READ2, READ2, READ1, WRITE3)], cache=True, error_model="numpy")
@@ -184,7 +163,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
     px, py, pz = vectors[_PRONATION, 0], vectors[_PRONATION, 1], vectors[_PRONATION, 2]
     for i in range(targets.shape[0]):
         tx, ty, tz = targets[i, 0], targets[i, 1], targets[i, 2]
-        hx, hy, hz, hw = _normalized4(hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3])
+        hx, hy, hz, hw = quat.normalized4(hands[i, 0], hands[i, 1], hands[i, 2], hands[i, 3])
         # the clavicle turns the shoulder toward a far reach (chain.clavicle_rotation)
         rx = tx - (vectors[_SC_POSITION, 0] + cx)
         ry = ty - (vectors[_SC_POSITION, 1] + cy)
@@ -238,9 +217,9 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         # the joint rotations at that swivel (ik._arm_at)
         cos, sin = math.cos(psi), math.sin(psi)
         gx, gy, gz = dx * cos + ux * sin, dy * cos + uy * sin, dz * cos + uz * sin
-        bx, by, bz = _normalized3(mx + gx * radius - sx, my + gy * radius - sy, mz + gz * radius - sz)
+        bx, by, bz = quat.normalized3(mx + gx * radius - sx, my + gy * radius - sy, mz + gz * radius - sz)
         nx, ny, nz = quat.crossed(gx, gy, gz, ax, ay, az)
-        nx, ny, nz = _normalized3(nx, ny, nz)
+        nx, ny, nz = quat.normalized3(nx, ny, nz)
         wx, wy, wz = quat.crossed(bx, by, bz, nx, ny, nz)
         rest = vectors[_UPPER_REST], vectors[_HINGE_REST], vectors[_REST_NORMAL]
         # target @ rest^T, both with the frames' axes as columns
@@ -284,10 +263,7 @@ def _posed_rows(targets, hands, swivel, swivel_from, reference, vectors, scalars
         deviation = _clamp(vx * other[0] + vy * other[1] + vz * other[2], scalars[_DEVIATION_LOW], scalars[_DEVIATION_HIGH])
         deviation = reference[i, 3] + certainty * (deviation - reference[i, 3])
         vx, vy, vz = bend * axis[0] + deviation * other[0], bend * axis[1] + deviation * other[1], bend * axis[2] + deviation * other[2]
-        angle = np.sqrt(vx * vx + vy * vy + vz * vz)
-        half = 0.5 * angle
-        scale = math.sin(half) / angle if angle > 1e-12 else 0.5
-        out[i, 3, 0], out[i, 3, 1], out[i, 3, 2], out[i, 3, 3] = vx * scale, vy * scale, vz * scale, math.cos(half)
+        out[i, 3, 0], out[i, 3, 1], out[i, 3, 2], out[i, 3, 3] = quat.of_rotation_vector(vx, vy, vz)
 
 
 def load_kernels() -> None:
