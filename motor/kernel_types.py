@@ -6,8 +6,8 @@ signature it takes, so that a process loads it from the cache at import and neve
 compiles it in the middle of an utterance. Its inputs are read-only C-contiguous arrays
 (what a broadcast or a frozen table is), its outputs writable C-contiguous ones. A loop
 that replaces numpy's ``np.maximum`` or ``np.minimum`` (or ``np.clip``) of an element
-uses :func:`maximum` and :func:`minimum`: a NaN in either number wins, as in numpy
-(Python's ``max`` and ``min`` keep the first number instead).
+uses :func:`maximum` and :func:`minimum` (:func:`clip` of both): a NaN in either number
+wins, as in numpy (Python's ``max`` and ``min`` keep the first number instead).
 """
 
 from __future__ import annotations
@@ -34,3 +34,9 @@ def maximum(a, b):  # noqa: ANN001, ANN201
 def minimum(a, b):  # noqa: ANN001, ANN201
     """``np.minimum`` of two numbers: a NaN in either wins, a tie gives the first."""
     return a if a <= b or a != a else b
+
+
+@numba.njit(cache=True, error_model="numpy", inline="always")
+def clip(x, low, high):  # noqa: ANN001, ANN201
+    """``np.clip`` of one number, as :func:`minimum` of :func:`maximum`: a NaN stays."""
+    return minimum(maximum(x, low), high)

@@ -21,7 +21,7 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.kernel_types import READ1, READ2, WRITE2, maximum, minimum
+from motor.kernel_types import READ1, READ2, WRITE2, clip, maximum, minimum
 
 #: Depth (m) of the band below the palm thickness into which hands asked to come nearer
 #: are eased (:func:`motor.body.collision.separate_hands`): they overlap at most that
@@ -73,7 +73,7 @@ def gaps(l0, l1, r0, r1, s, t, thickness, table):  # noqa: ANN001, ANN201
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def _ramp(value, low, high):  # noqa: ANN001, ANN202
     """0 below ``low``, 1 above ``high``, smoothstep between."""
-    u = minimum(maximum((value - low) / (high - low), 0.0), 1.0)
+    u = clip((value - low) / (high - low), 0.0, 1.0)
     return u * u * (3.0 - 2.0 * u)
 
 
@@ -94,7 +94,7 @@ def _parting(left, right, apart, s, t, length):  # noqa: ANN001, ANN202
     ax, ay, az = ax * side, ay * side, az * side
     size = maximum(quat.length3(ax, ay, az), _TINY)
     ax, ay, az = ax / size, ay / size, az / size
-    weight = minimum(maximum(sine / CROSSING_SINE, 0.0), 1.0)
+    weight = clip(sine / CROSSING_SINE, 0.0, 1.0)
     px, py, pz = weight * ax + (1.0 - weight) * 1.0, weight * ay + (1.0 - weight) * 0.0, weight * az + (1.0 - weight) * 0.0
     spread = quat.length3(apart[0], apart[1], apart[2])
     drawn = _ramp(minimum(s, t), END_SHARE[0], END_SHARE[1]) * _ramp(spread / length, END_SHARE[0], END_SHARE[1])
@@ -119,7 +119,7 @@ def _crossed(spread, left_hand, right_hand, constants):  # noqa: ANN001, ANN202
     left_x, _, _ = quat.rotated(left_hand[0], left_hand[1], left_hand[2], left_hand[3], constants[3], constants[4], constants[5])
     right_x, _, _ = quat.rotated(right_hand[0], right_hand[1], right_hand[2], right_hand[3], constants[6], constants[7], constants[8])
     facing = 0.5 * (abs(left_x) + abs(right_x))
-    u = minimum(maximum((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0), 1.0)
+    u = clip((spread + palm * (0.5 + 0.5 * facing)) / (palm * (2.0 - facing)), 0.0, 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
 

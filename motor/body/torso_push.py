@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1, maximum, minimum
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE2, WRITE_INTS1, clip, maximum, minimum
 
 #: Width (m) of the band in front of the torso's margin in which a point is eased out
 #: (:func:`motor.body.collision.kept_out_of_torso`), and of the bands beyond its top and
@@ -56,7 +56,7 @@ _BOX_SLACK = 1e-3
 def _faded(beyond):  # noqa: ANN001, ANN202
     """1 where ``beyond`` ≤ 0 (inside an edge), falling smoothly (smoothstep) to 0 at
     :data:`EDGE_BAND`."""
-    u = minimum(maximum(beyond / EDGE_BAND, 0.0), 1.0)
+    u = clip(beyond / EDGE_BAND, 0.0, 1.0)
     return 1.0 - u * u * (3.0 - 2.0 * u)
 
 

@@ -19,21 +19,16 @@ import numba
 import numpy as np
 
 from motor import quaternion as quat
-from motor.kernel_types import READ1, READ2, WRITE2, maximum, minimum
+from motor.kernel_types import READ1, READ2, WRITE2, clip
 from motor.trajectory.biocontrol import TimeProfile
 from motor.trajectory.spline_positions import knot_segment
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _clipped(x, low, high):  # noqa: ANN001, ANN202
-    return minimum(maximum(x, low), high)
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
 def _path_fraction(grid, fractions, u):  # noqa: ANN001, ANN202
     """``np.interp(np.clip(u, 0, 1), grid, fractions)`` on a time profile's table, whose
     ``grid`` runs from 0 to 1 (:meth:`motor.trajectory.biocontrol.TimeProfile.fraction`)."""
-    x = _clipped(u, 0.0, 1.0)
+    x = clip(u, 0.0, 1.0)
     if x != x:
         return x
     last = grid.shape[0] - 1
@@ -54,9 +49,9 @@ def _located(knots, grid, fractions, t):  # noqa: ANN001, ANN202
     """The key segment of time ``t``, the path fraction through it, and the incoming
     blend's weight ``τ (1 − τ/T)²`` (:func:`motor.program.lmp.incoming_blend`)."""
     k = knot_segment(knots, t)
-    s = _path_fraction(grid, fractions, _clipped((t - knots[k]) / (knots[k + 1] - knots[k]), 0.0, 1.0))
+    s = _path_fraction(grid, fractions, clip((t - knots[k]) / (knots[k + 1] - knots[k]), 0.0, 1.0))
     window = knots[1] - knots[0]
-    tau = _clipped(t - knots[0], 0.0, window)
+    tau = clip(t - knots[0], 0.0, window)
     rest = 1.0 - tau / window
     return k, s, tau * (rest * rest)
 

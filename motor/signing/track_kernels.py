@@ -14,7 +14,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE_INTS1
+from motor.kernel_types import READ1, READ2, READ_INTS1, WRITE1, WRITE_INTS1, clip
 
 
 def segments(
@@ -37,14 +37,6 @@ def segments(
         negligible, index, fraction,
     )  # fmt: skip
     return index, fraction
-
-
-@numba.njit(cache=True, error_model="numpy", inline="always")
-def _unit(x):  # noqa: ANN001, ANN202
-    """``np.clip(x, 0.0, 1.0)`` of one number: a NaN stays."""
-    if x != x:
-        return x
-    return 0.0 if x < 0.0 else (1.0 if x > 1.0 else x)
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
@@ -77,7 +69,7 @@ def _segment_rows(owner, times, move_base, value_base, starts, ends, manners, ta
             continue
         move = found - move_base[track]
         start = starts[found]
-        u = _unit((t - start) / (ends[found] - start))
+        u = clip((t - start) / (ends[found] - start), 0.0, 1.0)
         position = u * span
         low = min(int(position), span - 1)
         weight = position - low
@@ -87,7 +79,7 @@ def _segment_rows(owner, times, move_base, value_base, starts, ends, manners, ta
         at = min(max(at, first[found]), last[found] - 1)
         width = keys[at + 1] - keys[at]
         index[i] = at
-        fraction[i] = _unit((wanted - keys[at]) / (width if width > negligible else 1.0))
+        fraction[i] = clip((wanted - keys[at]) / (width if width > negligible else 1.0), 0.0, 1.0)
 
 
 def load_kernels() -> None:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from motor.kernel_types import READ1, READ3, WRITE2, maximum, minimum
+from motor.kernel_types import READ1, READ3, WRITE2, clip
 
 
 @numba.njit(cache=True, error_model="numpy", inline="always")
@@ -37,7 +37,7 @@ def knot_segment(knots, t):  # noqa: ANN001, ANN201
 def _position_rows(knots, coefficients, times, out):  # noqa: ANN001, ANN202
     first, last = knots[0], knots[knots.shape[0] - 1]
     for i in range(times.shape[0]):
-        t = minimum(maximum(times[i], first), last)
+        t = clip(times[i], first, last)
         k = knot_segment(knots, t)
         u = (t - knots[k]) / (knots[k + 1] - knots[k])
         for d in range(out.shape[1]):
