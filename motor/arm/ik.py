@@ -159,11 +159,19 @@ class ArmReach(NamedTuple):
     penetration: np.ndarray
 
 
-def arm_reach(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray | None = None) -> ArmReach:
+def arm_reach(
+    avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray | None = None, with_depth: bool = True
+) -> ArmReach:
     """:func:`solve_arm`'s ``wrist``, ``shortfall`` and ``penetration`` (the same numbers)
     without the joint rotations and the hand's twist, which a reach check does not read:
-    planning checks a quarter of a million wrist positions of a corpus this way."""
+    planning checks a quarter of a million wrist positions of a corpus this way.
+
+    The wrist reached and the shortfall come from the arm's placement alone; only the
+    penetration needs the cheapest swivel's search. A check that does not read it passes
+    ``with_depth=False``: the search is skipped and ``penetration`` is NaN (not measured)."""
     setup, natural = upright_placement(avatar, side, wrist_targets, hand_rotations)
+    if not with_depth:
+        return ArmReach(setup.circle.wrist, setup.circle.shortfall, np.full(len(natural), np.nan))
     _, _, depth = cheapest_reach(avatar, setup, natural)
     return ArmReach(setup.circle.wrist, setup.circle.shortfall, depth)
 

@@ -182,8 +182,8 @@ def _within_reach(
             break
         away, targets = reach_probes(fixed, open_, shoulder, REACH_MARGIN)
         turns = None if rotations is None else np.asarray(rotations)[open_]
-        # beyond and short of each position, in the same IK calls
-        probed = _solve_in_chunks(avatar, side, targets, None if turns is None else np.concatenate([turns, turns]))
+        # beyond and short of each position, in the same IK calls; the depth only where it is read
+        probed = _solve_in_chunks(avatar, side, targets, None if turns is None else np.concatenate([turns, turns]), across)
         worst = max(worst, float(np.max(probed.shortfall[: open_.size] - REACH_MARGIN, initial=0.0)))
         bad = reach_step(fixed, open_, away, probed, shoulder, limits, outward, ahead, across)
         moved[open_[bad]] = True
@@ -191,11 +191,12 @@ def _within_reach(
     return fixed, moved, max(worst, 0.0)
 
 
-def _solve_in_chunks(avatar: Avatar, side: str, targets: np.ndarray, turns: np.ndarray | None) -> ArmReach:
-    """The arm IK's reach (:func:`motor.arm.ik.arm_reach`) for many wrist positions,
-    :data:`IK_CHUNK` rows per call (the IK solves every row apart; its cost per row grows
-    for very long calls)."""
-    parts = [arm_reach(avatar, side, targets[rows], None if turns is None else turns[rows]) for rows in (slice(start, start + IK_CHUNK) for start in range(0, len(targets), IK_CHUNK))]
+def _solve_in_chunks(avatar: Avatar, side: str, targets: np.ndarray, turns: np.ndarray | None, with_depth: bool = True) -> ArmReach:
+    """The arm IK's reach (:func:`motor.arm.ik.arm_reach`, the body's depth only
+    ``with_depth``) for many wrist positions, :data:`IK_CHUNK` rows per call (the IK
+    solves every row apart; its cost per row grows for very long calls)."""
+    chunks = (slice(start, start + IK_CHUNK) for start in range(0, len(targets), IK_CHUNK))
+    parts = [arm_reach(avatar, side, targets[rows], None if turns is None else turns[rows], with_depth) for rows in chunks]
     if len(parts) == 1:
         return parts[0]
     return ArmReach(*(np.concatenate(column) for column in zip(*parts)))

@@ -76,7 +76,8 @@ def test_reach_checks_read_the_composed_elbows_and_depth(avatar_name, side, spre
     """The reach check's pass (:func:`cheapest_reach`, which places the elbow at the
     cheapest swivel and measures the body's depth there) gives what the composition gives:
     the composed swivel's elbows (:meth:`ElbowCircle.elbow`) and their depth
-    (:func:`clearance`), and :func:`arm_reach` reads that depth."""
+    (:func:`clearance`), and :func:`arm_reach` reads that depth; without the depth it
+    reaches the same wrists with the same shortfalls, the penetration not measured."""
     avatar = load_avatar(avatar_name)
     targets = targets_about(avatar, side, spread, toward)
     rotations = quat.normalize(RNG.normal(size=(N, 4))) if hands else None
@@ -90,7 +91,12 @@ def test_reach_checks_read_the_composed_elbows_and_depth(avatar_name, side, spre
     assert np.array_equal(swivels, psi)
     assert np.array_equal(elbows, elbow)
     assert np.array_equal(depths, depth)
-    assert np.array_equal(arm_reach(avatar, side, targets, rotations).penetration, depth)
+    reach = arm_reach(avatar, side, targets, rotations)
+    assert np.array_equal(reach.penetration, depth)
+    unmeasured = arm_reach(avatar, side, targets, rotations, with_depth=False)
+    assert np.array_equal(unmeasured.wrist, reach.wrist)
+    assert np.array_equal(unmeasured.shortfall, reach.shortfall)
+    assert np.isnan(unmeasured.penetration).all()
 
 
 def test_the_reach_checks_measure_arms_in_the_body():
