@@ -12,7 +12,7 @@ there after a stroke that went lower: 1.3 cm). People bow the hand's way out ins
 kept out of the torso as the motor control keeps them
 (:func:`motor.body.collision.kept_out_of_torso`), at how deep the arm's least costly
 posture goes into the body there
-(:func:`motor.arm.ik.solve_arm`'s ``penetration``, the measure
+(:func:`motor.arm.ik.arm_reach`'s ``penetration``: :func:`motor.arm.ik.solve_arm`'s, the measure
 :func:`motor.arm.wrist_path.uncrowded` places gesture locations with). Where it goes
 deeper than :data:`CROWDING_TOLERANCE` and than at either end (which no bow moves), the
 way is displaced across its chord — outward (toward the arm's own side), upward or
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from motor.arm.ik import solve_arm
+from motor.arm.ik import arm_reach
 from motor.body.avatar import Avatar
 from motor.body.collision import kept_out_of_torso
 from motor.trajectory.spline import WristTrajectory
@@ -83,10 +83,10 @@ def find_bow(avatar: Avatar, side: str, way: np.ndarray) -> Bow | None:
         return None
     # a first look at every DETECTION_STRIDE-th point: most ways do not crowd the arm, and
     # each is looked at as it is activated, on the live path
-    glance = solve_arm(avatar, side, kept_out_of_torso(avatar, way[::DETECTION_STRIDE])).penetration
+    glance = arm_reach(avatar, side, kept_out_of_torso(avatar, way[::DETECTION_STRIDE])).penetration
     if not np.any(glance > max(CROWDING_TOLERANCE, float(glance[0]), float(glance[-1]))):
         return None
-    depth = solve_arm(avatar, side, kept_out_of_torso(avatar, way)).penetration
+    depth = arm_reach(avatar, side, kept_out_of_torso(avatar, way)).penetration
     floor = max(CROWDING_TOLERANCE, float(depth[0]), float(depth[-1]))
     crowded = np.flatnonzero(depth > floor)
     if crowded.size == 0:
@@ -96,7 +96,7 @@ def find_bow(avatar: Avatar, side: str, way: np.ndarray) -> Bow | None:
     shape = bow(along, window)[0]
     sizes = _directions(side, chord)[:, None, :] * BOW_STEPS[None, :, None]  # (direction, size, 3)
     ways = way[None, None] + shape[None, None, :, None] * sizes[:, :, None, :]
-    deepest = solve_arm(avatar, side, kept_out_of_torso(avatar, ways.reshape(-1, 3))).penetration.reshape(ways.shape[:3]).max(axis=2)
+    deepest = arm_reach(avatar, side, kept_out_of_torso(avatar, ways.reshape(-1, 3))).penetration.reshape(ways.shape[:3]).max(axis=2)
     clears = deepest <= floor
     if np.any(clears):
         smallest = np.where(np.any(clears, axis=1), np.argmax(clears, axis=1), len(BOW_STEPS))
@@ -119,7 +119,7 @@ def _spares_the_arm(avatar: Avatar, side: str, way: np.ndarray, found: Bow) -> b
     sampled = np.linspace(0.0, 1.0, way.shape[0])
     dense = np.stack([np.interp(along, sampled, way[:, axis]) for axis in range(3)], axis=1)
     bowed = dense + bow(along, found.window)[0][:, None] * found.displacement
-    depth = solve_arm(avatar, side, kept_out_of_torso(avatar, np.concatenate([dense, bowed]))).penetration
+    depth = arm_reach(avatar, side, kept_out_of_torso(avatar, np.concatenate([dense, bowed]))).penetration
     return float(depth[along.size :].max()) < float(depth[: along.size].max())
 
 

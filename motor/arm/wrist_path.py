@@ -32,7 +32,8 @@ from scipy.ndimage import gaussian_filter1d
 
 from motor.arm.bowed_way import CROWDING_TOLERANCE
 from motor.arm.chain import arm_chain, exact_reach
-from motor.arm.ik import solve_arm
+from motor.arm.ik import arm_reach
+from motor.arm.upright_placement import upright_placement
 from motor.body.avatar import Avatar
 from motor.body.collision import outside_torso
 from motor.trajectory.power_law import path_spline
@@ -91,7 +92,7 @@ def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray
     placed again (in reach, which may pull it back), until clear or for
     :data:`_CROWDING_ROUNDS` rounds; how many were moved and the deepest (m)."""
     out = points
-    depth = solve_arm(avatar, side, out).penetration
+    depth = arm_reach(avatar, side, out).penetration
     crowded = depth > CROWDING_TOLERANCE
     if not np.any(crowded):
         return points, 0, 0.0
@@ -101,7 +102,7 @@ def uncrowded(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray
         step = depth[crowded, None] + CROWDING_TOLERANCE
         moved[crowded] = placed(avatar, side, out[crowded] + np.array([0.0, 0.0, 1.0]) * step).points
         out = moved
-        depth = solve_arm(avatar, side, out).penetration
+        depth = arm_reach(avatar, side, out).penetration
         crowded = depth > CROWDING_TOLERANCE
         if not np.any(crowded):
             break
@@ -135,12 +136,12 @@ def in_reach(avatar: Avatar, side: str, points: np.ndarray) -> tuple[np.ndarray,
     it; the IK eases its reach beyond, so a path placed there would be followed short of
     its plan) and not nearer than its elbow bends (the IK's nearest point) — and how far
     (m) each was moved."""
-    solution = solve_arm(avatar, side, points)
-    away = points - solution.shoulder
+    circle = upright_placement(avatar, side, points)[0].circle  # the arm's placement is all it reads of the IK
+    away = points - circle.shoulder
     distance = np.linalg.norm(away, axis=1)
     limit = exact_reach(arm_chain(avatar, side))
-    pulled = solution.shoulder + away * (limit / np.maximum(distance, 1e-12))[:, None]
-    reached = np.where((distance > limit)[:, None], pulled, solution.wrist)
+    pulled = circle.shoulder + away * (limit / np.maximum(distance, 1e-12))[:, None]
+    reached = np.where((distance > limit)[:, None], pulled, circle.wrist)
     return reached, np.linalg.norm(reached - points, axis=1)
 
 

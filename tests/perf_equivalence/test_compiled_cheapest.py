@@ -15,7 +15,8 @@ import pytest
 from motor import quaternion as quat
 from motor.arm.chain import natural_swivel, place_arm
 from motor.arm.clearance import clearance
-from motor.arm.ik import arm_reach
+from motor.arm.ik import arm_reach, solve_arm
+from motor.arm.upright_placement import upright_placement
 from motor.arm.cheapest_swivel import cheapest_by_costs, cheapest_reach, cheapest_swivels
 from motor.body.avatar import load_avatar
 from motor.body.distance import components
@@ -103,6 +104,28 @@ def test_the_reach_checks_measure_arms_in_the_body():
     """The table above meets the body: some of its arms are measured inside it."""
     avatar = load_avatar("kim")
     assert np.any(arm_reach(avatar, "l", targets_about(avatar, "l", 0.12, "chest")).penetration > 0.0)
+
+
+@pytest.mark.parametrize("avatar_name", ["max", "kim"])
+@pytest.mark.parametrize("side", ["l", "r"])
+@pytest.mark.parametrize(("spread", "toward"), [(0.05, "front"), (0.3, "front"), (0.04, "chest"), (0.15, "chest"), (1.0, "front")])
+@pytest.mark.parametrize("bad", [None, np.nan, np.inf], ids=["finite", "NaN", "infinite"])
+def test_what_a_placement_reads_of_the_solved_arm_is_the_solved_arms(avatar_name, side, spread, toward, bad):
+    """Gesture locations and ways read only the solved arm's shoulder, wrist and body
+    depth of the body upright at rest (:mod:`motor.arm.wrist_path`,
+    :mod:`motor.arm.bowed_way`): the arm's placement (:func:`upright_placement`) and the
+    reach pass (:func:`arm_reach`) give those very numbers without solving the joints."""
+    avatar = load_avatar(avatar_name)
+    targets = targets_about(avatar, side, spread, toward)
+    if bad is not None:
+        targets[[2, 30]] = bad
+    with np.errstate(all="ignore"):
+        solution = solve_arm(avatar, side, targets)
+        circle = upright_placement(avatar, side, targets)[0].circle
+        penetration = arm_reach(avatar, side, targets).penetration
+    assert np.array_equal(circle.shoulder, solution.shoulder, equal_nan=True)
+    assert np.array_equal(circle.wrist, solution.wrist, equal_nan=True)
+    assert np.array_equal(penetration, solution.penetration, equal_nan=True)
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf], ids=["NaN", "infinite"])
