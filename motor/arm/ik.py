@@ -267,11 +267,11 @@ def track_costs(
     penalty of the deeper of its instant and the two half-way ones around it, its elbow
     held there (:func:`midway_penalties`): a fast stroke can take the arm deeper into
     the body between two instants than at either."""
-    placement = place_arm(avatar, side, wrist_targets, hand_rotations, trunk_yaw=trunk_yaw)
+    placement, natural = _placed(avatar, side, wrist_targets, hand_rotations, trunk_yaw)
     circle = placement.circle
     turns = swivel_of(circle.down[:-1], circle.down[1:], circle.out[1:])
     rows = placement.take(slice(1, None))
-    natural = natural_swivel(rows.chain, rows.circle, rows.targets, rows.torso_q)
+    natural = natural[1:]
     keys = [rows.targets, rows.hands] + ([] if trunk_yaw is None else [np.asarray(trunk_yaw, dtype=float)[1:, None]])
     nearby = None
     if midway is not None:
@@ -312,8 +312,8 @@ def midway_penalties(
     penalties = np.zeros((len(half), count))
     down, out = placement.circle.down.copy(), placement.circle.out.copy()
     if moving.size:
-        between = place_arm(avatar, side, targets[moving], hands[moving], trunk_yaw=None if trunk_yaw is None else np.asarray(trunk_yaw, dtype=float)[moving])
-        penalties[moving] = body_penalties(avatar, between, natural_swivel(between.chain, between.circle, between.targets, between.torso_q))
+        between, natural = _placed(avatar, side, targets[moving], hands[moving], None if trunk_yaw is None else np.asarray(trunk_yaw, dtype=float)[moving])
+        penalties[moving] = body_penalties(avatar, between, natural)
         down[moving], out[moving] = between.circle.down, between.circle.out
     circle = placement.circle
     # an elbow at swivel ψ of instant i is at ψ + forward half way after it, at ψ − back half way before it
@@ -329,8 +329,19 @@ def swivel_zeros(avatar: Avatar, side: str, wrist_targets: np.ndarray) -> tuple[
     """The directions ``(n, 3)`` of swivel 0 and of swivel π/2 for wrist targets ``(n, 3)``
     (the elbow circle's in-plane axes; the zero turns with the arm's elevation,
     :mod:`motor.arm.chain`)."""
-    circle = place_arm(avatar, side, wrist_targets).circle
+    circle = upright_placement(avatar, side, wrist_targets)[0].circle
     return circle.down, circle.out
+
+
+def _placed(avatar: Avatar, side: str, wrist_targets: np.ndarray, hand_rotations: np.ndarray, trunk_yaw: np.ndarray | None) -> tuple[ArmPlacement, np.ndarray]:
+    """The arm placed for wrist targets ``(n, 3)`` and hand rotations ``(n, 4)`` given in
+    the frame of the trunk turned by ``trunk_yaw (n,)`` (:func:`motor.arm.chain.place_arm`),
+    and the natural swivels there ``(n,)``: by the compiled :func:`upright_placement`
+    where the trunk is not turned (the same numbers)."""
+    if trunk_yaw is None:
+        return upright_placement(avatar, side, wrist_targets, hand_rotations)
+    placement = place_arm(avatar, side, wrist_targets, hand_rotations, trunk_yaw=trunk_yaw)
+    return placement, natural_swivel(placement.chain, placement.circle, placement.targets, placement.torso_q)
 
 
 def swivel_of(direction: np.ndarray, zero: np.ndarray, quarter: np.ndarray) -> np.ndarray:
