@@ -43,7 +43,7 @@ from motor.body.conventions import DEFAULT_AVATAR
 from motor.motion import Motion
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_signs
-from motor.signing.sequence import SignedMotion, realize_signs
+from motor.signing.sequence import PreparedSigns, SignedMotion, prepare_signs, realize_prepared
 from mura.errors import SpecError
 from mura.lexicon import load_lexicons
 from mura.limits import DEFAULT_LIMITS, Limits
@@ -131,16 +131,19 @@ def render_chunk(items: Sequence[CorpusItem], options: RenderOptions, output: st
     The chunk's signs are planned together (the reach of all their wrist positions is
     checked in one vectorized pass, several times faster than sign by sign), every sign of
     the chunk whether done or not, so that an item's plan never depends on which others
-    were left to do; should planning them together fail, each is planned alone. Each item
-    is then realized and written on its own, under its own time limit.
+    were left to do; should planning them together fail, each is planned alone. The
+    transitions from rest into each sign and back are then found together too
+    (:func:`motor.signing.sequence.prepare_signs`: each the same as alone), and each item
+    realized and written on its own, under its own time limit.
     """
     folder = Path(output)
     plans = _plans(items, options)
+    prepared = _prepared({index: plan for index, plan in plans.items() if index not in done}, options)
     results = []
     for item in items:
         if item.index in done:
             continue
-        results.append(guarded(item, options, lambda item=item: _render_one(item, options, folder, plans.get(item.index))))
+        results.append(guarded(item, options, lambda item=item: _render_one(item, options, folder, plans.get(item.index), prepared.get(item.index))))
     return results
 
 
@@ -174,12 +177,28 @@ def _plans(items: Sequence[CorpusItem], options: RenderOptions) -> dict[int, Sig
         return {}
 
 
-def _render_one(item: CorpusItem, options: RenderOptions, folder: Path, plan: SignPlan | SignPlanningError | None) -> ItemResult:
+def _prepared(plans: dict[int, SignPlan | SignPlanningError], options: RenderOptions) -> dict[int, PreparedSigns]:
+    """Each planned sign prepared as a sequence of its own, by item index: together, or
+    none (each then alone) if that fails. A sign's preparation is the same whichever
+    others share the batch."""
+    planned = {index: plan for index, plan in plans.items() if isinstance(plan, SignPlan)}
+    if not planned:
+        return {}
+    try:
+        with time_limit(options.time_limit * len(planned)):
+            return dict(zip(planned, prepare_signs(_avatar(options.avatar), [[plan] for plan in planned.values()])))
+    except Exception:  # noqa: BLE001 - prepared again one by one, where each failure stays with its sign
+        return {}
+
+
+def _render_one(
+    item: CorpusItem, options: RenderOptions, folder: Path, plan: SignPlan | SignPlanningError | None, prepared: PreparedSigns | None
+) -> ItemResult:
     if item.kind != SIGN:
         return _render_utterance(item, options, folder)
     if plan is None:
         (plan,) = plan_signs(_avatar(options.avatar), [item.sign])
-    return _render_sign(item, options, folder, plan)
+    return _render_sign(item, options, folder, plan, prepared)
 
 
 def _reason(item: CorpusItem, error: BaseException) -> str:
@@ -229,12 +248,14 @@ def _agent(avatar: str, tts: str, fps: float, lexicons: tuple[str, ...], limits:
     return Agent(avatar=_avatar(avatar), tts=tts, fps=fps, lexicon=load_lexicons(lexicons) if lexicons else None, limits=input_limits)
 
 
-def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: SignPlan | SignPlanningError) -> ItemResult:
+def _render_sign(item: CorpusItem, options: RenderOptions, folder: Path, plan: SignPlan | SignPlanningError, prepared: PreparedSigns | None) -> ItemResult:
     assert item.sign is not None
     avatar = _avatar(options.avatar)
     if isinstance(plan, SignPlanningError):
         return ItemResult(item.index, item.name, FAILED, planning_reason(item.sign, plan))
-    signed = realize_signs(avatar, [plan], options.fps or SIGN_FPS)
+    if prepared is None:
+        (prepared,) = prepare_signs(avatar, [[plan]])
+    signed = realize_prepared(avatar, prepared, options.fps or SIGN_FPS)
     timeline = timeline_of(signed, item.label)
     writers: dict[str, Callable[[Path], None]] = {
         f"{item.name}.bvh": lambda path: write_bvh(signed.motion, path),

@@ -10,7 +10,8 @@ import pytest
 
 from motor.signing.plan import SignPlan, SignPlanningError
 from motor.signing.planning import plan_signs
-from motor.signing.sequence import check_motion, realize_signs
+from motor.body.conventions import ARMS
+from motor.signing.sequence import check_motion, prepare_signs, realize_prepared, realize_signs
 from mura.sigml import parse_sigml
 
 CORPORA = ("German_SL_DGS.sigml", "Indian_SL.sigml")
@@ -56,3 +57,20 @@ def test_sampled_sequence_is_clean(avatar, sample, planned):
     assert check.max_upper_arm_depth < 0.01
     starts = np.array([t.start for t in signed.timings])
     assert np.all(np.diff(starts) > 0.0)
+
+
+@pytest.mark.parametrize(("sizes", "alone"), [((1,) * 40, 0), ((1,) * 40, 17), ((3, 1, 5, 2), 2), ((40,), 0)], ids=["signs one by one", "one by one, 18th", "sequences of several", "one sequence"])
+def test_signs_prepared_together_are_prepared_as_alone(avatar, planned, sizes, alone):
+    """Sequences prepared in one batch (:func:`prepare_signs`: their transitions' ways
+    checked together) get the very ways, bit for bit, that the sequence prepared on its
+    own gets, and :func:`realize_prepared` the very frames of :func:`realize_signs`."""
+    plans = [result for result in planned if isinstance(result, SignPlan)]
+    starts = np.cumsum((0,) + sizes)
+    sequences = [plans[a:b] for a, b in zip(starts, starts[1:]) if a < len(plans)]
+    together = prepare_signs(avatar, sequences)
+    (own,) = prepare_signs(avatar, [sequences[alone]])
+    assert [len(p.legs) for p in together] == [len(sequence) + 1 for sequence in sequences]
+    assert all(np.array_equal(a[arm], b[arm]) for a, b in zip(together[alone].ways, own.ways) for arm in ARMS)
+    if len(sequences[alone]) <= 3:
+        prepared = realize_prepared(avatar, together[alone]).motion.rotations
+        assert np.array_equal(prepared, realize_signs(avatar, sequences[alone]).motion.rotations)
