@@ -65,7 +65,7 @@ def test_sign_interrupted_at_the_second_sign_leaves_nothing(write, tmp_path, sig
                                   f'<hns_sign gloss="B"><hamnosys_manual>{sign}</hamnosys_manual></hns_sign></sigml>')
     out, report = tmp_path / "out", tmp_path / "reports" / "report.json"
     done = run_mura("sign", str(document), "-o", str(out), "--report", str(report),
-                    hooks=_hook("agent.batch.render:realize_signs", 2, signal_name))  # the second sign
+                    hooks=_hook("agent.batch.render:realize_prepared", 2, signal_name))  # the second sign
     assert done.status == STATUS[signal_name]
     assert not out.exists() and not report.parent.exists()
     assert hamnosys_string(names)  # the symbols exist (the document is a valid two-sign corpus)
