@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from agent.export.fixed_point import FORMAT, fixed_lines
 from agent.export.staging import staged_text
 from motor.motion import Motion
 
@@ -43,9 +44,10 @@ END_SITE_FRACTION = 0.75
 """End-site length as a fraction of the leaf's own bone (a fingertip continues its phalanx)."""
 END_SITE_FALLBACK_CM = 2.0
 """End-site length when a leaf has no bone direction to follow (a zero offset), centimetres."""
-VALUE_FORMAT = "%.6f"
+VALUE_FORMAT = FORMAT
+"""How every number of the file is written (the frames by :func:`~agent.export.fixed_point.fixed_lines`)."""
 FRAMES_PER_BLOCK = 2048
-"""Frames formatted by one string operation when writing the MOTION block."""
+"""Frames formatted by one compiled pass when writing the MOTION block."""
 COPY_BLOCK_CHARS = 1 << 20
 """Characters of frame lines copied or yielded at a time by :class:`StreamingBvh`."""
 
@@ -285,11 +287,10 @@ def _channel_values_of(rotations: np.ndarray, root_translation: np.ndarray, orde
 
 
 def _write_frames(values: np.ndarray, stream: io.TextIOBase) -> None:
-    """One line per frame, formatted a block of frames per string operation."""
+    """One line per frame, each number as :data:`VALUE_FORMAT` writes it, a block of
+    frames per compiled pass (:func:`agent.export.fixed_point.fixed_lines`)."""
     if values.shape[0] == 0:
         return
-    row = " ".join([VALUE_FORMAT] * values.shape[1]) + "\n"
     values = values + 0.0  # turns -0.0 into 0.0 so the text is tidy
     for start in range(0, values.shape[0], FRAMES_PER_BLOCK):
-        block = values[start : start + FRAMES_PER_BLOCK]
-        stream.write((row * block.shape[0]) % tuple(block.ravel().tolist()))
+        stream.write(fixed_lines(values[start : start + FRAMES_PER_BLOCK]))
