@@ -23,7 +23,7 @@ morph weights too.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 
@@ -41,13 +41,13 @@ from motor.motion import Motion
 from motor.program.gesture import rest_handshape, retraction_duration
 from motor.program.lmp import LMP, TimePegs
 from motor.signing.collector import collector_paused
-from motor.signing.lmp import PATH_DENSITY, SignChannelLMP, TracedChain
+from motor.signing.lmp import PATH_DENSITY, Move, SignChannelLMP, TracedChain
 from motor.signing.nonmanual import plan_nonmanuals
 from motor.signing.path_batch import stopping_lengths, trace_chains
 from motor.signing.plan import HandPose, SignPlan
 from motor.signing.planning import plan_sign
 from motor.signing.reach import clear_paths
-from motor.signing.retiming import timing_length
+from motor.signing.retiming import timing_lengths
 from motor.trajectory.biocontrol import movement_duration, shortest_duration
 from motor.trajectory.spline import fitts_duration
 from mura.signs import Sign
@@ -114,26 +114,59 @@ def realize_signs(avatar: Avatar, signs: Iterable[Sign | SignPlan], fps: float =
 
 @dataclass(frozen=True, eq=False)
 class PreparedSigns:
-    """Planned signs to realize one after another (:func:`realize_prepared`), with where
-    the hands are before each transition and after it (``legs``: one per sign, then the
-    way back to rest) and the interior wrist points of every transition, per leg and arm
-    (``ways``, :func:`_transition_ways`)."""
+    """Planned signs to realize one after another (:func:`realize_prepared`), with all
+    their wrist paths worked out. Per leg (one per sign, then the way back to rest):
+    where the hands are before its transition and after it (``legs``), the transition's
+    interior wrist points per arm (``ways``, :func:`_transition_ways`), its manner, its
+    traced wrist chain per arm (the transition, then the sign's moves:
+    :func:`motor.signing.path_batch.trace_chains`) and the hand's turns
+    (:func:`_hand_turns`); per sign, when its transition starts, its first posture is
+    reached and it ends (``spans``, seconds; last, the retraction: start, arrival,
+    arrival), and its moves on that clock."""
 
     plans: tuple[SignPlan, ...]
     legs: tuple[tuple[dict[str, HandPose], dict[str, HandPose]], ...]
     ways: tuple[dict[str, np.ndarray], ...]
+    manners: tuple[str, ...]
+    spans: tuple[tuple[float, float, float], ...]
+    moves: tuple[dict[tuple[str, str], tuple[Move, ...]], ...]
+    traced: tuple[dict[str, TracedChain], ...]
+    turns: tuple[dict[str, tuple[np.ndarray | None, np.ndarray | None]], ...]
 
 
 def prepare_signs(avatar: Avatar, sequences: Sequence[Sequence[SignPlan]]) -> list[PreparedSigns]:
-    """Each sequence of planned signs with its transitions' ways, those of all the
-    sequences kept outside the torso and within reach in one batch. The check moves every
-    path on its own, so each way is the one its sequence gets alone, bit for bit; a
-    corpus rendered sign by sign shares the batch's fixed cost (signs in sixteens: 7.0 →
-    1.6 ms a sign)."""
+    """Each sequence of planned signs with its wrist paths worked out, those of all the
+    sequences in one batch per step: the transitions' ways kept outside the torso and
+    within reach, the paths' stopping and timing lengths, the chains traced, the hands'
+    turns. Every step works path by path, so each sequence gets, bit for bit, what it gets
+    alone; a corpus rendered sign by sign shares the steps' fixed cost (transition ways
+    of signs in sixteens: 7.0 → 1.6 ms a sign)."""
     rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
     legs = [_legs(plans, rest) for plans in sequences]
-    ways = iter(_transition_ways(avatar, [leg for own in legs for leg in own]))
-    return [PreparedSigns(tuple(plans), tuple(own), tuple(next(ways) for _ in own)) for plans, own in zip(sequences, legs)]
+    flat_ways = _transition_ways(avatar, [leg for own in legs for leg in own])
+    ways = [flat_ways[start : start + len(own)] for start, own in zip(np.cumsum([0] + [len(own) for own in legs]).tolist(), legs)]
+    paths = [[{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(own, own_ways)] for own, own_ways in zip(legs, ways)]
+    stopping = iter(stopping_lengths([leg[arm] for own in paths for leg in own[:-1] for arm in ARMS]))
+    last = iter(timing_lengths([own[-1][arm] for own in paths for arm in ARMS]))
+    manners = [["targetted" if plan.static else "lax" for plan in plans] + ["lax"] for plans in sequences]
+    spans = [_spans(plans, own, stopping, [next(last) for _ in ARMS], kinds) for plans, own, kinds in zip(sequences, legs, manners)]
+    moves = [
+        [{(arm, channel): tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())) for arm in ARMS for channel in CHANNELS}
+         for plan, (_, ready, _) in zip(plans, times)]
+        for plans, times in zip(sequences, spans)
+    ]  # fmt: skip
+    # every wrist transition and move of every sequence traced in one batch (motor.signing.path_batch)
+    chains = iter(trace_chains(
+        [(start, ready, manner, leg[arm]) for times, kinds, own in zip(spans, manners, paths)
+         for (start, ready, _), manner, leg in zip(times, kinds, own) for arm in ARMS],
+        [sign.get((arm, "wrist_position"), ()) for signs in moves for sign in [*signs, {}] for arm in ARMS],
+    ))  # fmt: skip
+    traced = [[{arm: next(chains) for arm in ARMS} for _ in own] for own in legs]
+    flat_turns = iter(_hand_turns(avatar, [leg for own in legs for leg in own], flat_ways, [chain for own in traced for chain in own]))
+    return [
+        PreparedSigns(tuple(plans), tuple(own), tuple(way), tuple(kinds), tuple(times), tuple(signs), tuple(chain), tuple(next(flat_turns) for _ in own))
+        for plans, own, way, kinds, times, signs, chain in zip(sequences, legs, ways, manners, spans, moves, traced)
+    ]  # fmt: skip
 
 
 def realize_prepared(avatar: Avatar, prepared: PreparedSigns, fps: float = 25.0) -> SignedMotion:
@@ -143,25 +176,13 @@ def realize_prepared(avatar: Avatar, prepared: PreparedSigns, fps: float = 25.0)
 
 
 def _realized(avatar: Avatar, prepared: PreparedSigns, fps: float) -> SignedMotion:
-    """:func:`realize_signs` of prepared signs."""
+    """:func:`realize_signs` of prepared signs: their LMPs activated and their frames made."""
     control = MotorControl(avatar, fps)
-    plans, legs, ways = prepared.plans, prepared.legs, prepared.ways
+    plans, legs, ways, spans, manners, moves, traced, turns = (
+        prepared.plans, prepared.legs, prepared.ways, prepared.spans, prepared.manners, prepared.moves, prepared.traced, prepared.turns
+    )  # fmt: skip
     rest = legs[-1][1]
-    paths = [{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(legs, ways)]
-    manners = ["targetted" if plan.static else "lax" for plan in plans] + ["lax"]
-    spans = _spans(plans, legs, paths, manners)
     clock, back = spans[-1][0], spans[-1][1] - spans[-1][0]
-    moves = [
-        {(arm, channel): tuple(m.shifted(ready) for m in plan.moves.get((arm, channel), ())) for arm in ARMS for channel in CHANNELS}
-        for plan, (_, ready, _) in zip(plans, spans)
-    ]
-    # every wrist transition and move of the sequence traced in one batch (motor.signing.path_batch)
-    chains = iter(trace_chains(
-        [(start, ready, manner, leg[arm]) for (start, ready, _), manner, leg in zip(spans, manners, paths) for arm in ARMS],
-        [sign.get((arm, "wrist_position"), ()) for sign in [*moves, {}] for arm in ARMS],
-    ))  # fmt: skip
-    traced = [{arm: next(chains) for arm in ARMS} for _ in legs]
-    turns = _hand_turns(avatar, legs, ways, traced)
     timings: list[SignTiming] = []
     warnings: list[str] = []
     for plan, (_, targets), way, chain, turn, (start, ready, end), manner, sign in zip(plans, legs, ways, traced, turns, spans, manners, moves):
@@ -206,18 +227,19 @@ def _legs(plans: Sequence[SignPlan], rest: dict[str, HandPose]) -> list[tuple[di
 def _spans(
     plans: Sequence[SignPlan],
     legs: Sequence[tuple[dict[str, HandPose], dict[str, HandPose]]],
-    paths: Sequence[dict[str, np.ndarray]],
+    stopping: Iterator[float],
+    last: Sequence[float],
     manners: Sequence[str],
 ) -> list[tuple[float, float, float]]:
     """Per sign, when its transition starts, when its first posture is reached and when it
     ends (seconds), one after another from :data:`REST_LEAD`; and last, the retraction to
     rest (start, arrival, arrival). The transitions, in their ``manners``, take their
-    times from their wrist ``paths``
-    (:func:`_transition_time`, the stopping lengths of all paths in one batch); the
+    times from the ``stopping`` lengths of their wrist paths, arm by arm
+    (:func:`_transition_time`; :func:`motor.signing.path_batch.stopping_lengths`); the
     retraction takes at least what its way, travelled in law time, needs within the lax
-    budget (:func:`motor.signing.retiming.timing_length`: a way around the body from
-    behind the head is long and bent)."""
-    stopping = iter(stopping_lengths([leg[arm] for leg in paths[:-1] for arm in ARMS]))
+    budget (its ``last`` timing lengths per arm,
+    :func:`motor.signing.retiming.timing_lengths`: a way around the body from behind the
+    head is long and bent)."""
     clock = REST_LEAD
     spans = []
     for plan, (before, targets), manner in zip(plans, legs, manners):
@@ -226,7 +248,7 @@ def _spans(
         clock = ready + plan.duration
     before, rest = legs[-1]
     back = max(retraction_duration(float(np.linalg.norm(before[arm].wrist - rest[arm].wrist))) for arm in ARMS)
-    back = max(back, max(shortest_duration(timing_length(paths[-1][arm]), "lax") for arm in ARMS))
+    back = max(back, max(shortest_duration(length, "lax") for length in last))
     spans.append((clock, clock + back, clock + back))
     return spans
 

@@ -61,16 +61,26 @@ def test_sampled_sequence_is_clean(avatar, sample, planned):
 
 @pytest.mark.parametrize(("sizes", "alone"), [((1,) * 40, 0), ((1,) * 40, 17), ((3, 1, 5, 2), 2), ((40,), 0)], ids=["signs one by one", "one by one, 18th", "sequences of several", "one sequence"])
 def test_signs_prepared_together_are_prepared_as_alone(avatar, planned, sizes, alone):
-    """Sequences prepared in one batch (:func:`prepare_signs`: their transitions' ways
-    checked together) get the very ways, bit for bit, that the sequence prepared on its
-    own gets, and :func:`realize_prepared` the very frames of :func:`realize_signs`."""
+    """Sequences prepared in one batch (:func:`prepare_signs`: their transitions' ways,
+    stopping and timing lengths, traced chains and hand turns worked out together) get,
+    bit for bit, what the sequence prepared on its own gets, and :func:`realize_prepared`
+    the very frames of :func:`realize_signs`."""
     plans = [result for result in planned if isinstance(result, SignPlan)]
     starts = np.cumsum((0,) + sizes)
     sequences = [plans[a:b] for a, b in zip(starts, starts[1:]) if a < len(plans)]
     together = prepare_signs(avatar, sequences)
     (own,) = prepare_signs(avatar, [sequences[alone]])
+    batched = together[alone]
     assert [len(p.legs) for p in together] == [len(sequence) + 1 for sequence in sequences]
-    assert all(np.array_equal(a[arm], b[arm]) for a, b in zip(together[alone].ways, own.ways) for arm in ARMS)
+    assert batched.spans == own.spans and batched.manners == own.manners
+    for arm in ARMS:
+        assert all(np.array_equal(a[arm], b[arm]) for a, b in zip(batched.ways, own.ways))
+        for a, b in zip(batched.traced, own.traced):
+            assert (a[arm].time, a[arm].manners) == (b[arm].time, b[arm].manners)
+            assert np.array_equal(a[arm].here, b[arm].here) and np.array_equal(a[arm].starts, b[arm].starts) and np.array_equal(a[arm].ends, b[arm].ends)
+            assert all(np.array_equal(x, y) for x, y in zip(a[arm].values + a[arm].fractions, b[arm].values + b[arm].fractions))
+        for a, b in zip(batched.turns, own.turns):
+            assert all((x is None and y is None) or np.array_equal(x, y) for x, y in zip(a[arm], b[arm]))
     if len(sequences[alone]) <= 3:
-        prepared = realize_prepared(avatar, together[alone]).motion.rotations
+        prepared = realize_prepared(avatar, batched).motion.rotations
         assert np.array_equal(prepared, realize_signs(avatar, sequences[alone]).motion.rotations)
