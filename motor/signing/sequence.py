@@ -9,8 +9,10 @@ the wrists travel, then performs its moves; after the last sign the hands return
 along the lax profile in :func:`motor.program.gesture.retraction_duration` and stay there for
 :data:`REST_TAIL` seconds. A hand a sign does not use goes back to rest during that sign.
 
-The wrist paths of every transition and move of the sequence are traced in one batch
-(:mod:`motor.signing.path_batch`) and handed to the sign LMPs
+The wrist paths of every transition and move of the sequence are worked out first
+(:func:`prepare_signs`: the transitions kept clear of the body and in reach, timed, traced
+in one batch by :mod:`motor.signing.path_batch`, for many sequences at once when a corpus
+is rendered sign by sign) and handed to the sign LMPs
 (:class:`motor.signing.lmp.SignChannelLMP`, one per channel of each arm and sign),
 activated on :class:`motor.control.MotorControl`, which samples them and solves
 both arms (analytic IK with a smooth swivel track that keeps the arms clear of the body
