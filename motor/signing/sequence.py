@@ -146,7 +146,8 @@ def prepare_signs(avatar: Avatar, sequences: Sequence[Sequence[SignPlan]]) -> li
     rest = {arm: _rest_pose(avatar, arm) for arm in ARMS}
     legs = [_legs(plans, rest) for plans in sequences]
     flat_ways = _transition_ways(avatar, [leg for own in legs for leg in own])
-    ways = [flat_ways[start : start + len(own)] for start, own in zip(np.cumsum([0] + [len(own) for own in legs]).tolist(), legs)]
+    leg_ways = iter(flat_ways)
+    ways = [[next(leg_ways) for _ in own] for own in legs]
     paths = [[{arm: _way_path(before[arm], after[arm], way[arm]) for arm in ARMS} for (before, after), way in zip(own, own_ways)] for own, own_ways in zip(legs, ways)]
     stopping = iter(stopping_lengths([leg[arm] for own in paths for leg in own[:-1] for arm in ARMS]))
     last = iter(timing_lengths([own[-1][arm] for own in paths for arm in ARMS]))
